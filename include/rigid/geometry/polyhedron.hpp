@@ -1,0 +1,110 @@
+#pragma once
+/// Convex polyhedral blocks built from triangle meshes: welding, adjacency, checks, mass
+/// properties (physics.md §7). No I/O: readers live in rigid::io and hand over a TriangleSoup.
+#include <array>
+#include <string>
+#include <vector>
+
+#include "rigid/core/types.hpp"
+
+namespace rigid::geometry {
+
+/// One facet as read from a mesh file, vertices in file order (unit: m).
+struct Triangle {
+  Vec3 a, b, c;
+};
+using TriangleSoup = std::vector<Triangle>;
+
+/// Tolerances for turning a triangle soup into a checked convex block.
+struct MeshOptions {
+  /// Vertices closer than this fraction of the bounding-box diagonal are welded (unit: 1).
+  double weld_tolerance = 1e-9;
+  /// A vertex may lie at most this fraction of the bounding-box diagonal outside any facet plane
+  /// before the mesh is called non-convex (unit: 1). Photogrammetry hulls are convex only to
+  /// rounding; real concavities are far larger.
+  double convexity_tolerance = 1e-6;
+  /// Adjacent triangles whose normals differ by less than this angle are merged into one planar
+  /// face for contact (unit: rad).
+  double coplanar_angle = 1e-6;
+};
+
+/// A closed, consistently outward-oriented triangle mesh with welded vertices, in the file's frame.
+struct ClosedMesh {
+  std::vector<Vec3> vertices;                    ///< unit: m
+  std::vector<std::array<int, 3>> triangles;     ///< counter-clockwise seen from outside
+  std::vector<std::string> warnings;             ///< e.g. "orientation was inward; flipped"
+};
+
+/// Welds vertices, builds adjacency and checks the mesh: non-empty, no degenerate (zero-area)
+/// triangles, closed (every edge shared by exactly two triangles), consistently oriented,
+/// outward (fixes an inward mesh and records a warning), and convex within tolerance.
+/// Throws rigid::InputError(source, 0, "facet N: <problem>") when a check fails.
+ClosedMesh make_closed_mesh(const TriangleSoup& soup, const MeshOptions& options,
+                            const std::string& source);
+
+/// Triangle adjacency of a mesh: entry [t][i] is the triangle across the edge from vertex i to
+/// vertex (i+1)%3 of triangle t, or -1 when that edge is not shared by exactly two triangles
+/// running it in opposite directions. Throws std::invalid_argument for an out-of-range index.
+std::vector<std::array<int, 3>> triangle_neighbors(const ClosedMesh& mesh);
+
+/// Volume, centroid and inertia of a homogeneous closed mesh (Blow & Binstock; physics.md §7).
+struct MassProperties {
+  double volume = 0;        ///< unit: m^3
+  double mass = 0;          ///< unit: kg
+  Vec3 centroid{0, 0, 0};   ///< in the mesh frame (unit: m)
+  Mat3 inertia = Mat3::Zero();  ///< about the centroid, mesh-frame axes (unit: kg m^2)
+  Vec3 principal_moments{0, 0, 0};  ///< ascending (unit: kg m^2)
+  Mat3 principal_axes = Mat3::Identity();  ///< columns: principal axes in the mesh frame, det = +1
+};
+
+/// Throws std::invalid_argument when density is not positive or finite.
+MassProperties mass_properties(const ClosedMesh& mesh, double density);
+
+/// A planar face of a convex block: merged coplanar triangles, vertices counter-clockwise seen
+/// from outside.
+struct Face {
+  Vec3 normal;                 ///< outward unit normal (body frame)
+  double offset = 0;           ///< plane: normal . x = offset (unit: m)
+  std::vector<int> vertices;   ///< polygon loop, CCW from outside
+};
+
+/// An edge between two faces (a feature edge: edges inside a merged planar face are dropped).
+struct Edge {
+  int v0 = 0, v1 = 0;          ///< vertex indices
+  int face_left = 0;           ///< face on which v0->v1 runs counter-clockwise
+  int face_right = 0;          ///< the other face
+};
+
+/// A convex block in its body frame: origin at the centroid, axes along the principal axes of
+/// inertia, so the rotational dynamics can use a diagonal inertia tensor.
+struct ConvexPolyhedron {
+  std::vector<Vec3> vertices;                  ///< body frame (unit: m), never moved after build
+  std::vector<Face> faces;
+  std::vector<Edge> edges;
+  std::vector<std::vector<int>> vertex_neighbors;  ///< vertex -> adjacent vertices (feature edges)
+  std::vector<std::vector<int>> face_neighbors;    ///< face -> faces sharing a feature edge
+  double volume = 0;          ///< unit: m^3
+  double mass = 0;            ///< unit: kg
+  Vec3 inertia{0, 0, 0};      ///< principal moments, body frame (unit: kg m^2)
+  double bounding_radius = 0; ///< max |vertex| (unit: m)
+  /// Pose of the body frame in the mesh frame: x_mesh = rotation * x_body + translation.
+  Quat rotation = Quat::Identity();
+  Vec3 translation{0, 0, 0};
+};
+
+/// Builds the body-frame block from a checked mesh and its mass properties.
+ConvexPolyhedron make_polyhedron(const ClosedMesh& mesh, const MassProperties& props,
+                                 const MeshOptions& options);
+
+/// Convenience: soup -> checked mesh -> mass properties -> body-frame block.
+ConvexPolyhedron build_block(const TriangleSoup& soup, double density, const MeshOptions& options,
+                             const std::string& source, std::vector<std::string>* warnings = nullptr);
+
+/// Triangle soup of a convex hull of points (quickhull-style incremental hull), for building
+/// synthetic models and tests. Throws std::invalid_argument for fewer than 4 non-coplanar points.
+TriangleSoup convex_hull(const std::vector<Vec3>& points);
+
+/// Axis-aligned box [lo, hi] as a triangle soup (12 outward triangles).
+TriangleSoup box_soup(const Vec3& lo, const Vec3& hi);
+
+}  // namespace rigid::geometry

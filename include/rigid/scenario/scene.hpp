@@ -1,0 +1,86 @@
+#pragma once
+/// A scene (blocks, contact law, failure rule) and one shaking run of it: the unit of work of a
+/// campaign. Depends only on its inputs, so a run is reproducible bit for bit.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "rigid/dynamics/world.hpp"
+
+namespace rigid::scenario {
+
+/// When a run counts as a failure (the rock overturned).
+struct FailureRule {
+  enum class Kind {
+    /// The study's rule (physics.md §11): a free block's centroid is lower than the lowest
+    /// vertex of every fixed block, i.e. it has fallen off its pedestal.
+    below,
+    /// A free block has tilted more than tilt_angle from its starting attitude (the angle
+    /// between its initial vertical axis, carried with the block, and the vertical).
+    tilt,
+  };
+  Kind kind = Kind::below;
+  double tilt_angle = 0.5 * kPi;  ///< unit: rad (used by Kind::tilt)
+};
+
+/// Everything that defines a scene.
+struct Scene {
+  std::vector<dynamics::BodyDef> bodies;
+  contact::ContactLaw law;
+  FailureRule failure;
+  double density = 2600;          ///< unit: kg/m^3 (already applied to the bodies' masses)
+  std::string source;             ///< where it was read from, for messages
+};
+
+/// Ground velocity that drives the fixed blocks, sampled every dt from t = 0 (unit: m/s),
+/// linearly interpolated; after the last sample it keeps its last value (the pedestal coasts,
+/// which exerts no force).
+struct GroundDrive {
+  double dt = 0.01;
+  std::vector<Vec3> velocity;
+  Vec3 at(double t) const;
+  double duration() const { return velocity.empty() ? 0.0 : dt * double(velocity.size() - 1); }
+};
+
+/// Settings of one run.
+struct RunSettings {
+  dynamics::StepSettings step;
+  /// Simulated time (unit: s); 0 = the ground motion's duration plus `free_time`.
+  double duration = 0;
+  /// Time left to rock after the ground motion ends, when duration = 0 (unit: s).
+  double free_time = 5.0;
+  /// Stop once the ground motion has ended and every free block has stayed at rest this long.
+  double rest_time = 0.5;
+  /// At rest: every free block below these speeds (unit: m/s and rad/s).
+  double rest_speed = 1e-3;
+  double rest_angular_speed = 1e-3;
+};
+
+/// What one run produced.
+struct RunOutcome {
+  bool overturned = false;
+  std::optional<double> failure_time;  ///< unit: s
+  std::string failed_block;            ///< name of the first block that failed
+  long steps = 0;
+  double dt = 0;              ///< unit: s
+  double simulated = 0;       ///< unit: s
+  double max_tilt = 0;        ///< largest tilt of any free block (unit: rad)
+  double max_slip = 0;        ///< largest accumulated frictional slip of any free block (unit: m)
+  double max_overlap = 0;     ///< deepest subcontact indentation seen (unit: m)
+  bool ended_at_rest = false; ///< stopped early because all blocks were at rest after the motion
+  bool finite = true;         ///< false if a NaN or Inf appeared (the run stops there)
+};
+
+/// Tilt of body i (unit: rad): the angle between its initial vertical axis, carried with the
+/// block, and the world vertical.
+double tilt(const Quat& initial, const Quat& current);
+
+/// Runs one shaking case from the scene's initial state.
+RunOutcome run(const Scene& scene, const GroundDrive& ground, const RunSettings& settings);
+
+/// Settles the scene with no ground motion and Itasca local damping until every free block is at
+/// rest (or max_time passes); returns the scene with the settled poses and zero velocities.
+Scene equilibrate(const Scene& scene, const dynamics::StepSettings& step, double max_time = 20.0,
+                  double local_damping = 0.8);
+
+}  // namespace rigid::scenario

@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# Rigid set-up: installs the Debian dependencies (idempotent), builds, then runs what you ask for.
+#   bash setup.sh demo    install, build, run the main job (the demo)
+#   bash setup.sh test    install, build, run every test (what CI runs)
+#   bash setup.sh build   install and build only
+# Environment: BUILD_DIR (default build), JOBS (default nproc), RIGID_CMAKE_ARGS (extra cmake args).
+set -euo pipefail
+cd "$(dirname "$0")"
+action=${1:-build}
+build_dir=${BUILD_DIR:-build}
+jobs=${JOBS:-$(nproc)}
+
+packages=(build-essential cmake git pkg-config
+  openmpi-bin libopenmpi-dev libeigen3-dev libhdf5-dev hdf5-tools libcli11-dev
+  googletest libgtest-dev libtomlplusplus-dev libbenchmark-dev
+  python3 python3-numpy python3-h5py python3-matplotlib)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  sudo=""; [[ $(id -u) -ne 0 ]] && sudo="sudo"
+  echo "setup: installing ${missing[*]}"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+# Open MPI refuses root unless told (CI and containers run as root).
+if [[ $(id -u) -eq 0 ]]; then
+  export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+fi
+
+# shellcheck disable=SC2086
+cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=Release ${RIGID_CMAKE_ARGS:-} >/dev/null
+cmake --build "$build_dir" -j "$jobs"
+
+case "$action" in
+  build) ;;
+  test)
+    ctest --test-dir "$build_dir" --output-on-failure -j "$jobs"
+    ;;
+  demo)
+    "$build_dir/src/app/rigid" run models/demo/block_a02.toml --motion waveforms/demo/pulse_sine_0p5s-X.AT2 --json
+    ;;
+  *) echo "usage: bash setup.sh demo|test|build" >&2; exit 2 ;;
+esac

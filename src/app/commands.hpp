@@ -1,0 +1,13 @@
+#pragma once
+/// Each subcommand registers itself on the CLI11 app; main() only dispatches and maps errors to
+/// exit codes (2 = bad input, 1 = internal failure).
+#include <CLI/CLI.hpp>
+
+namespace rigid::app {
+
+void register_run_command(CLI::App& app);
+void register_inspect_command(CLI::App& app);
+void register_motion_command(CLI::App& app);
+void register_bench_command(CLI::App& app);
+
+}  // namespace rigid::app

@@ -1,0 +1,33 @@
+// The `rigid` command line: subcommands register themselves (commands.hpp); errors in user input
+// print one line `rigid: error: ...` and exit 2.
+#include <cstdio>
+#include <exception>
+
+#include "commands.hpp"
+#include "rigid/core/error.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"Rigid " RIGID_VERSION " (" RIGID_GIT_HASH "): 3D rigid-block DEM fragilities of "
+               "precariously balanced rocks. SI units unless an option says otherwise."};
+  app.set_version_flag("--version", RIGID_VERSION " (" RIGID_GIT_HASH ")");
+  app.require_subcommand(1);
+  rigid::app::register_run_command(app);
+  rigid::app::register_inspect_command(app);
+  rigid::app::register_motion_command(app);
+  rigid::app::register_bench_command(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const rigid::InputError& e) {
+    std::fprintf(stderr, "rigid: error: %s\n", e.what());
+    return 2;
+  } catch (const std::invalid_argument& e) {
+    std::fprintf(stderr, "rigid: error: %s\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "rigid: internal error: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

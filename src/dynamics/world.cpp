@@ -1,0 +1,293 @@
+#include "rigid/dynamics/world.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace rigid::dynamics {
+
+double critical_time_step(const std::vector<BodyDef>& bodies, const contact::ContactLaw& law) {
+  double dt = std::numeric_limits<double>::infinity();
+  for (const auto& body : bodies) {
+    if (body.fixed) continue;
+    const auto& s = body.shape;
+    const double m = s.mass;
+    // Hertz tangent stiffness at the peak indentation of a 1 m/s normal impact (physics.md §10)
+    const double v_ref = 1.0;
+    const double depth = std::pow(5.0 * m * v_ref * v_ref / (4.0 * law.normal_stiffness), 0.4);
+    const double k = std::max(law.shear_stiffness, 1.5 * law.normal_stiffness * std::sqrt(depth));
+    // largest lever arm over moment of inertia, per principal axis
+    double rotational = 0;
+    for (int axis = 0; axis < 3; ++axis) {
+      double r2 = 0;
+      for (const auto& v : s.vertices) r2 = std::max(r2, v.squaredNorm() - v[axis] * v[axis]);
+      rotational = std::max(rotational, r2 / s.inertia[axis]);
+    }
+    const double omega = std::sqrt(4.0 * k * (1.0 / m + rotational));
+    dt = std::min(dt, 2.0 / omega);
+  }
+  return std::isfinite(dt) ? dt : 1e-3;
+}
+
+World::World(std::vector<BodyDef> bodies, const contact::ContactLaw& law,
+             const StepSettings& settings)
+    : defs_(std::move(bodies)), law_(law), settings_(settings) {
+  const std::size_t n = defs_.size();
+  states_.resize(n);
+  world_vertices_.resize(n);
+  rotations_.resize(n);
+  forces_.assign(n, Vec3::Zero());
+  torques_.assign(n, Vec3::Zero());
+  contact_force_.assign(n, Vec3::Zero());
+  slip_.assign(n, 0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto& d = defs_[i];
+    auto& s = states_[i];
+    s.position = d.position;
+    s.orientation = d.orientation.normalized();
+    s.velocity = d.velocity;
+    const Mat3 r = s.orientation.toRotationMatrix();
+    s.angular_momentum = r * d.shape.inertia.asDiagonal() * r.transpose() * d.angular_velocity;
+    world_vertices_[i].resize(d.shape.vertices.size());
+  }
+  // every pair that can ever touch: two fixed blocks never interact
+  for (std::size_t a = 0; a < n; ++a) {
+    for (std::size_t b = a + 1; b < n; ++b) {
+      if (defs_[a].fixed && defs_[b].fixed) continue;
+      PairContact p;
+      p.a = static_cast<int>(a);
+      p.b = static_cast<int>(b);
+      const Vec3 d = defs_[b].position - defs_[a].position;
+      p.normal = d.norm() > 0 ? Vec3(d.normalized()) : Vec3(0, 0, 1);
+      const std::size_t cap = defs_[a].shape.vertices.size() + defs_[b].shape.vertices.size() + 1;
+      p.subs.reserve(cap);
+      p.next_subs.reserve(cap);
+      p.points.reserve(cap);
+      pairs_.push_back(std::move(p));
+    }
+  }
+  dt_ = settings_.dt > 0 ? settings_.dt : settings_.safety * critical_time_step(defs_, law_);
+  refresh();
+}
+
+void World::refresh() {
+  for (std::size_t i = 0; i < defs_.size(); ++i) {
+    rotations_[i] = states_[i].orientation.toRotationMatrix();
+    update_world_vertices(static_cast<int>(i));
+  }
+  compute_forces(0.0);
+}
+
+void World::update_world_vertices(int i) {
+  const auto& body = defs_[i].shape.vertices;
+  const Mat3& r = rotations_[i];
+  const Vec3& x = states_[i].position;
+  auto& out = world_vertices_[i];
+  for (std::size_t k = 0; k < body.size(); ++k) out[k] = r * body[k] + x;
+}
+
+Vec3 World::angular_velocity(int i) const {
+  if (defs_[i].fixed) return Vec3::Zero();
+  const Mat3& r = rotations_[i];
+  const Vec3 body_l = r.transpose() * states_[i].angular_momentum;
+  return r * body_l.cwiseQuotient(defs_[i].shape.inertia);
+}
+
+void World::drift_rotation(int i, double dt) {
+  auto& s = states_[i];
+  const Vec3& inertia = defs_[i].shape.inertia;
+  const Vec3& l = s.angular_momentum;
+  Quat q = s.orientation;
+  if (settings_.rotation == RotationIntegrator::splitting) {
+    // exact rotations about body axes 3,2,1,2,3 with steps h/2,h/2,h,h/2,h/2 (physics.md §8)
+    static constexpr int kAxes[5] = {2, 1, 0, 1, 2};
+    static constexpr double kFractions[5] = {0.5, 0.5, 1.0, 0.5, 0.5};
+    for (int k = 0; k < 5; ++k) {
+      const int axis = kAxes[k];
+      const Vec3 body_l = q.conjugate() * l;
+      const double half_angle = 0.5 * kFractions[k] * dt * body_l[axis] / inertia[axis];
+      Quat r(std::cos(half_angle), 0, 0, 0);
+      r.vec()[axis] = std::sin(half_angle);
+      q = q * r;
+    }
+  } else {
+    // RK4 on q' = q (0, w_body) / 2, w_body = I^-1 q* L q, with L fixed over the step
+    auto derivative = [&](const Quat& qq) {
+      const Vec3 w = (qq.conjugate() * l).cwiseQuotient(inertia);
+      Quat wq(0, w.x(), w.y(), w.z());
+      Quat d = qq * wq;
+      d.coeffs() *= 0.5;
+      return d;
+    };
+    auto add = [](const Quat& a, const Quat& d, double h) {
+      Quat r;
+      r.coeffs() = a.coeffs() + h * d.coeffs();
+      return r;
+    };
+    const Quat k1 = derivative(q);
+    const Quat k2 = derivative(add(q, k1, 0.5 * dt));
+    const Quat k3 = derivative(add(q, k2, 0.5 * dt));
+    const Quat k4 = derivative(add(q, k3, dt));
+    q.coeffs() += (dt / 6.0) * (k1.coeffs() + 2.0 * k2.coeffs() + 2.0 * k3.coeffs() + k4.coeffs());
+  }
+  q.normalize();
+  s.orientation = q;
+}
+
+void World::step(double dt, const Vec3& ground_velocity_start, const Vec3& ground_velocity_end) {
+  const Vec3 ground_velocity = 0.5 * (ground_velocity_start + ground_velocity_end);
+  for (std::size_t i = 0; i < defs_.size(); ++i) {
+    auto& s = states_[i];
+    if (defs_[i].fixed) {
+      // pedestals follow the ground: trapezoid of the linearly interpolated velocity
+      s.velocity = ground_velocity;
+      s.position += dt * ground_velocity;
+      for (auto& v : world_vertices_[i]) v += dt * ground_velocity;
+      continue;
+    }
+    s.velocity += (0.5 * dt / defs_[i].shape.mass) * forces_[i];
+    s.angular_momentum += 0.5 * dt * torques_[i];
+    s.position += dt * s.velocity;
+    drift_rotation(static_cast<int>(i), dt);
+    rotations_[i] = s.orientation.toRotationMatrix();
+    update_world_vertices(static_cast<int>(i));
+  }
+  time_ += dt;
+  compute_forces(dt);
+  for (std::size_t i = 0; i < defs_.size(); ++i) {
+    auto& s = states_[i];
+    if (defs_[i].fixed) {
+      s.velocity = ground_velocity_end;
+      continue;
+    }
+    s.velocity += (0.5 * dt / defs_[i].shape.mass) * forces_[i];
+    s.angular_momentum += 0.5 * dt * torques_[i];
+  }
+  ++stats_.steps;
+}
+
+void World::compute_forces(double dt) {
+  const std::size_t n = defs_.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    forces_[i] = defs_[i].fixed ? Vec3::Zero() : Vec3(0, 0, -settings_.gravity * defs_[i].shape.mass);
+    torques_[i].setZero();
+    contact_force_[i].setZero();
+  }
+  max_overlap_ = 0;
+  for (auto& p : pairs_) {
+    const auto& da = defs_[p.a];
+    const auto& db = defs_[p.b];
+    const auto& sa = states_[p.a];
+    const auto& sb = states_[p.b];
+    // bounding spheres apart: no contact possible this step
+    const double gap = (sb.position - sa.position).norm() - da.shape.bounding_radius -
+                       db.shape.bounding_radius;
+    if (gap > 0) {
+      p.subs.clear();
+      p.overlap = -gap;
+      ++stats_.pairs_skipped;
+      continue;
+    }
+    ++stats_.pair_tests;
+    contact::PlacedHull ha{&da.shape, world_vertices_[p.a].data(), Vec3::Zero(), rotations_[p.a],
+                           sa.position};
+    contact::PlacedHull hb{&db.shape, world_vertices_[p.b].data(), Vec3::Zero(), rotations_[p.b],
+                           sb.position};
+    const contact::CommonPlane cp = contact::find_common_plane(ha, hb, p.normal, p.hints);
+    p.normal = cp.normal;
+    p.overlap = cp.overlap;
+    if (cp.overlap <= 0) {
+      p.subs.clear();
+      continue;
+    }
+    p.points.clear();
+    contact::collect_subcontacts(ha, hb, cp, p.points);
+    const Vec3 wa = angular_velocity(p.a);
+    const Vec3 wb = angular_velocity(p.b);
+    const Vec3& n = cp.normal;
+    p.next_subs.clear();
+    Vec3 total = Vec3::Zero();
+    double pair_slip = 0;
+    for (const auto& pt : p.points) {
+      Vec3 shear = Vec3::Zero();
+      for (const auto& old : p.subs) {
+        if (old.key == pt.key) {
+          shear = old.shear_force;
+          break;
+        }
+      }
+      const Vec3 ra = pt.point - sa.position;
+      const Vec3 rb = pt.point - sb.position;
+      const Vec3 relative = (sb.velocity + wb.cross(rb)) - (sa.velocity + wa.cross(ra));
+      const double normal_speed = n.dot(relative);
+      const Vec3 tangential_step = (relative - normal_speed * n) * dt;
+      double slip = 0;
+      const Vec3 f = contact::subcontact_force(law_, n, pt.overlap, -normal_speed, tangential_step,
+                                               shear, slip);
+      forces_[p.b] += f;
+      torques_[p.b] += rb.cross(f);
+      forces_[p.a] -= f;
+      torques_[p.a] -= ra.cross(f);
+      total += f;
+      pair_slip = std::max(pair_slip, slip);
+      max_overlap_ = std::max(max_overlap_, pt.overlap);
+      p.next_subs.push_back({pt.key, shear});
+    }
+    std::swap(p.subs, p.next_subs);
+    contact_force_[p.b] += total;
+    contact_force_[p.a] -= total;
+    if (!da.fixed) slip_[p.a] += pair_slip;
+    if (!db.fixed) slip_[p.b] += pair_slip;
+    // power the moving pedestal delivers through this contact
+    if (da.fixed) pedestal_work_ += dt * total.dot(sa.velocity);
+    if (db.fixed) pedestal_work_ -= dt * total.dot(sb.velocity);
+  }
+  if (settings_.local_damping > 0) {
+    // Itasca local damping: oppose the unbalanced force where it drives motion (physics.md §9)
+    const double alpha = settings_.local_damping;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (defs_[i].fixed) continue;
+      const Vec3 w = angular_velocity(static_cast<int>(i));
+      for (int k = 0; k < 3; ++k) {
+        const double fv = forces_[i][k] * states_[i].velocity[k];
+        if (fv != 0) forces_[i][k] -= alpha * std::abs(forces_[i][k]) * (states_[i].velocity[k] > 0 ? 1 : -1);
+        const double tw = torques_[i][k] * w[k];
+        if (tw != 0) torques_[i][k] -= alpha * std::abs(torques_[i][k]) * (w[k] > 0 ? 1 : -1);
+      }
+    }
+  }
+}
+
+double World::kinetic_energy() const {
+  double e = 0;
+  for (std::size_t i = 0; i < defs_.size(); ++i) {
+    if (defs_[i].fixed) continue;
+    const auto& s = states_[i];
+    const Vec3 body_l = rotations_[i].transpose() * s.angular_momentum;
+    e += 0.5 * defs_[i].shape.mass * s.velocity.squaredNorm() +
+         0.5 * body_l.cwiseProduct(body_l).cwiseQuotient(defs_[i].shape.inertia).sum();
+  }
+  return e;
+}
+
+double World::potential_energy() const {
+  double e = 0;
+  for (std::size_t i = 0; i < defs_.size(); ++i) {
+    if (!defs_[i].fixed) e += defs_[i].shape.mass * settings_.gravity * states_[i].position.z();
+  }
+  return e;
+}
+
+double World::elastic_energy() const {
+  double e = 0;
+  for (const auto& p : pairs_) {
+    if (p.overlap <= 0) continue;
+    for (const auto& sub : p.subs) e += 0.5 * sub.shear_force.squaredNorm() / law_.shear_stiffness;
+    for (const auto& pt : p.points) {
+      e += 0.4 * law_.normal_stiffness * std::pow(pt.overlap, 2.5);
+    }
+  }
+  return e;
+}
+
+}  // namespace rigid::dynamics

@@ -1,0 +1,367 @@
+#include "rigid/io/scene_file.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include <toml++/toml.hpp>
+
+#include "rigid/core/error.hpp"
+#include "rigid/io/stl.hpp"
+
+namespace rigid::io {
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Token {
+  std::string text;
+  long line;
+};
+
+std::vector<Token> tokenize(const std::string& text, long first_line) {
+  std::vector<Token> out;
+  std::istringstream in(text);
+  std::string line;
+  long number = first_line;
+  while (std::getline(in, line)) {
+    // '#' starts a comment (not in the original format, harmless to it)
+    const auto hash = line.find('#');
+    if (hash != std::string::npos) line.resize(hash);
+    std::istringstream words(line);
+    std::string w;
+    while (words >> w) out.push_back({w, number});
+    ++number;
+  }
+  return out;
+}
+
+double parse_number(const Token& t, const std::string& source, const char* what) {
+  std::size_t used = 0;
+  double v = 0;
+  try {
+    v = std::stod(t.text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != t.text.size()) {
+    throw InputError(source, t.line, std::string("expected ") + what + ", found '" + t.text + "'");
+  }
+  if (!std::isfinite(v)) throw InputError(source, t.line, std::string(what) + " is not finite");
+  return v;
+}
+
+void check_positive(double v, const std::string& source, long line, const char* what) {
+  if (!(v > 0) || !std::isfinite(v)) {
+    throw InputError(source, line, std::string(what) + " must be positive and finite");
+  }
+}
+
+void validate_law(const scenario::Scene& s, const std::string& source, long line) {
+  check_positive(s.density, source, line, "density");
+  check_positive(s.law.normal_stiffness, source, line, "normal stiffness K_N");
+  check_positive(s.law.shear_stiffness, source, line, "shear stiffness K_S");
+  if (!(s.law.friction >= 0) || !std::isfinite(s.law.friction)) {
+    throw InputError(source, line, "friction must be non-negative and finite");
+  }
+  if (!(s.law.damping >= 0) || !std::isfinite(s.law.damping)) {
+    throw InputError(source, line, "damping factor must be non-negative and finite");
+  }
+}
+
+struct BlockSpec {
+  std::string stl;
+  bool fixed = false;
+  Vec3 velocity{0, 0, 0};
+  long line = 0;
+};
+
+void build_bodies(scenario::Scene& scene, const std::vector<BlockSpec>& blocks,
+                  const std::string& base_dir) {
+  if (blocks.empty()) throw InputError(scene.source, 0, "the scene has no blocks");
+  bool any_free = false;
+  for (const auto& b : blocks) {
+    const fs::path path = fs::path(base_dir) / b.stl;
+    if (!fs::exists(path)) {
+      throw InputError(scene.source, b.line, "STL file not found: " + path.string());
+    }
+    const geometry::TriangleSoup soup = read_stl(path.string());
+    dynamics::BodyDef body;
+    body.name = fs::path(b.stl).stem().string();
+    body.shape = geometry::build_block(soup, scene.density, geometry::MeshOptions{}, path.string());
+    body.fixed = b.fixed;
+    body.position = body.shape.translation;
+    body.orientation = body.shape.rotation;
+    body.velocity = b.velocity;
+    any_free |= !b.fixed;
+    scene.bodies.push_back(std::move(body));
+  }
+  if (!any_free) throw InputError(scene.source, 0, "the scene has no free block (all FIXED = 1)");
+}
+
+void parse_model_tokens(const std::vector<Token>& tokens, std::size_t& i, scenario::Scene& scene,
+                        std::vector<BlockSpec>& blocks) {
+  const std::string& src = scene.source;
+  while (i < tokens.size() && tokens[i].text == "block") {
+    const long line = tokens[i].line;
+    if (i + 5 >= tokens.size()) {
+      throw InputError(src, line, "block needs an STL name, FIXED and three initial velocities");
+    }
+    BlockSpec b;
+    b.line = line;
+    b.stl = tokens[i + 1].text;
+    const double fixed = parse_number(tokens[i + 2], src, "FIXED (0 or 1)");
+    if (fixed != 0 && fixed != 1) throw InputError(src, tokens[i + 2].line, "FIXED must be 0 or 1");
+    b.fixed = fixed == 1;
+    for (int k = 0; k < 3; ++k) b.velocity[k] = parse_number(tokens[i + 3 + k], src, "initial velocity (m/s)");
+    blocks.push_back(b);
+    i += 6;
+  }
+}
+
+}  // namespace
+
+scenario::Scene parse_model_text(const std::string& text, const std::string& base_dir,
+                                 const std::string& source, long first_line) {
+  scenario::Scene scene;
+  scene.source = source;
+  const auto tokens = tokenize(text, first_line);
+  std::size_t i = 0;
+  std::vector<BlockSpec> blocks;
+  parse_model_tokens(tokens, i, scene, blocks);
+  if (blocks.empty()) {
+    const long line = tokens.empty() ? 0 : tokens.front().line;
+    throw InputError(source, line, "expected 'block NAME.stl FIXED vx vy vz'");
+  }
+  // optional physical parameters, in the original order
+  const std::size_t rest = tokens.size() - i;
+  if (rest != 0 && rest != 5) {
+    throw InputError(source, tokens[i].line,
+                     "after the blocks expected 5 parameters (density K_N K_S friction damping), found " +
+                         std::to_string(rest) + " tokens");
+  }
+  if (rest == 5) {
+    scene.density = parse_number(tokens[i], source, "density (kg/m^3)");
+    scene.law.normal_stiffness = parse_number(tokens[i + 1], source, "K_N");
+    scene.law.shear_stiffness = parse_number(tokens[i + 2], source, "K_S");
+    scene.law.friction = parse_number(tokens[i + 3], source, "friction coefficient");
+    scene.law.damping = parse_number(tokens[i + 4], source, "hysteretic damping factor");
+    validate_law(scene, source, tokens[i].line);
+  }
+  build_bodies(scene, blocks, base_dir);
+  return scene;
+}
+
+namespace {
+
+long line_of(const toml::node& n) { return static_cast<long>(n.source().begin.line); }
+
+void reject_unknown(const toml::table& t, const std::set<std::string>& allowed,
+                    const std::string& source, const std::string& where) {
+  for (const auto& [key, node] : t) {
+    if (!allowed.count(std::string(key.str()))) {
+      throw InputError(source, line_of(node), "unknown key '" + std::string(key.str()) + "' in " + where);
+    }
+  }
+}
+
+double get_number(const toml::table& t, const char* key, double fallback, const std::string& source) {
+  const toml::node* n = t.get(key);
+  if (!n) return fallback;
+  if (auto v = n->value<double>()) {
+    if (!std::isfinite(*v)) throw InputError(source, line_of(*n), std::string(key) + " is not finite");
+    return *v;
+  }
+  throw InputError(source, line_of(*n), std::string(key) + " must be a number");
+}
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, 0, "cannot open file");
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+scenario::Scene load_toml_scene(const std::string& path) {
+  toml::table root;
+  try {
+    root = toml::parse_file(path);
+  } catch (const toml::parse_error& e) {
+    throw InputError(path, static_cast<long>(e.source().begin.line), std::string(e.description()));
+  }
+  const std::string base = fs::path(path).parent_path().string();
+  reject_unknown(root, {"model", "model_text", "state", "physics", "failure", "block"}, path, "scene");
+
+  scenario::Scene physics_only;
+  physics_only.source = path;
+  if (const auto* p = root["physics"].as_table()) {
+    reject_unknown(*p, {"density", "normal_stiffness", "shear_stiffness", "friction", "damping"}, path,
+                   "[physics]");
+    physics_only.density = get_number(*p, "density", physics_only.density, path);
+    physics_only.law.normal_stiffness = get_number(*p, "normal_stiffness", physics_only.law.normal_stiffness, path);
+    physics_only.law.shear_stiffness = get_number(*p, "shear_stiffness", physics_only.law.shear_stiffness, path);
+    physics_only.law.friction = get_number(*p, "friction", physics_only.law.friction, path);
+    physics_only.law.damping = get_number(*p, "damping", physics_only.law.damping, path);
+    validate_law(physics_only, path, line_of(*p));
+  }
+
+  // the blocks: an original model file, inline model text, or [[block]] tables
+  const int sources = int(root.contains("model")) + int(root.contains("model_text")) + int(root.contains("block"));
+  if (sources != 1) {
+    throw InputError(path, 0, "give exactly one of model = \"FILE\", model_text = \"...\" or [[block]] tables");
+  }
+  std::string model_text;
+  std::string model_source = path;
+  long model_line = 1;
+  std::vector<BlockSpec> blocks;
+  if (const auto* m = root.get("model")) {
+    const auto name = m->value<std::string>();
+    if (!name) throw InputError(path, line_of(*m), "model must be a file name");
+    const fs::path model_path = fs::path(base) / *name;
+    if (!fs::exists(model_path)) throw InputError(path, line_of(*m), "model file not found: " + model_path.string());
+    model_text = read_file(model_path.string());
+    model_source = model_path.string();
+  } else if (const auto* m = root.get("model_text")) {
+    const auto text = m->value<std::string>();
+    if (!text) throw InputError(path, line_of(*m), "model_text must be a string");
+    model_text = *text;
+    model_line = line_of(*m);
+  } else {
+    const auto* arr = root["block"].as_array();
+    if (!arr) throw InputError(path, line_of(*root.get("block")), "block must be an array of tables ([[block]])");
+    for (const auto& node : *arr) {
+      const auto* t = node.as_table();
+      if (!t) throw InputError(path, line_of(node), "each [[block]] must be a table");
+      reject_unknown(*t, {"stl", "fixed", "velocity"}, path, "[[block]]");
+      BlockSpec b;
+      b.line = line_of(node);
+      const auto stl = (*t)["stl"].value<std::string>();
+      if (!stl) throw InputError(path, b.line, "[[block]] needs stl = \"FILE.stl\"");
+      b.stl = *stl;
+      b.fixed = (*t)["fixed"].value_or(false);
+      if (const auto* v = (*t)["velocity"].as_array()) {
+        if (v->size() != 3) throw InputError(path, line_of(*v), "velocity must have 3 components (m/s)");
+        for (int k = 0; k < 3; ++k) {
+          const auto c = (*v)[k].value<double>();
+          if (!c || !std::isfinite(*c)) throw InputError(path, line_of(*v), "velocity components must be finite numbers");
+          b.velocity[k] = *c;
+        }
+      }
+      blocks.push_back(b);
+    }
+  }
+
+  scenario::Scene scene;
+  if (!model_text.empty()) {
+    const std::string model_base =
+        root.contains("model") ? fs::path(model_source).parent_path().string() : base;
+    scene = parse_model_text(model_text, model_base, model_source, model_line);
+  } else {
+    scene = physics_only;
+    build_bodies(scene, blocks, base);
+  }
+  scene.source = path;
+  if (root.contains("physics")) {
+    // [physics] wins over parameters in a model file; masses and inertias follow the density
+    const double ratio = physics_only.density / scene.density;
+    scene.law = physics_only.law;
+    scene.density = physics_only.density;
+    for (auto& b : scene.bodies) {
+      b.shape.mass *= ratio;
+      b.shape.inertia *= ratio;
+    }
+  }
+
+  if (const auto* f = root["failure"].as_table()) {
+    reject_unknown(*f, {"rule", "tilt_deg"}, path, "[failure]");
+    const std::string rule = (*f)["rule"].value_or(std::string("below"));
+    if (rule == "below") {
+      scene.failure.kind = scenario::FailureRule::Kind::below;
+    } else if (rule == "tilt") {
+      scene.failure.kind = scenario::FailureRule::Kind::tilt;
+    } else {
+      throw InputError(path, line_of(*f), "failure rule must be \"below\" or \"tilt\", not \"" + rule + "\"");
+    }
+    const double deg = get_number(*f, "tilt_deg", 90.0, path);
+    if (!(deg > 0 && deg <= 180)) throw InputError(path, line_of(*f), "tilt_deg must be in (0, 180]");
+    scene.failure.tilt_angle = deg * kPi / 180.0;
+  }
+  if (const auto* s = root.get("state")) {
+    const auto name = s->value<std::string>();
+    if (!name) throw InputError(path, line_of(*s), "state must be a file name");
+    const fs::path state_path = fs::path(base) / *name;
+    if (!fs::exists(state_path)) throw InputError(path, line_of(*s), "state file not found: " + state_path.string());
+    apply_state(state_path.string(), scene);
+  }
+  return scene;
+}
+
+}  // namespace
+
+scenario::Scene load_scene(const std::string& path) {
+  if (!fs::exists(path)) throw InputError(path, 0, "file not found");
+  if (fs::path(path).extension() == ".toml") return load_toml_scene(path);
+  return parse_model_text(read_file(path), fs::path(path).parent_path().string(), path);
+}
+
+void save_state(const std::string& path, const scenario::Scene& scene) {
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp);
+    if (!out) throw InputError(path, 0, "cannot write state file");
+    out.precision(17);
+    out << "# Rigid equilibrium state: pose of every block (centroid position in m, orientation\n"
+           "# quaternion w x y z of the principal-axes body frame).\n";
+    for (const auto& b : scene.bodies) {
+      const auto& q = b.orientation;
+      out << "\n[[body]]\nname = \"" << b.name << "\"\nposition = [" << b.position.x() << ", "
+          << b.position.y() << ", " << b.position.z() << "]\norientation = [" << q.w() << ", "
+          << q.x() << ", " << q.y() << ", " << q.z() << "]\n";
+    }
+    if (!out) throw InputError(path, 0, "write failed");
+  }
+  fs::rename(tmp, path);
+}
+
+void apply_state(const std::string& path, scenario::Scene& scene) {
+  toml::table root;
+  try {
+    root = toml::parse_file(path);
+  } catch (const toml::parse_error& e) {
+    throw InputError(path, static_cast<long>(e.source().begin.line), std::string(e.description()));
+  }
+  const auto* arr = root["body"].as_array();
+  if (!arr) throw InputError(path, 0, "no [[body]] entries");
+  if (arr->size() != scene.bodies.size()) {
+    throw InputError(path, 0, "state has " + std::to_string(arr->size()) + " bodies, the scene " +
+                                  std::to_string(scene.bodies.size()));
+  }
+  for (std::size_t i = 0; i < arr->size(); ++i) {
+    const auto* t = (*arr)[i].as_table();
+    const long line = line_of((*arr)[i]);
+    if (!t) throw InputError(path, line, "each [[body]] must be a table");
+    const std::string name = (*t)["name"].value_or(std::string());
+    if (name != scene.bodies[i].name) {
+      throw InputError(path, line, "body " + std::to_string(i) + " is '" + name + "', the scene has '" +
+                                       scene.bodies[i].name + "'");
+    }
+    const auto* p = (*t)["position"].as_array();
+    const auto* q = (*t)["orientation"].as_array();
+    if (!p || p->size() != 3 || !q || q->size() != 4) {
+      throw InputError(path, line, "position needs 3 numbers and orientation 4");
+    }
+    double v[7];
+    for (int k = 0; k < 3; ++k) v[k] = (*p)[k].value<double>().value_or(NAN);
+    for (int k = 0; k < 4; ++k) v[3 + k] = (*q)[k].value<double>().value_or(NAN);
+    for (double x : v) {
+      if (!std::isfinite(x)) throw InputError(path, line, "non-finite or non-numeric pose value");
+    }
+    scene.bodies[i].position = Vec3(v[0], v[1], v[2]);
+    scene.bodies[i].orientation = Quat(v[3], v[4], v[5], v[6]).normalized();
+  }
+}
+
+}  // namespace rigid::io
