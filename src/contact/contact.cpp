@@ -26,6 +26,43 @@ bool inside(const geometry::ConvexPolyhedron& shape, const Mat3& rotation, const
   return true;
 }
 
+// The face of `h` whose world normal is closest to `dir`, by a walk over the face adjacency
+// from `hint` (temporal coherence makes it one or two moves).
+int best_aligned_face(const PlacedHull& h, const Vec3& dir, int& hint) {
+  const auto& faces = h.shape->faces;
+  const Vec3 local = h.rotation.transpose() * dir;
+  int current = hint < static_cast<int>(faces.size()) ? hint : 0;
+  double best = faces[current].normal.dot(local);
+  for (;;) {
+    int next = current;
+    for (int f : h.shape->face_neighbors[current]) {
+      const double d = faces[f].normal.dot(local);
+      if (d > best) {
+        best = d;
+        next = f;
+      }
+    }
+    if (next == current) break;
+    current = next;
+  }
+  hint = current;
+  return current;
+}
+
+// Vertex-face, edge-face and face-face contacts have the face's normal as their common-plane
+// normal. Snapping to it removes the ~1e-13 rad direction noise of the distance iteration, which
+// an unstable contact (a rock balanced on a vertex) would otherwise amplify.
+Vec3 snap_to_face(const PlacedHull& a, const PlacedHull& b, const Vec3& n, SupportHints& hints) {
+  constexpr double kAligned = 1e-16;  // squared angle: 1e-8 rad
+  const int fa = best_aligned_face(a, n, hints.face_a);
+  const Vec3 na = a.rotation * a.shape->faces[fa].normal;
+  if ((na - n).squaredNorm() < kAligned) return na;
+  const int fb = best_aligned_face(b, -n, hints.face_b);
+  const Vec3 nb = -(b.rotation * b.shape->faces[fb].normal);
+  if ((nb - n).squaredNorm() < kAligned) return nb;
+  return n;
+}
+
 }  // namespace
 
 CommonPlane find_common_plane(const PlacedHull& a, const PlacedHull& b, const Vec3& previous_normal,
@@ -54,6 +91,7 @@ CommonPlane find_common_plane(const PlacedHull& a, const PlacedHull& b, const Ve
     n = next;
     if (settled) break;
   }
+  n = snap_to_face(a, b, n, hints);
   cp.normal = n;
   cp.overlap = overlap_along(a, b, n, hints);
   if (!link.overlapping) {

@@ -6,7 +6,7 @@
 #include <set>
 #include <sstream>
 
-#include <toml++/toml.hpp>
+#include <toml++/toml.h>
 
 #include "rigid/core/error.hpp"
 #include "rigid/io/stl.hpp"

@@ -35,8 +35,10 @@ struct LinkResult {
 
 /// Warm-start hints for the support walks of one pair (kept per pair across steps).
 struct SupportHints {
-  int a = 0;
-  int b = 0;
+  int a = 0;       ///< support vertex of A
+  int b = 0;       ///< support vertex of B
+  int face_a = 0;  ///< face of A last aligned with the normal
+  int face_b = 0;  ///< face of B last aligned with the normal
 };
 
 /// Shortest link between A and B. `guess` is any direction from A towards B (e.g. the last

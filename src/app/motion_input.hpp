@@ -1,0 +1,27 @@
+#pragma once
+/// Ground-motion options shared by `run` (and later `campaign`): which record, which window, how
+/// scaled and rotated; and the conversion into the velocity that drives the pedestals.
+#include <limits>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "rigid/scenario/scene.hpp"
+
+namespace rigid::app {
+
+struct MotionOptions {
+  std::string path;          ///< NAME-X.AT2 (siblings -Y, -Z join) or H1.AT2,H2.AT2[,V.AT2]
+  double factor = 1.0;       ///< multiplies every component as it is
+  double target_pga_g = 0;   ///< > 0: scale so the GMRotI50 PGA equals this (unit: g)
+  double start = 0;          ///< window start (unit: s)
+  double end = std::numeric_limits<double>::infinity();  ///< window end (unit: s)
+  double rotation_deg = 0;   ///< rotation of the horizontals about z (unit: deg)
+};
+
+void add_motion_options(CLI::App& cmd, MotionOptions& o);
+
+/// Reads, windows, scales and rotates the record, and integrates it to ground velocity.
+scenario::GroundDrive load_ground_drive(const MotionOptions& o);
+
+}  // namespace rigid::app

@@ -1,0 +1,119 @@
+// `rigid run`: one scene, one ground motion, one answer; `rigid settle`: save an equilibrium.
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+
+#include "commands.hpp"
+#include "json.hpp"
+#include "motion_input.hpp"
+#include "rigid/core/error.hpp"
+#include "rigid/io/scene_file.hpp"
+#include "rigid/scenario/scene.hpp"
+
+namespace rigid::app {
+namespace {
+
+struct RunOptions {
+  std::string scene;
+  std::string state;
+  MotionOptions motion;
+  double duration = 0;
+  double free_time = 5.0;
+  double dt = 0;
+  double safety = 0;
+  std::string integrator = "splitting";
+  bool json = false;
+};
+
+void check_positive_option(double v, const char* name) {
+  if (!(v > 0) || !std::isfinite(v)) throw InputError("", 0, std::string(name) + " must be positive");
+}
+
+void run(const RunOptions& o) {
+  scenario::Scene scene = io::load_scene(o.scene);
+  if (!o.state.empty()) io::apply_state(o.state, scene);
+  scenario::RunSettings settings;
+  if (o.dt != 0) {
+    check_positive_option(o.dt, "--dt");
+    settings.step.dt = o.dt;
+  }
+  if (o.safety != 0) {
+    check_positive_option(o.safety, "--safety");
+    settings.step.safety = o.safety;
+  }
+  if (o.integrator == "rk4") {
+    settings.step.rotation = dynamics::RotationIntegrator::rk4;
+  } else if (o.integrator != "splitting") {
+    throw InputError("", 0, "--integrator must be splitting or rk4");
+  }
+  if (o.duration != 0) check_positive_option(o.duration, "--duration");
+  settings.duration = o.duration;
+  if (o.free_time < 0) throw InputError("", 0, "--free-time must not be negative");
+  settings.free_time = o.free_time;
+
+  scenario::GroundDrive drive;
+  if (!o.motion.path.empty()) drive = load_ground_drive(o.motion);
+
+  const auto start = std::chrono::steady_clock::now();
+  const scenario::RunOutcome r = scenario::run(scene, drive, settings);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  if (o.json) {
+    JsonObject j;
+    j.add("overturned", r.overturned)
+        .add("failure_time_s", r.failure_time)
+        .add("failed_block", r.failed_block)
+        .add("steps", r.steps)
+        .add("dt_s", r.dt)
+        .add("simulated_s", r.simulated)
+        .add("wall_s", wall)
+        .add("max_tilt_deg", r.max_tilt * 180.0 / kPi)
+        .add("max_slip_m", r.max_slip)
+        .add("max_overlap_m", r.max_overlap)
+        .add("ended_at_rest", r.ended_at_rest)
+        .add("finite", r.finite);
+    std::printf("%s\n", j.str().c_str());
+  } else {
+    std::printf("%s after %.3f s simulated (%ld steps of %.3g s, %.3f s wall)\n",
+                r.overturned ? "OVERTURNED" : "survived", r.simulated, r.steps, r.dt, wall);
+    if (r.failure_time) std::printf("failure: %s at %.4f s\n", r.failed_block.c_str(), *r.failure_time);
+    std::printf("max tilt %.3f deg, max slip %.4g m\n", r.max_tilt * 180.0 / kPi, r.max_slip);
+  }
+  if (!r.finite) throw std::runtime_error("the simulation produced a non-finite state");
+}
+
+}  // namespace
+
+void register_run_command(CLI::App& app) {
+  auto o = std::make_shared<RunOptions>();
+  CLI::App* cmd = app.add_subcommand("run", "Shake one scene with one ground motion and report whether it overturned");
+  cmd->add_option("scene", o->scene, "Scene: a Rigid model file or a .toml scene file")->required();
+  add_motion_options(*cmd, o->motion);
+  cmd->add_option("--state", o->state, "Start from this saved equilibrium state (TOML from `rigid settle`)");
+  cmd->add_option("--duration", o->duration, "Simulated time (s); default: motion duration + --free-time");
+  cmd->add_option("--free-time", o->free_time, "Time left to rock after the motion ends, when --duration is not given (s)")
+      ->capture_default_str();
+  cmd->add_option("--dt", o->dt, "Time step (s); default: automatic from block masses and contact stiffness");
+  cmd->add_option("--safety", o->safety, "Safety factor on the critical time step for the automatic step (default 0.2)");
+  cmd->add_option("--integrator", o->integrator, "Rotation integrator: splitting (symplectic, default) or rk4")
+      ->capture_default_str();
+  cmd->add_flag("--json", o->json, "Print one JSON object");
+  cmd->callback([o] { run(*o); });
+
+  auto settle_scene = std::make_shared<std::string>();
+  auto settle_out = std::make_shared<std::string>();
+  auto settle_time = std::make_shared<double>(20.0);
+  CLI::App* settle = app.add_subcommand("settle", "Settle a scene with no ground motion (local damping) and save its equilibrium state");
+  settle->add_option("scene", *settle_scene, "Scene: a Rigid model file or a .toml scene file")->required();
+  settle->add_option("--out", *settle_out, "State file to write (TOML)")->required();
+  settle->add_option("--max-time", *settle_time, "Longest settling time (s)")->capture_default_str();
+  settle->callback([settle_scene, settle_out, settle_time] {
+    const scenario::Scene scene = io::load_scene(*settle_scene);
+    const scenario::Scene settled = scenario::equilibrate(scene, dynamics::StepSettings{}, *settle_time);
+    io::save_state(*settle_out, settled);
+    std::printf("equilibrium state written to %s\n", settle_out->c_str());
+  });
+}
+
+}  // namespace rigid::app
