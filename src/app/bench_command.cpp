@@ -60,6 +60,26 @@ scenario::GroundDrive one_sine(double amplitude, double period) {
   return drive;
 }
 
+struct Threshold {
+  double g;
+  double wall_per_run;
+  int runs;
+};
+
+// Overturning amplitude of the one-sine pulse by bisection between 0.2 g and 0.5 g.
+Threshold pulse_threshold(const scenario::Scene& scene, const scenario::RunSettings& settings) {
+  double lo = 0.2, hi = 0.5;  // g
+  int runs = 0;
+  const auto start = Clock::now();
+  while (hi - lo > 0.0025) {
+    const double mid = 0.5 * (lo + hi);
+    (scenario::run(scene, one_sine(mid * kGravity, 0.5), settings).overturned ? hi : lo) = mid;
+    ++runs;
+  }
+  const double wall = std::chrono::duration<double>(Clock::now() - start).count();
+  return {0.5 * (lo + hi), wall / runs, runs};
+}
+
 void bench(int repeat, bool json) {
   // (a) geode
   std::vector<double> geode_wall;
@@ -84,16 +104,17 @@ void bench(int repeat, bool json) {
     peer = scenario::run(scene, one_sine(0.29 * kGravity, 0.5), settings);
     peer_wall.push_back(std::chrono::duration<double>(Clock::now() - start).count());
   }
-  double lo = 0.2, hi = 0.5;  // g
-  int runs = 0;
-  const auto search_start = Clock::now();
-  while (hi - lo > 0.0025) {
-    const double mid = 0.5 * (lo + hi);
-    (scenario::run(scene, one_sine(mid * kGravity, 0.5), settings).overturned ? hi : lo) = mid;
-    ++runs;
-  }
-  const double search_wall = std::chrono::duration<double>(Clock::now() - search_start).count();
-  const double threshold = 0.5 * (lo + hi);
+  const Threshold study = pulse_threshold(scene, settings);
+  // the same with near-rigid contacts, the limit the 2D model assumes, at the largest stable step
+  contact::ContactLaw stiff;
+  stiff.normal_stiffness = stiff.shear_stiffness = 1e10;
+  dynamics::StepSettings stiff_step;
+  stiff_step.safety = 1.0;
+  const scenario::Scene stiff_scene =
+      scenario::equilibrate(scenario::block_on_pedestal(b, h, 0.5, stiff), stiff_step);
+  scenario::RunSettings stiff_settings = settings;
+  stiff_settings.step = stiff_step;
+  const Threshold rigid_limit = pulse_threshold(stiff_scene, stiff_settings);
   const auto block2d = rocking::RockingBlock::rectangular(b, h);
   const double housner =
       rocking::min_overturning_amplitude(block2d, rocking::PulseShape::one_sine, 0.5) / kGravity;
@@ -109,9 +130,11 @@ void bench(int repeat, bool json) {
         .add("peer_dt_s", peer.dt)
         .add("peer_simulated_s", peer.simulated)
         .add("peer_overturned_at_0p29g", peer.overturned)
-        .add("peer_threshold_g", threshold)
-        .add("housner_threshold_g", housner)
-        .add("peer_wall_s_per_search_run", search_wall / runs);
+        .add("peer_threshold_g", study.g)
+        .add("peer_wall_s_per_search_run", study.wall_per_run)
+        .add("stiff_threshold_g", rigid_limit.g)
+        .add("stiff_wall_s_per_search_run", rigid_limit.wall_per_run)
+        .add("housner_threshold_g", housner);
     std::printf("%s\n", j.str().c_str());
     return;
   }
@@ -123,7 +146,9 @@ void bench(int repeat, bool json) {
               median(peer_wall), peer.steps, peer.dt, peer.simulated,
               peer.overturned ? "overturned" : "survived");
   std::printf("    overturning threshold by bisection: %.4f g (2D Housner model: %.4f g); %d runs, %.4f s per run\n",
-              threshold, housner, runs, search_wall / runs);
+              study.g, housner, study.runs, study.wall_per_run);
+  std::printf("    with near-rigid contacts (K_N = K_S = 1e10, safety 1.0): %.4f g; %.4f s per run\n",
+              rigid_limit.g, rigid_limit.wall_per_run);
 }
 
 }  // namespace

@@ -9,5 +9,6 @@ void register_run_command(CLI::App& app);
 void register_inspect_command(CLI::App& app);
 void register_motion_command(CLI::App& app);
 void register_bench_command(CLI::App& app);
+void register_model_command(CLI::App& app);
 
 }  // namespace rigid::app

@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   rigid::app::register_inspect_command(app);
   rigid::app::register_motion_command(app);
   rigid::app::register_bench_command(app);
+  rigid::app::register_model_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
