@@ -199,7 +199,11 @@ TEST_P(HousnerPulse, OneSineThresholdWithinTenPercentOf2DModel) {
 
 INSTANTIATE_TEST_SUITE_P(Periods, HousnerPulse,
                          ::testing::Values(PulseCase{0.25, 1e8}, PulseCase{1.0, 1e8},
-                                           PulseCase{2.0, 1e8}, PulseCase{0.5, 1e10}));
+                                           PulseCase{2.0, 1e8}, PulseCase{0.5, 1e10}),
+                         [](const ::testing::TestParamInfo<PulseCase>& info) {
+                           return "T" + std::to_string(int(1000 * info.param.period)) + "ms_K1e" +
+                                  std::to_string(int(std::lround(std::log10(info.param.stiffness))));
+                         });
 
 }  // namespace
 }  // namespace rigid

@@ -1,0 +1,396 @@
+/// Triangle soup -> checked closed mesh: welding, adjacency, closedness, orientation, convexity.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <deque>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "rigid/core/error.hpp"
+#include "rigid/geometry/polyhedron.hpp"
+
+namespace rigid::geometry {
+namespace {
+
+// Coordinates beyond this are rejected: it keeps diag^5 * density (inertia) far from overflow and
+// no rock is a million kilometres across, even in millimetres (unit: m).
+constexpr double kMaxCoordinate = 1e9;
+// Floor of the degenerate-triangle height when weld_tolerance is tiny: below it a triangle normal
+// is mostly rounding noise (unit: 1, fraction of the bounding-box diagonal).
+constexpr double kMinRelativeHeight = 1e-12;
+// A closed surface enclosing less than this fraction of diag^3 is flat (back-to-back facets).
+constexpr double kMinRelativeVolume = 1e-12;
+// Welding cells are at least this fraction of the diagonal, so cell indices fit in an int64.
+constexpr double kMinRelativeCell = 1e-12;
+
+std::string fmt(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.9g", x);
+  return buf;
+}
+
+std::string fmt(const Vec3& v) { return "(" + fmt(v.x()) + ", " + fmt(v.y()) + ", " + fmt(v.z()) + ")"; }
+
+[[noreturn]] void fail(const std::string& source, std::size_t facet, const std::string& what) {
+  throw InputError(source, 0, "facet " + std::to_string(facet) + ": " + what);
+}
+
+[[noreturn]] void fail_mesh(const std::string& source, const std::string& what) {
+  throw InputError(source, 0, "mesh: " + what);
+}
+
+// Twice-area vector of triangle (a, b, c), taken at the vertex opposite the longest edge: the two
+// shortest edges give the smallest rounding error in the direction.
+Vec3 area_vector(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const double ab = (b - a).squaredNorm(), bc = (c - b).squaredNorm(), ca = (a - c).squaredNorm();
+  if (bc >= ab && bc >= ca) return (b - a).cross(c - a);
+  if (ca >= ab) return (c - b).cross(a - b);
+  return (a - c).cross(b - c);
+}
+
+// Unit normal of triangle (a, b, c), or zero for a zero-area triangle.
+Vec3 triangle_normal(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 n = area_vector(a, b, c);
+  const double len = n.norm();
+  return len > 0 ? Vec3(n / len) : Vec3::Zero();
+}
+
+struct CellKey {
+  std::int64_t x, y, z;
+  bool operator==(const CellKey&) const = default;
+};
+
+struct CellHash {
+  std::size_t operator()(const CellKey& k) const {
+    // lookups only, never iterated: the hash does not affect the result order
+    std::uint64_t h = static_cast<std::uint64_t>(k.x) * 0x9E3779B97F4A7C15ull;
+    h ^= static_cast<std::uint64_t>(k.y) + 0x7F4A7C159E3779B9ull + (h << 6) + (h >> 2);
+    h ^= static_cast<std::uint64_t>(k.z) + 0x94D049BB133111EBull + (h << 6) + (h >> 2);
+    return static_cast<std::size_t>(h);
+  }
+};
+
+// One directed use of an undirected edge by a triangle.
+struct EdgeUse {
+  std::uint64_t key;   // (min vertex << 32) | max vertex
+  int tri;
+  int local;           // edge from vertex local to vertex (local+1)%3
+  bool forward;        // runs from the smaller to the larger vertex index
+};
+
+struct Adjacency {
+  std::vector<int> count;  // per (tri*3+local): how many triangles use this undirected edge
+  std::vector<int> other;  // per (tri*3+local): the other use (tri*3+local) when count == 2
+  std::vector<bool> forward;
+};
+
+Adjacency build_adjacency(const std::vector<std::array<int, 3>>& tris) {
+  std::vector<EdgeUse> uses;
+  uses.reserve(tris.size() * 3);
+  for (std::size_t t = 0; t < tris.size(); ++t) {
+    for (int i = 0; i < 3; ++i) {
+      const auto a = static_cast<std::uint32_t>(tris[t][i]);
+      const auto b = static_cast<std::uint32_t>(tris[t][(i + 1) % 3]);
+      const std::uint64_t key = (std::uint64_t{std::min(a, b)} << 32) | std::max(a, b);
+      uses.push_back({key, static_cast<int>(t), i, a < b});
+    }
+  }
+  // sorting by (key, tri, local) is a total order: deterministic without a hash table
+  std::sort(uses.begin(), uses.end(), [](const EdgeUse& p, const EdgeUse& q) {
+    if (p.key != q.key) return p.key < q.key;
+    if (p.tri != q.tri) return p.tri < q.tri;
+    return p.local < q.local;
+  });
+  Adjacency adj;
+  adj.count.assign(uses.size(), 0);
+  adj.other.assign(uses.size(), -1);
+  adj.forward.assign(uses.size(), false);
+  for (std::size_t begin = 0; begin < uses.size();) {
+    std::size_t end = begin;
+    while (end < uses.size() && uses[end].key == uses[begin].key) ++end;
+    for (std::size_t k = begin; k < end; ++k) {
+      const int slot = uses[k].tri * 3 + uses[k].local;
+      adj.count[slot] = static_cast<int>(end - begin);
+      adj.forward[slot] = uses[k].forward;
+      if (end - begin == 2) {
+        const auto& o = uses[k == begin ? begin + 1 : begin];
+        adj.other[slot] = o.tri * 3 + o.local;
+      }
+    }
+    begin = end;
+  }
+  return adj;
+}
+
+// Welds soup vertices closer than eps: the first occurrence keeps its index and position, later
+// ones map to the nearest earlier representative (ties: the smaller index).
+std::vector<int> weld(const TriangleSoup& soup, const Vec3& lo, double diag, double eps,
+                      std::vector<Vec3>& vertices) {
+  const double cell = std::max(eps, kMinRelativeCell * diag);
+  auto cell_of = [&](const Vec3& p) {
+    // (p - lo) / cell <= diag / (1e-12 diag): the cast cannot overflow
+    return CellKey{static_cast<std::int64_t>(std::floor((p.x() - lo.x()) / cell)),
+                   static_cast<std::int64_t>(std::floor((p.y() - lo.y()) / cell)),
+                   static_cast<std::int64_t>(std::floor((p.z() - lo.z()) / cell))};
+  };
+  std::unordered_map<CellKey, std::vector<int>, CellHash> grid;
+  std::vector<int> index;
+  index.reserve(soup.size() * 3);
+  const double eps2 = eps * eps;
+  for (const Triangle& t : soup) {
+    for (const Vec3* p : {&t.a, &t.b, &t.c}) {
+      const CellKey k = cell_of(*p);
+      int best = -1;
+      double best_d2 = 0;
+      for (std::int64_t dx = -1; dx <= 1; ++dx) {
+        for (std::int64_t dy = -1; dy <= 1; ++dy) {
+          for (std::int64_t dz = -1; dz <= 1; ++dz) {
+            const auto it = grid.find({k.x + dx, k.y + dy, k.z + dz});
+            if (it == grid.end()) continue;
+            for (int v : it->second) {
+              const double d2 = (vertices[v] - *p).squaredNorm();
+              if (d2 > eps2) continue;
+              if (best < 0 || d2 < best_d2 || (d2 == best_d2 && v < best)) {
+                best = v;
+                best_d2 = d2;
+              }
+            }
+          }
+        }
+      }
+      if (best < 0) {
+        best = static_cast<int>(vertices.size());
+        vertices.push_back(*p);
+        grid[k].push_back(best);
+      }
+      index.push_back(best);
+    }
+  }
+  return index;
+}
+
+double signed_volume(const std::vector<Vec3>& v, const std::vector<std::array<int, 3>>& tris) {
+  // origin at the vertex mean keeps the determinants well conditioned (physics.md §7)
+  Vec3 o = Vec3::Zero();
+  for (const Vec3& p : v) o += p;
+  o /= static_cast<double>(v.size());
+  double six_v = 0;
+  for (const auto& t : tris) {
+    six_v += (v[t[0]] - o).dot((v[t[1]] - o).cross(v[t[2]] - o));
+  }
+  return six_v / 6.0;
+}
+
+}  // namespace
+
+std::vector<std::array<int, 3>> triangle_neighbors(const ClosedMesh& mesh) {
+  const auto nv = static_cast<long long>(mesh.vertices.size());
+  for (const auto& t : mesh.triangles) {
+    for (int v : t) {
+      if (v < 0 || v >= nv) throw std::invalid_argument("triangle_neighbors: vertex index out of range");
+    }
+  }
+  const Adjacency adj = build_adjacency(mesh.triangles);
+  std::vector<std::array<int, 3>> nb(mesh.triangles.size(), {-1, -1, -1});
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    for (int i = 0; i < 3; ++i) {
+      const std::size_t slot = t * 3 + i;
+      const int o = adj.other[slot];
+      // a proper neighbour runs the shared edge the other way
+      if (adj.count[slot] == 2 && adj.forward[slot] != adj.forward[o]) nb[t][i] = o / 3;
+    }
+  }
+  return nb;
+}
+
+ClosedMesh make_closed_mesh(const TriangleSoup& soup, const MeshOptions& options,
+                            const std::string& source) {
+  if (!(std::isfinite(options.weld_tolerance) && options.weld_tolerance >= 0) ||
+      !(std::isfinite(options.convexity_tolerance) && options.convexity_tolerance >= 0) ||
+      !(std::isfinite(options.coplanar_angle) && options.coplanar_angle >= 0)) {
+    throw std::invalid_argument("MeshOptions: tolerances must be finite and non-negative");
+  }
+  if (soup.empty()) fail_mesh(source, "no facets");
+  if (soup.size() > static_cast<std::size_t>(std::numeric_limits<int>::max() / 3)) {
+    fail_mesh(source, "too many facets (" + std::to_string(soup.size()) + ")");
+  }
+
+  // finite, bounded coordinates and the bounding box
+  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
+  Vec3 hi = -lo;
+  for (std::size_t f = 0; f < soup.size(); ++f) {
+    for (const Vec3* p : {&soup[f].a, &soup[f].b, &soup[f].c}) {
+      if (!p->allFinite()) fail(source, f, "vertex coordinate is NaN or infinite");
+      if (p->cwiseAbs().maxCoeff() > kMaxCoordinate) {
+        fail(source, f, "vertex " + fmt(*p) + " is farther than " + fmt(kMaxCoordinate) +
+                            " m from the origin");
+      }
+      lo = lo.cwiseMin(*p);
+      hi = hi.cwiseMax(*p);
+    }
+  }
+  const double diag = (hi - lo).norm();
+  if (!(diag > 0)) fail(source, 0, "degenerate triangle (all vertices of the mesh coincide)");
+
+  // weld duplicate vertices
+  ClosedMesh mesh;
+  const double weld_eps = options.weld_tolerance * diag;
+  const std::vector<int> index = weld(soup, lo, diag, weld_eps, mesh.vertices);
+  const std::vector<Vec3>& v = mesh.vertices;
+  mesh.triangles.resize(soup.size());
+  for (std::size_t f = 0; f < soup.size(); ++f) {
+    mesh.triangles[f] = {index[3 * f], index[3 * f + 1], index[3 * f + 2]};
+  }
+
+  // degenerate triangles: coincident vertices or a height below the weld tolerance
+  const double min_height = std::max(weld_eps, kMinRelativeHeight * diag);
+  for (std::size_t f = 0; f < soup.size(); ++f) {
+    const auto& t = mesh.triangles[f];
+    if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0]) {
+      fail(source, f, "degenerate triangle (two of its vertices coincide after welding)");
+    }
+    const Vec3 &a = v[t[0]], &b = v[t[1]], &c = v[t[2]];
+    const double longest = std::sqrt(std::max({(b - a).squaredNorm(), (c - b).squaredNorm(),
+                                               (a - c).squaredNorm()}));
+    const double height = area_vector(a, b, c).norm() / longest;  // the smallest height
+    if (!(height > min_height)) {
+      fail(source, f, "degenerate triangle (zero area: height " + fmt(height) +
+                          " m is below the tolerance " + fmt(min_height) + " m)");
+    }
+  }
+
+  // closed and manifold: every undirected edge is used by exactly two facets
+  Adjacency adj = build_adjacency(mesh.triangles);
+  for (std::size_t f = 0; f < soup.size(); ++f) {
+    for (int i = 0; i < 3; ++i) {
+      const int n = adj.count[f * 3 + i];
+      if (n == 2) continue;
+      const Vec3& a = v[mesh.triangles[f][i]];
+      const Vec3& b = v[mesh.triangles[f][(i + 1) % 3]];
+      if (n == 1) {
+        fail(source, f, "edge " + fmt(a) + "-" + fmt(b) +
+                            " belongs to no other facet (open edge): the mesh is not closed");
+      }
+      fail(source, f, "edge " + fmt(a) + "-" + fmt(b) + " is shared by " + std::to_string(n) +
+                          " facets (non-manifold edge)");
+    }
+  }
+
+  // consistent orientation by breadth-first search from facet 0; a neighbour must run the
+  // shared edge the other way
+  const std::size_t nf = soup.size();
+  std::vector<signed char> flip(nf, -1);
+  std::deque<int> queue{0};
+  flip[0] = 0;
+  while (!queue.empty()) {
+    const int t = queue.front();
+    queue.pop_front();
+    for (int i = 0; i < 3; ++i) {
+      const int slot = t * 3 + i;
+      const int o = adj.other[slot];
+      const int u = o / 3;
+      const bool dir_t = adj.forward[slot] != (flip[t] == 1);
+      const signed char need = adj.forward[o] == !dir_t ? 0 : 1;
+      if (flip[u] < 0) {
+        flip[u] = need;
+        queue.push_back(u);
+      } else if (flip[u] != need) {
+        fail(source, static_cast<std::size_t>(std::max(t, u)),
+             "orientation cannot be made consistent with facet " + std::to_string(std::min(t, u)) +
+                 " (an edge is used twice in the same direction: non-orientable surface)");
+      }
+    }
+  }
+  for (std::size_t f = 0; f < nf; ++f) {
+    if (flip[f] < 0) fail(source, f, "not connected to facet 0: the mesh has more than one part");
+  }
+  std::size_t flipped = 0;
+  for (std::size_t f = 0; f < nf; ++f) {
+    if (flip[f] == 1) {
+      std::swap(mesh.triangles[f][1], mesh.triangles[f][2]);
+      ++flipped;
+    }
+  }
+  if (flipped > 0) adj = build_adjacency(mesh.triangles);
+
+  // manifold vertices: the facets around each vertex form a single fan
+  std::vector<int> uses_of_vertex(v.size(), 0), first_tri(v.size(), -1);
+  for (std::size_t f = 0; f < nf; ++f) {
+    for (int x : mesh.triangles[f]) {
+      if (uses_of_vertex[x]++ == 0) first_tri[x] = static_cast<int>(f);
+    }
+  }
+  for (std::size_t x = 0; x < v.size(); ++x) {
+    // walk around x: from triangle t leave through the edge x -> next, arriving at its twin
+    int t = first_tri[x], steps = 0;
+    do {
+      const auto& tri = mesh.triangles[t];
+      const int i = tri[0] == static_cast<int>(x) ? 0 : tri[1] == static_cast<int>(x) ? 1 : 2;
+      t = adj.other[t * 3 + i] / 3;
+      ++steps;
+    } while (t != first_tri[x] && steps <= uses_of_vertex[x]);
+    if (steps != uses_of_vertex[x]) {
+      fail(source, static_cast<std::size_t>(first_tri[x]),
+           "vertex " + fmt(v[x]) + " joins separate fans of facets (non-manifold vertex)");
+    }
+  }
+
+  // a convex surface is a topological sphere: V - E + F = 2
+  const long long euler = static_cast<long long>(v.size()) - static_cast<long long>(3 * nf / 2) +
+                          static_cast<long long>(nf);
+  if (euler != 2) {
+    fail_mesh(source, "Euler characteristic V - E + F is " + std::to_string(euler) +
+                          ", not 2: the surface has handles and cannot be convex");
+  }
+
+  // outward orientation: the enclosed volume must be positive
+  double volume = signed_volume(v, mesh.triangles);
+  if (!(std::abs(volume) > kMinRelativeVolume * diag * diag * diag)) {
+    fail_mesh(source, "encloses no volume (" + fmt(volume) +
+                          " m^3): the surface is flat or folds back onto itself");
+  }
+  if (volume < 0) {
+    for (auto& t : mesh.triangles) std::swap(t[1], t[2]);
+    flipped = nf - flipped;
+  }
+  if (flipped == nf) {
+    mesh.warnings.push_back("orientation was inward; flipped all " + std::to_string(nf) +
+                            " facets");
+  } else if (flipped > 0) {
+    mesh.warnings.push_back(std::to_string(flipped) + " of " + std::to_string(nf) +
+                            " facets were oriented inconsistently; flipped to face outward");
+  }
+
+  // convexity: no vertex above any facet plane by more than the tolerance. This is the literal
+  // O(facets * vertices) test; coordinates are stored per axis so the inner loop vectorises.
+  const double conv_tol = options.convexity_tolerance * diag;
+  Eigen::ArrayXd xs(v.size()), ys(v.size()), zs(v.size());
+  for (std::size_t x = 0; x < v.size(); ++x) {
+    const auto i = static_cast<Eigen::Index>(x);
+    xs[i] = v[x].x() - lo.x();
+    ys[i] = v[x].y() - lo.y();
+    zs[i] = v[x].z() - lo.z();
+  }
+  for (std::size_t f = 0; f < nf; ++f) {
+    const auto& t = mesh.triangles[f];
+    const Vec3 a = v[t[0]] - lo, b = v[t[1]] - lo, c = v[t[2]] - lo;
+    const Vec3 n = triangle_normal(a, b, c);
+    const double limit = (n.dot(a) + n.dot(b) + n.dot(c)) / 3.0 + conv_tol;
+    const double nx = n.x(), ny = n.y(), nz = n.z();
+    const double top = (nx * xs + ny * ys + nz * zs).maxCoeff();
+    if (top <= limit) continue;
+    Eigen::Index worst = 0;  // the highest vertex, for the message
+    (nx * xs + ny * ys + nz * zs).maxCoeff(&worst);
+    fail(source, f, "vertex " + fmt(v[static_cast<std::size_t>(worst)]) + " lies " +
+                        fmt(top - limit + conv_tol) + " m outside the plane of this facet " +
+                        "(tolerance " + fmt(conv_tol) + " m): the mesh is not convex");
+  }
+  return mesh;
+}
+
+}  // namespace rigid::geometry

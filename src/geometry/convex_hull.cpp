@@ -1,0 +1,346 @@
+/// Incremental 3D convex hull (quickhull-style) and box soups, for synthetic models and tests.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <deque>
+#include <limits>
+#include <stdexcept>
+#include <vector>
+
+#include "rigid/geometry/polyhedron.hpp"
+
+namespace rigid::geometry {
+namespace {
+
+// Points closer than this fraction of the bounding-box diagonal to the current hull count as on
+// it. It sits above MeshOptions::weld_tolerance (1e-9) so every hull triangle is thicker than
+// the weld/degeneracy threshold of make_closed_mesh, and far below its convexity tolerance.
+constexpr double kHullRelativeTolerance = 1e-8;
+
+struct HullFace {
+  std::array<int, 3> v;   // counter-clockwise seen from outside
+  std::array<int, 3> nb{-1, -1, -1};  // face across edge v[i] -> v[(i+1)%3]
+  Vec3 normal;            // outward unit normal
+  double offset = 0;      // plane: normal . x = offset
+  bool alive = true;
+  std::vector<int> outside;  // points above this face by more than the tolerance
+};
+
+// Twice-area vector, crossed at the vertex opposite the longest edge (smallest rounding error).
+Vec3 area_vector(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const double ab = (b - a).squaredNorm(), bc = (c - b).squaredNorm(), ca = (a - c).squaredNorm();
+  if (bc >= ab && bc >= ca) return (b - a).cross(c - a);
+  if (ca >= ab) return (c - b).cross(a - b);
+  return (a - c).cross(b - c);
+}
+
+class Hull {
+ public:
+  explicit Hull(const std::vector<Vec3>& points) : p_(points) {}
+
+  TriangleSoup build() {
+    const int n = static_cast<int>(p_.size());
+    if (n < 4) throw std::invalid_argument("convex_hull: need at least 4 points");
+    for (const Vec3& q : p_) {
+      if (!q.allFinite()) throw std::invalid_argument("convex_hull: point is NaN or infinite");
+    }
+    Vec3 lo = p_[0], hi = p_[0];
+    for (const Vec3& q : p_) {
+      lo = lo.cwiseMin(q);
+      hi = hi.cwiseMax(q);
+    }
+    const double diag = (hi - lo).norm();
+    if (!(diag > 0) || !std::isfinite(diag)) {
+      throw std::invalid_argument("convex_hull: points coincide or span an infinite box");
+    }
+    eps_ = kHullRelativeTolerance * diag;
+    center_ = 0.5 * (lo + hi);
+
+    initial_simplex(lo, hi);
+    std::deque<int> work;
+    for (int f = 0; f < 4; ++f) {
+      if (!faces_[f].outside.empty()) work.push_back(f);
+    }
+    mark_.assign(faces_.size(), -1);
+    start_.assign(p_.size(), -1);
+    end_.assign(p_.size(), -1);
+    // each round removes the farthest outside point of a face from every list: terminates
+    while (!work.empty()) {
+      const int f = work.front();
+      work.pop_front();
+      if (!faces_[f].alive || faces_[f].outside.empty()) continue;
+      auto& out = faces_[f].outside;
+      const int apex = best(out, [&](int i) { return distance(f, i); });
+      out.erase(std::find(out.begin(), out.end(), apex));
+      add_point(apex, f, work);
+      if (faces_[f].alive && !faces_[f].outside.empty()) work.push_back(f);
+    }
+
+    TriangleSoup soup;
+    for (const HullFace& face : faces_) {
+      if (face.alive) soup.push_back({p_[face.v[0]], p_[face.v[1]], p_[face.v[2]]});
+    }
+    return soup;
+  }
+
+ private:
+  // signed distance of point i above the plane of face f (unit: m)
+  double distance(int f, int i) const { return height(faces_[f], i); }
+
+  // lexicographic order of coordinates, then index: the smallest point of a set of ties is a
+  // vertex of their convex hull, so ties never pick a point inside a face or edge
+  bool lex_less(int i, int j) const {
+    const Vec3 &a = p_[i], &b = p_[j];
+    if (a.x() != b.x()) return a.x() < b.x();
+    if (a.y() != b.y()) return a.y() < b.y();
+    if (a.z() != b.z()) return a.z() < b.z();
+    return i < j;
+  }
+
+  // the candidate with the largest score; scores within the tolerance of it count as ties
+  template <class Score>
+  int best(const std::vector<int>& candidates, Score score) const {
+    double top = -std::numeric_limits<double>::infinity();
+    for (int i : candidates) top = std::max(top, score(i));
+    int pick = -1;
+    for (int i : candidates) {
+      if (score(i) >= top - eps_ && (pick < 0 || lex_less(i, pick))) pick = i;
+    }
+    return pick;
+  }
+
+  bool set_plane(HullFace& face) const {
+    const Vec3 a = p_[face.v[0]] - center_, b = p_[face.v[1]] - center_, c = p_[face.v[2]] - center_;
+    const Vec3 n = area_vector(a, b, c);
+    const double len = n.norm();
+    if (!(len > 0)) return false;
+    face.normal = n / len;
+    face.offset = (face.normal.dot(a) + face.normal.dot(b) + face.normal.dot(c)) / 3.0;
+    return true;
+  }
+
+  void initial_simplex(const Vec3& lo, const Vec3& hi) {
+    std::vector<int> all(p_.size());
+    for (std::size_t i = 0; i < p_.size(); ++i) all[i] = static_cast<int>(i);
+    // the two extremes along the widest axis
+    Eigen::Index axis = 0;
+    (hi - lo).maxCoeff(&axis);
+    const int i0 = best(all, [&](int i) { return -p_[i][axis]; });
+    const int i1 = best(all, [&](int i) { return p_[i][axis]; });
+    // the point farthest from their line
+    const Vec3 dir = (p_[i1] - p_[i0]).normalized();
+    auto line_distance = [&](int i) {
+      const Vec3 d = p_[i] - p_[i0];
+      return (d - d.dot(dir) * dir).norm();
+    };
+    const int i2 = best(all, line_distance);
+    if (!(line_distance(i2) > eps_)) {
+      throw std::invalid_argument("convex_hull: points are collinear (need 4 non-coplanar points)");
+    }
+    // the point farthest from their plane
+    const Vec3 n = (p_[i1] - p_[i0]).cross(p_[i2] - p_[i0]).normalized();
+    auto plane_distance = [&](int i) { return std::abs(n.dot(p_[i] - p_[i0])); };
+    const int i3 = best(all, plane_distance);
+    if (!(plane_distance(i3) > eps_)) {
+      throw std::invalid_argument("convex_hull: points are coplanar (need 4 non-coplanar points)");
+    }
+
+    // four outward faces: each must have the remaining vertex below it
+    const std::array<int, 4> s{i0, i1, i2, i3};
+    inner_ = (p_[i0] + p_[i1] + p_[i2] + p_[i3]) / 4.0;
+    const std::array<std::array<int, 3>, 4> tri{{{0, 1, 2}, {0, 3, 1}, {1, 3, 2}, {2, 3, 0}}};
+    const bool below = n.dot(p_[i3] - p_[i0]) < 0;  // i3 below (i0, i1, i2): keep this winding
+    for (const auto& t : tri) {
+      HullFace face;
+      face.v = {s[t[0]], s[t[1]], s[t[2]]};
+      if (!below) std::swap(face.v[1], face.v[2]);
+      set_plane(face);
+      faces_.push_back(face);
+    }
+    // adjacency of the tetrahedron: the face running an edge the other way
+    for (int f = 0; f < 4; ++f) {
+      for (int i = 0; i < 3; ++i) {
+        const int a = faces_[f].v[i], b = faces_[f].v[(i + 1) % 3];
+        for (int g = 0; g < 4; ++g) {
+          for (int j = 0; j < 3; ++j) {
+            if (faces_[g].v[j] == b && faces_[g].v[(j + 1) % 3] == a) faces_[f].nb[i] = g;
+          }
+        }
+      }
+    }
+    // conflict lists: each point goes to the face it is farthest above
+    for (std::size_t i = 0; i < p_.size(); ++i) {
+      const int q = static_cast<int>(i);
+      if (q == i0 || q == i1 || q == i2 || q == i3) continue;
+      assign(q, 0, 4);
+    }
+  }
+
+  // puts point q on the outside list of the face in [first, last) it is farthest above, if any
+  void assign(int q, int first, int last) {
+    int target = -1;
+    double far = eps_;
+    for (int f = first; f < last; ++f) {
+      if (!faces_[f].alive) continue;
+      const double d = distance(f, q);
+      if (d > far) {
+        far = d;
+        target = f;
+      }
+    }
+    if (target >= 0) faces_[target].outside.push_back(q);
+  }
+
+  struct HorizonEdge {
+    int a, b;     // runs a -> b on the visible face being removed
+    int face;     // the invisible face across
+    int slot;     // edge index of b -> a in that face
+  };
+
+  // Adds the apex, trying first to treat faces it is coplanar with (within the tolerance) as
+  // visible, which merges flat regions and avoids sliver faces whose planes tilt badly, then
+  // only the faces it is clearly above. A point for which neither gives a convex cap (possible
+  // only within rounding of the hull) is dropped and the hull left unchanged.
+  void add_point(int apex, int seed, std::deque<int>& work) {
+    if (try_add(apex, seed, -eps_, work)) return;
+    try_add(apex, seed, eps_, work);
+  }
+
+  bool try_add(int apex, int seed, double threshold, std::deque<int>& work) {
+    const int stamp = ++stamp_;
+    // visible faces: connected to the seed, apex above by more than the threshold
+    std::vector<int> visible{seed};
+    mark_[seed] = stamp;
+    for (std::size_t k = 0; k < visible.size(); ++k) {
+      for (int g : faces_[visible[k]].nb) {
+        if (mark_[g] == stamp || !faces_[g].alive) continue;
+        if (distance(g, apex) > threshold) {
+          mark_[g] = stamp;
+          visible.push_back(g);
+        }
+      }
+    }
+    // horizon: edges from a visible to an invisible face
+    std::vector<HorizonEdge> horizon;
+    for (int f : visible) {
+      for (int i = 0; i < 3; ++i) {
+        const int g = faces_[f].nb[i];
+        if (mark_[g] == stamp) continue;
+        const int a = faces_[f].v[i], b = faces_[f].v[(i + 1) % 3];
+        int slot = 0;
+        while (slot < 3 && !(faces_[g].v[slot] == b && faces_[g].v[(slot + 1) % 3] == a)) ++slot;
+        if (slot == 3) return false;  // broken adjacency cannot happen; refuse rather than corrupt
+        horizon.push_back({a, b, g, slot});
+      }
+    }
+
+    // the horizon must be one simple loop
+    bool ok = !horizon.empty();
+    for (std::size_t h = 0; ok && h < horizon.size(); ++h) {
+      if (start_[horizon[h].a] >= 0 || end_[horizon[h].b] >= 0) ok = false;
+      start_[horizon[h].a] = static_cast<int>(h);
+      end_[horizon[h].b] = static_cast<int>(h);
+    }
+    if (ok) {
+      std::size_t walked = 0;
+      int h = 0;
+      do {
+        h = start_[horizon[h].b];
+        ++walked;
+      } while (h > 0 && walked <= horizon.size());
+      ok = h == 0 && walked == horizon.size();
+    }
+    // the cap must be convex: each new face has an area, faces the interior point, and has the
+    // far vertex of the old face and of the next new face beside it on or below its plane
+    std::vector<HullFace> created;
+    for (std::size_t h = 0; ok && h < horizon.size(); ++h) {
+      HullFace face;
+      face.v = {horizon[h].a, horizon[h].b, apex};
+      ok = set_plane(face) && face.normal.dot(inner_ - center_) - face.offset < 0;
+      created.push_back(std::move(face));
+    }
+    for (std::size_t h = 0; ok && h < horizon.size(); ++h) {
+      const auto& e = horizon[h];
+      const HullFace& old = faces_[e.face];
+      const int far_old = old.v[(e.slot + 2) % 3];
+      const int far_new = horizon[static_cast<std::size_t>(start_[e.b])].b;
+      ok = height(created[h], far_old) <= eps_ && height(created[h], far_new) <= eps_;
+    }
+    if (!ok) {
+      for (const auto& e : horizon) start_[e.a] = end_[e.b] = -1;
+      return false;
+    }
+
+    // new faces (a, b, apex) glued to the horizon and to each other
+    const int base = static_cast<int>(faces_.size());
+    for (std::size_t h = 0; h < horizon.size(); ++h) {
+      const auto& e = horizon[h];
+      HullFace& face = created[h];
+      face.nb[0] = e.face;
+      face.nb[1] = base + start_[e.b];  // edge b -> apex meets apex -> b of the face starting at b
+      face.nb[2] = base + end_[e.a];    // edge apex -> a meets a -> apex of the face ending at a
+      faces_[e.face].nb[e.slot] = base + static_cast<int>(h);
+    }
+    for (const auto& e : horizon) start_[e.a] = end_[e.b] = -1;
+    for (auto& face : created) faces_.push_back(std::move(face));
+    mark_.resize(faces_.size(), -1);
+
+    // retire the visible faces, handing their outside points to the new faces
+    for (int f : visible) faces_[f].alive = false;
+    for (int f : visible) {
+      for (int q : faces_[f].outside) assign(q, base, static_cast<int>(faces_.size()));
+      faces_[f].outside.clear();
+      faces_[f].outside.shrink_to_fit();
+    }
+    for (int f = base; f < static_cast<int>(faces_.size()); ++f) {
+      if (!faces_[f].outside.empty()) work.push_back(f);
+    }
+    return true;
+  }
+
+  // signed distance of point i above the plane of a face (unit: m)
+  double height(const HullFace& face, int i) const {
+    return face.normal.dot(p_[i] - center_) - face.offset;
+  }
+
+  const std::vector<Vec3>& p_;
+  std::vector<HullFace> faces_;
+  std::vector<int> mark_;         // visit stamp per face
+  int stamp_ = 0;
+  std::vector<int> start_, end_;  // per point: horizon edge starting / ending there, or -1
+  double eps_ = 0;
+  Vec3 center_ = Vec3::Zero();    // planes are stored relative to the box centre (precision)
+  Vec3 inner_ = Vec3::Zero();     // centroid of the first tetrahedron: strictly inside
+};
+
+}  // namespace
+
+TriangleSoup convex_hull(const std::vector<Vec3>& points) { return Hull(points).build(); }
+
+TriangleSoup box_soup(const Vec3& lo, const Vec3& hi) {
+  if (!lo.allFinite() || !hi.allFinite() || !(lo.array() < hi.array()).all()) {
+    throw std::invalid_argument("box_soup: need finite lo < hi in every coordinate");
+  }
+  auto corner = [&](int i, int j, int k) {
+    return Vec3(i ? hi.x() : lo.x(), j ? hi.y() : lo.y(), k ? hi.z() : lo.z());
+  };
+  // each quad counter-clockwise seen from outside
+  const int quads[6][4][3] = {
+      {{0, 0, 0}, {0, 0, 1}, {0, 1, 1}, {0, 1, 0}},  // -x
+      {{1, 0, 0}, {1, 1, 0}, {1, 1, 1}, {1, 0, 1}},  // +x
+      {{0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {0, 0, 1}},  // -y
+      {{0, 1, 0}, {0, 1, 1}, {1, 1, 1}, {1, 1, 0}},  // +y
+      {{0, 0, 0}, {0, 1, 0}, {1, 1, 0}, {1, 0, 0}},  // -z
+      {{0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}},  // +z
+  };
+  TriangleSoup soup;
+  for (const auto& q : quads) {
+    Vec3 c[4];
+    for (int k = 0; k < 4; ++k) c[k] = corner(q[k][0], q[k][1], q[k][2]);
+    soup.push_back({c[0], c[1], c[2]});
+    soup.push_back({c[0], c[2], c[3]});
+  }
+  return soup;
+}
+
+}  // namespace rigid::geometry
