@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <string>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "rigid/core/error.hpp"
@@ -23,7 +24,9 @@ constexpr double kMaxCoordinate = 1e9;
 // Floor of the degenerate-triangle height when weld_tolerance is tiny: below it a triangle normal
 // is mostly rounding noise (unit: 1, fraction of the bounding-box diagonal).
 constexpr double kMinRelativeHeight = 1e-12;
-// A closed surface enclosing less than this fraction of diag^3 is flat (back-to-back facets).
+// A closed surface whose signed volume is below this fraction of the summed absolute volumes of
+// its tetrahedra is flat (back-to-back facets): its sign would be rounding noise. A thin needle
+// or slab is not flat by this measure, since its tetrahedra all have the same sign.
 constexpr double kMinRelativeVolume = 1e-12;
 // Welding cells are at least this fraction of the diagonal, so cell indices fit in an int64.
 constexpr double kMinRelativeCell = 1e-12;
@@ -174,16 +177,20 @@ std::vector<int> weld(const TriangleSoup& soup, const Vec3& lo, double diag, dou
   return index;
 }
 
-double signed_volume(const std::vector<Vec3>& v, const std::vector<std::array<int, 3>>& tris) {
-  // origin at the vertex mean keeps the determinants well conditioned (physics.md §7)
+// Signed enclosed volume and the sum of the absolute tetrahedron volumes it is made of (the
+// scale of its rounding error), with the origin at the vertex mean (physics.md §7).
+std::pair<double, double> signed_volume(const std::vector<Vec3>& v,
+                                        const std::vector<std::array<int, 3>>& tris) {
   Vec3 o = Vec3::Zero();
   for (const Vec3& p : v) o += p;
   o /= static_cast<double>(v.size());
-  double six_v = 0;
+  double six_v = 0, six_abs = 0;
   for (const auto& t : tris) {
-    six_v += (v[t[0]] - o).dot((v[t[1]] - o).cross(v[t[2]] - o));
+    const double det = (v[t[0]] - o).dot((v[t[1]] - o).cross(v[t[2]] - o));
+    six_v += det;
+    six_abs += std::abs(det);
   }
-  return six_v / 6.0;
+  return {six_v / 6.0, six_abs / 6.0};
 }
 
 }  // namespace
@@ -349,8 +356,8 @@ ClosedMesh make_closed_mesh(const TriangleSoup& soup, const MeshOptions& options
   }
 
   // outward orientation: the enclosed volume must be positive
-  double volume = signed_volume(v, mesh.triangles);
-  if (!(std::abs(volume) > kMinRelativeVolume * diag * diag * diag)) {
+  const auto [volume, volume_scale] = signed_volume(v, mesh.triangles);
+  if (!(std::abs(volume) > kMinRelativeVolume * volume_scale)) {
     fail_mesh(source, "encloses no volume (" + fmt(volume) +
                           " m^3): the surface is flat or folds back onto itself");
   }

@@ -16,6 +16,15 @@ namespace {
 // it. It sits above MeshOptions::weld_tolerance (1e-9) so every hull triangle is thicker than
 // the weld/degeneracy threshold of make_closed_mesh, and far below its convexity tolerance.
 constexpr double kHullRelativeTolerance = 1e-8;
+// New faces thinner than this fraction of the tolerance are repaired rather than kept, so the
+// hull's triangles stay thicker than the weld tolerance too (unit: 1).
+constexpr double kSliver = 0.25;
+// A vertex removed from the hull but found outside the new faces is retried at most this often,
+// which bounds the work on adversarial input.
+constexpr int kMaxRequeue = 2;
+// Floor of the bend tolerance, as a fraction of the hull tolerance, so rounding between
+// coplanar faces does not count as a bend (unit: 1).
+constexpr double kMinBend = 1e-3;
 
 struct HullFace {
   std::array<int, 3> v;   // counter-clockwise seen from outside
@@ -54,6 +63,7 @@ class Hull {
       throw std::invalid_argument("convex_hull: points coincide or span an infinite box");
     }
     eps_ = kHullRelativeTolerance * diag;
+    diag_ = diag;
     center_ = 0.5 * (lo + hi);
 
     initial_simplex(lo, hi);
@@ -64,6 +74,8 @@ class Hull {
     mark_.assign(faces_.size(), -1);
     start_.assign(p_.size(), -1);
     end_.assign(p_.size(), -1);
+    seen_.assign(p_.size(), -1);
+    requeued_.assign(p_.size(), 0);
     // each round removes the farthest outside point of a face from every list: terminates
     while (!work.empty()) {
       const int f = work.front();
@@ -197,10 +209,46 @@ class Hull {
     int slot;     // edge index of b -> a in that face
   };
 
+  // Horizon of the marked (visible) faces: edges from a visible to an invisible face, checked to
+  // form one simple loop. start_/end_ are left set for the loop on success and cleared on failure.
+  bool horizon_of(const std::vector<int>& visible, int stamp, std::vector<HorizonEdge>& horizon) {
+    horizon.clear();
+    for (int f : visible) {
+      for (int i = 0; i < 3; ++i) {
+        const int g = faces_[f].nb[i];
+        if (mark_[g] == stamp) continue;
+        const int a = faces_[f].v[i], b = faces_[f].v[(i + 1) % 3];
+        int slot = 0;
+        while (slot < 3 && !(faces_[g].v[slot] == b && faces_[g].v[(slot + 1) % 3] == a)) ++slot;
+        if (slot == 3) return false;  // broken adjacency cannot happen; refuse rather than corrupt
+        horizon.push_back({a, b, g, slot});
+      }
+    }
+    bool ok = !horizon.empty();
+    for (std::size_t h = 0; ok && h < horizon.size(); ++h) {
+      if (start_[horizon[h].a] >= 0 || end_[horizon[h].b] >= 0) ok = false;
+      start_[horizon[h].a] = static_cast<int>(h);
+      end_[horizon[h].b] = static_cast<int>(h);
+    }
+    if (ok) {
+      std::size_t walked = 0;
+      int h = 0;
+      do {
+        h = start_[horizon[h].b];
+        ++walked;
+      } while (h > 0 && walked <= horizon.size());
+      ok = h == 0 && walked == horizon.size();
+    }
+    if (!ok) {
+      for (const auto& e : horizon) start_[e.a] = end_[e.b] = -1;
+    }
+    return ok;
+  }
+
   // Adds the apex, trying first to treat faces it is coplanar with (within the tolerance) as
   // visible, which merges flat regions and avoids sliver faces whose planes tilt badly, then
   // only the faces it is clearly above. A point for which neither gives a convex cap (possible
-  // only within rounding of the hull) is dropped and the hull left unchanged.
+  // only for near-degenerate input) is dropped and the hull left unchanged.
   void add_point(int apex, int seed, std::deque<int>& work) {
     if (try_add(apex, seed, -eps_, work)) return;
     try_add(apex, seed, eps_, work);
@@ -220,55 +268,78 @@ class Hull {
         }
       }
     }
-    // horizon: edges from a visible to an invisible face
+
+    // A tolerance can misjudge faces the apex is nearly coplanar with, leaving the cap of new
+    // faces concave. Each repair grows the visible region: by the old face beside a concave
+    // horizon edge, or by every face around a reflex horizon vertex (which the apex hides), so
+    // the loop ends after at most one round per face.
     std::vector<HorizonEdge> horizon;
-    for (int f : visible) {
-      for (int i = 0; i < 3; ++i) {
-        const int g = faces_[f].nb[i];
-        if (mark_[g] == stamp) continue;
-        const int a = faces_[f].v[i], b = faces_[f].v[(i + 1) % 3];
-        int slot = 0;
-        while (slot < 3 && !(faces_[g].v[slot] == b && faces_[g].v[(slot + 1) % 3] == a)) ++slot;
-        if (slot == 3) return false;  // broken adjacency cannot happen; refuse rather than corrupt
-        horizon.push_back({a, b, g, slot});
+    std::vector<HullFace> created;
+    for (std::size_t round = 0;; ++round) {
+      if (round > faces_.size() || !horizon_of(visible, stamp, horizon)) return false;
+      // new faces need an area and must face away from the interior point
+      created.clear();
+      bool ok = true;
+      for (std::size_t h = 0; ok && h < horizon.size(); ++h) {
+        HullFace face;
+        face.v = {horizon[h].a, horizon[h].b, apex};
+        ok = set_plane(face) && face.normal.dot(inner_ - center_) - face.offset < 0;
+        created.push_back(std::move(face));
+      }
+      int grow_face = -1, hide_vertex = -1;
+      for (std::size_t h = 0; ok && h < horizon.size(); ++h) {
+        const auto& e = horizon[h];
+        // a sliver: one vertex near the line of the longest edge. The apex near a horizon vertex
+        // is a near-duplicate, better left out; the apex near the horizon edge means the old
+        // face beside it is seen edge-on; a horizon vertex near the line to the apex is hidden.
+        const Vec3 &pa = p_[e.a], &pb = p_[e.b], &pc = p_[apex];
+        const double ab = (pb - pa).norm(), bc = (pc - pb).norm(), ca = (pa - pc).norm();
+        const double twice_area = area_vector(pa, pb, pc).norm();
+        if (twice_area <= kSliver * eps_ * std::max({ab, bc, ca})) {
+          if (std::min(bc, ca) <= eps_) {
+            ok = false;
+          } else if (ab >= bc && ab >= ca) {
+            grow_face = e.face;
+          } else {
+            hide_vertex = bc >= ca ? e.a : e.b;
+          }
+          break;
+        }
+        // the edge with the old face across: bent the wrong way either side means that face
+        // should have been visible
+        const int far_old = faces_[e.face].v[(e.slot + 2) % 3];
+        if (bent(created[h], e.a, e.b, far_old) || bent(faces_[e.face], e.a, e.b, apex)) {
+          grow_face = e.face;
+          break;
+        }
+        // the edge b -> apex with the next new face: bent the wrong way means b is reflex
+        const std::size_t next = static_cast<std::size_t>(start_[e.b]);
+        if (bent(created[h], e.b, apex, horizon[next].b) || bent(created[next], e.b, apex, e.a)) {
+          hide_vertex = e.b;
+          break;
+        }
+      }
+      for (const auto& e : horizon) start_[e.a] = end_[e.b] = -1;
+      if (!ok) return false;
+      if (grow_face < 0 && hide_vertex < 0) break;
+      if (grow_face >= 0) {
+        mark_[grow_face] = stamp;
+        visible.push_back(grow_face);
+      } else {
+        for (int f = 0; f < static_cast<int>(faces_.size()); ++f) {
+          const auto& v = faces_[f].v;
+          if (faces_[f].alive && mark_[f] != stamp &&
+              (v[0] == hide_vertex || v[1] == hide_vertex || v[2] == hide_vertex)) {
+            mark_[f] = stamp;
+            visible.push_back(f);
+          }
+        }
       }
     }
-
-    // the horizon must be one simple loop
-    bool ok = !horizon.empty();
-    for (std::size_t h = 0; ok && h < horizon.size(); ++h) {
-      if (start_[horizon[h].a] >= 0 || end_[horizon[h].b] >= 0) ok = false;
+    // the final horizon is valid: record its loop links again for gluing
+    for (std::size_t h = 0; h < horizon.size(); ++h) {
       start_[horizon[h].a] = static_cast<int>(h);
       end_[horizon[h].b] = static_cast<int>(h);
-    }
-    if (ok) {
-      std::size_t walked = 0;
-      int h = 0;
-      do {
-        h = start_[horizon[h].b];
-        ++walked;
-      } while (h > 0 && walked <= horizon.size());
-      ok = h == 0 && walked == horizon.size();
-    }
-    // the cap must be convex: each new face has an area, faces the interior point, and has the
-    // far vertex of the old face and of the next new face beside it on or below its plane
-    std::vector<HullFace> created;
-    for (std::size_t h = 0; ok && h < horizon.size(); ++h) {
-      HullFace face;
-      face.v = {horizon[h].a, horizon[h].b, apex};
-      ok = set_plane(face) && face.normal.dot(inner_ - center_) - face.offset < 0;
-      created.push_back(std::move(face));
-    }
-    for (std::size_t h = 0; ok && h < horizon.size(); ++h) {
-      const auto& e = horizon[h];
-      const HullFace& old = faces_[e.face];
-      const int far_old = old.v[(e.slot + 2) % 3];
-      const int far_new = horizon[static_cast<std::size_t>(start_[e.b])].b;
-      ok = height(created[h], far_old) <= eps_ && height(created[h], far_new) <= eps_;
-    }
-    if (!ok) {
-      for (const auto& e : horizon) start_[e.a] = end_[e.b] = -1;
-      return false;
     }
 
     // new faces (a, b, apex) glued to the horizon and to each other
@@ -285,17 +356,36 @@ class Hull {
     for (auto& face : created) faces_.push_back(std::move(face));
     mark_.resize(faces_.size(), -1);
 
-    // retire the visible faces, handing their outside points to the new faces
+    // retire the visible faces, handing their outside points to the new faces; vertices that
+    // leave the hull with them are handed over too, since near-coplanar faces judged visible
+    // can leave such a vertex above the new cap (each may come back a bounded number of times)
+    const int end = static_cast<int>(faces_.size());
     for (int f : visible) faces_[f].alive = false;
+    for (const auto& e : horizon) seen_[e.a] = apex;
+    seen_[apex] = apex;
     for (int f : visible) {
-      for (int q : faces_[f].outside) assign(q, base, static_cast<int>(faces_.size()));
+      for (int q : faces_[f].outside) assign(q, base, end);
       faces_[f].outside.clear();
       faces_[f].outside.shrink_to_fit();
+      for (int q : faces_[f].v) {
+        if (seen_[q] == apex) continue;
+        seen_[q] = apex;
+        if (requeued_[q]++ < kMaxRequeue) assign(q, base, end);
+      }
     }
     for (int f = base; f < static_cast<int>(faces_.size()); ++f) {
       if (!faces_[f].outside.empty()) work.push_back(f);
     }
     return true;
+  }
+
+  // Whether vertex `far` of a neighbour sharing edge (a, b) with `face` lies above the face's
+  // plane by more than the tolerance scaled by its distance from the edge over the diagonal:
+  // that bounds the bend angle, so vertices far along a long thin hull stay inside it too.
+  bool bent(const HullFace& face, int a, int b, int far) const {
+    const Vec3 edge = (p_[b] - p_[a]).normalized();
+    const double arm = edge.cross(p_[far] - p_[a]).norm();
+    return height(face, far) > eps_ * std::max(arm / diag_, kMinBend);
   }
 
   // signed distance of point i above the plane of a face (unit: m)
@@ -308,7 +398,10 @@ class Hull {
   std::vector<int> mark_;         // visit stamp per face
   int stamp_ = 0;
   std::vector<int> start_, end_;  // per point: horizon edge starting / ending there, or -1
+  std::vector<int> seen_;         // per point: the last apex whose removed faces it was on
+  std::vector<int> requeued_;     // per point: how often it was handed back after removal
   double eps_ = 0;
+  double diag_ = 0;
   Vec3 center_ = Vec3::Zero();    // planes are stored relative to the box centre (precision)
   Vec3 inner_ = Vec3::Zero();     // centroid of the first tetrahedron: strictly inside
 };
