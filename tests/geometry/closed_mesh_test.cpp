@@ -37,7 +37,7 @@ TriangleSoup prism(const std::vector<Vec3>& poly, double h) {
   const Vec3 up(0, 0, h);
   const std::size_t n = poly.size();
   for (std::size_t i = 1; i + 1 < n; ++i) {
-    s.push_back({poly[0], poly[i + 1], poly[i]});             // bottom, facing -z
+    s.push_back({poly[0], poly[i + 1], poly[i]});                 // bottom, facing -z
     s.push_back({poly[0] + up, poly[i] + up, poly[i + 1] + up});  // top, facing +z
   }
   for (std::size_t i = 0; i < n; ++i) {
@@ -182,7 +182,7 @@ TEST(ClosedMesh, ConvexityToleranceAcceptsRoundingButNotADent) {
     return soup;
   };
   EXPECT_NO_THROW(make_closed_mesh(fan_box(0.0), {}, "ok"));
-  EXPECT_NO_THROW(make_closed_mesh(fan_box(1e-8), {}, "ok"));   // 6e-9 of the diagonal
+  EXPECT_NO_THROW(make_closed_mesh(fan_box(1e-8), {}, "ok"));  // 6e-9 of the diagonal
   EXPECT_NO_THROW(make_closed_mesh(fan_box(-1e-8), {}, "ok"));
   const int f = expect_facet_error(fan_box(-1e-3), "not convex");  // a dent
   EXPECT_GE(f, 10);  // the dented fan facets see the other fan vertices above them

@@ -142,7 +142,8 @@ TEST(ConvexHull, NearlyCoplanarClusterStaysAValidMesh) {
     pts.push_back(Vec3(rng.uniform(), rng.uniform(), 1 + 1e-12 * (rng.uniform() - 0.5)));
   }
   pts.push_back(Vec3(0.5, 0.5, 0));
-  for (int i = 0; i < 50; ++i) pts.push_back(Vec3(rng.uniform(), rng.uniform(), 1 + 1e-3 * rng.uniform()));
+  for (int i = 0; i < 50; ++i)
+    pts.push_back(Vec3(rng.uniform(), rng.uniform(), 1 + 1e-3 * rng.uniform()));
   const TriangleSoup hull = convex_hull(pts);
   EXPECT_NO_THROW(build_block(hull, 1.0, {}, "slab"));
   expect_contains_all(hull, pts, 1e-7);

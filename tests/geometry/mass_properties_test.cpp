@@ -96,7 +96,8 @@ std::vector<Vec3> random_cloud(std::uint64_t seed, int n) {
   while (static_cast<int>(pts.size()) < n) {
     const Vec3 u(2 * rng.uniform() - 1, 2 * rng.uniform() - 1, 2 * rng.uniform() - 1);
     if (u.squaredNorm() > 1) continue;
-    pts.push_back(Vec3(1.7 * u.x() + 0.3 * u.y(), 0.9 * u.y() - 0.2 * u.z(), 0.6 * u.z() + 0.1 * u.x()));
+    pts.push_back(
+        Vec3(1.7 * u.x() + 0.3 * u.y(), 0.9 * u.y() - 0.2 * u.z(), 0.6 * u.z() + 0.1 * u.x()));
   }
   return pts;
 }
@@ -110,7 +111,8 @@ TEST(MassProperties, BoxMatchesClosedForm) {
   expect_rel(p.mass, m, kRel, "mass");
   EXPECT_TRUE(p.centroid.isApprox(lo + 0.5 * Vec3(a, b, c), kRel));
   Mat3 expected = Mat3::Zero();
-  expected.diagonal() << m * (b * b + c * c) / 12, m * (a * a + c * c) / 12, m * (a * a + b * b) / 12;
+  expected.diagonal() << m * (b * b + c * c) / 12, m * (a * a + c * c) / 12,
+      m * (a * a + b * b) / 12;
   expect_mat_near(p.inertia, expected, kRel);
   // ascending principal moments are I_zz < I_yy < I_xx here, along the coordinate axes
   expect_rel(p.principal_moments[0], expected(2, 2), kRel, "I0");
@@ -154,8 +156,8 @@ TEST(MassProperties, UnitRightTetrahedronMatchesDirichletIntegrals) {
   expect_rel(p.volume, 1.0 / 6, kRel, "volume");
   EXPECT_TRUE(p.centroid.isApprox(Vec3::Constant(0.25), kRel));
   Mat3 expected;
-  expected << 1.0 / 80, 1.0 / 480, 1.0 / 480, 1.0 / 480, 1.0 / 80, 1.0 / 480, 1.0 / 480,
-      1.0 / 480, 1.0 / 80;
+  expected << 1.0 / 80, 1.0 / 480, 1.0 / 480, 1.0 / 480, 1.0 / 80, 1.0 / 480, 1.0 / 480, 1.0 / 480,
+      1.0 / 80;
   expect_mat_near(p.inertia, rho * expected, kRel);
   // eigenvalues of a I + b (J - I): a - b (twice) and a + 2b
   expect_rel(p.principal_moments[0], rho * (1.0 / 80 - 1.0 / 480), kRel, "I0");
@@ -209,7 +211,8 @@ TEST(MassProperties, RigidMotionRotatesInertiaAndKeepsPrincipalMoments) {
   expect_rel(pm.mass, p.mass, kRel, "mass");
   EXPECT_LT((pm.centroid - (r * p.centroid + shift)).norm(), kRel * shift.norm());
   expect_mat_near(pm.inertia, r * p.inertia * r.transpose(), kRel);
-  for (int k = 0; k < 3; ++k) expect_rel(pm.principal_moments[k], p.principal_moments[k], kRel, "moment");
+  for (int k = 0; k < 3; ++k)
+    expect_rel(pm.principal_moments[k], p.principal_moments[k], kRel, "moment");
   // the moved body also agrees with the independent oracle
   const Oracle o = quadrature_oracle(moved);
   expect_mat_near(pm.inertia, rho * o.inertia, kRel);

@@ -1,4 +1,6 @@
 // make_polyhedron / build_block: body frame, merged planar faces, feature edges, adjacency.
+#include "rigid/geometry/polyhedron.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -9,7 +11,6 @@
 #include <vector>
 
 #include "rigid/core/error.hpp"
-#include "rigid/geometry/polyhedron.hpp"
 
 namespace {
 
@@ -222,14 +223,16 @@ TEST(Polyhedron, GeodesicSphereKeepsEveryTriangleAsAFace) {
 TEST(Polyhedron, BuildIsDeterministic) {
   Rng rng{5};
   std::vector<Vec3> pts;
-  for (int i = 0; i < 200; ++i) pts.push_back(Vec3(rng.uniform(), 2 * rng.uniform(), rng.uniform()));
+  for (int i = 0; i < 200; ++i)
+    pts.push_back(Vec3(rng.uniform(), 2 * rng.uniform(), rng.uniform()));
   const TriangleSoup soup = convex_hull(pts);
   const ConvexPolyhedron a = build_block(soup, 2650.0, {}, "r");
   const ConvexPolyhedron b = build_block(soup, 2650.0, {}, "r");
   ASSERT_EQ(a.vertices.size(), b.vertices.size());
   for (std::size_t i = 0; i < a.vertices.size(); ++i) EXPECT_EQ(a.vertices[i], b.vertices[i]);
   ASSERT_EQ(a.faces.size(), b.faces.size());
-  for (std::size_t i = 0; i < a.faces.size(); ++i) EXPECT_EQ(a.faces[i].vertices, b.faces[i].vertices);
+  for (std::size_t i = 0; i < a.faces.size(); ++i)
+    EXPECT_EQ(a.faces[i].vertices, b.faces[i].vertices);
   EXPECT_EQ(a.inertia, b.inertia);
   EXPECT_EQ(a.rotation.coeffs(), b.rotation.coeffs());
   expect_consistent(a);

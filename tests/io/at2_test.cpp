@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include "support/manifest.hpp"
+
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -241,30 +243,7 @@ TEST(At2Info, ReportHasIssueKeysPerSet) {
 
 // --- shared PEER records ---------------------------------------------------------------------
 
-std::vector<std::map<std::string, std::string>> read_manifest(const fs::path& p) {
-  std::ifstream in(p);
-  std::vector<std::map<std::string, std::string>> rows;
-  std::vector<std::string> header;
-  std::string line;
-  while (std::getline(in, line)) {
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    std::vector<std::string> f(1);
-    bool q = false;
-    for (char c : line) {
-      if (c == '"') q = !q;
-      else if (c == ',' && !q) f.emplace_back();
-      else f.back() += c;
-    }
-    if (header.empty()) {
-      header = f;
-      continue;
-    }
-    std::map<std::string, std::string> row;
-    for (std::size_t i = 0; i < header.size() && i < f.size(); ++i) row[header[i]] = f[i];
-    rows.push_back(row);
-  }
-  return rows;
-}
+using rigid::test::read_manifest;
 
 TEST(At2Shared, EveryRecordMatchesItsManifest) {
   const fs::path root = fs::path(RIGID_SHARED_DIR) / "waveforms";

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include "support/manifest.hpp"
+
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -90,23 +92,7 @@ struct SharedSet {
 
 std::map<std::string, SharedSet> shared_sets(const fs::path& dir) {
   std::map<std::string, SharedSet> sets;
-  std::ifstream in(dir / "manifest.csv");
-  std::string line;
-  std::vector<std::string> header;
-  while (std::getline(in, line)) {
-    std::vector<std::string> f(1);
-    bool q = false;
-    for (char c : line) {
-      if (c == '"') q = !q;
-      else if (c == ',' && !q) f.emplace_back();
-      else f.back() += c;
-    }
-    if (header.empty()) {
-      header = f;
-      continue;
-    }
-    std::map<std::string, std::string> row;
-    for (std::size_t i = 0; i < header.size() && i < f.size(); ++i) row[header[i]] = f[i];
+  for (auto& row : rigid::test::read_manifest(dir / "manifest.csv")) {
     if (row["table3_6_name"].empty()) continue;
     SharedSet& s = sets[row["table3_6_name"]];
     s.table_name = row["table3_6_name"];

@@ -3,6 +3,7 @@
 #include "rigid/io/stl.hpp"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdint>
@@ -14,8 +15,6 @@
 #include <stdexcept>
 #include <string>
 #include <vector>
-
-#include <unistd.h>
 
 #include "rigid/core/error.hpp"
 #include "rigid/geometry/polyhedron.hpp"
@@ -219,9 +218,10 @@ TEST(StlRead, AcceptsAnyWhitespaceSeveralSolidsAndOneLineFiles) {
       "solid x facet normal 0 0 0 outer loop vertex 0 0 0 vertex 1 0 0 vertex 0 1 0 endloop "
       "endfacet endsolid x";
   EXPECT_EQ(read_stl_from_memory(one_line, "m").size(), 1u);
-  const std::string two = "solid a\n\tfacet\vouter\floop vertex 0 0 0 vertex 1 0 0 vertex 0 1 0\n"
-                          "endloop endfacet\nendsolid a\nsolid b\nfacet outer loop vertex 0 0 0 "
-                          "vertex 0 1 0 vertex 0 0 1 endloop endfacet endsolid\n";
+  const std::string two =
+      "solid a\n\tfacet\vouter\floop vertex 0 0 0 vertex 1 0 0 vertex 0 1 0\n"
+      "endloop endfacet\nendsolid a\nsolid b\nfacet outer loop vertex 0 0 0 "
+      "vertex 0 1 0 vertex 0 0 1 endloop endfacet endsolid\n";
   const TriangleSoup soup = read_stl_from_memory(two, "m");
   ASSERT_EQ(soup.size(), 2u);
   EXPECT_EQ(soup[1].c, Vec3(0, 0, 1));
@@ -296,7 +296,7 @@ TEST(StlRobustness, EveryTruncationOfValidFilesFailsCleanly) {
 
 TEST(StlRobustness, RandomMutationsOfValidFilesNeverCrash) {
   Rng rng{99};
-  const std::string tokens[] = {"solid", "facet", "endloop", "vertex", "nan", "-1e308",
+  const std::string tokens[] = {"solid", "facet", "endloop",           "vertex", "nan", "-1e308",
                                 "\r",    " ",     std::string(1, '\0')};
   for (const char* name : {"tetra_ascii_crlf.stl", "box_binary_solid_header.stl"}) {
     const std::string base = slurp(kData + name);
@@ -306,10 +306,18 @@ TEST(StlRobustness, RandomMutationsOfValidFilesNeverCrash) {
       for (int k = 0; k < edits && !bytes.empty(); ++k) {
         const std::size_t at = rng.next() % bytes.size();
         switch (rng.next() % 4) {
-          case 0: bytes[at] = static_cast<char>(rng.next()); break;
-          case 1: bytes.erase(at, 1 + rng.next() % 8); break;
-          case 2: bytes.insert(at, tokens[rng.next() % std::size(tokens)]); break;
-          default: bytes.resize(at); break;
+          case 0:
+            bytes[at] = static_cast<char>(rng.next());
+            break;
+          case 1:
+            bytes.erase(at, 1 + rng.next() % 8);
+            break;
+          case 2:
+            bytes.insert(at, tokens[rng.next() % std::size(tokens)]);
+            break;
+          default:
+            bytes.resize(at);
+            break;
         }
       }
       parse_and_build(bytes);
@@ -328,6 +336,36 @@ TEST(StlRobustness, FuzzRegressionInputsFailCleanly) {
     ++count;
   }
   RecordProperty("regression_inputs", count);
+}
+
+TEST(StlRobustness, HullsOfFuzzFoundPointCloudsAreValidTightBlocks) {
+  // near-degenerate clouds (needles, nearly coplanar and collinear points) that once gave a
+  // concave, sliver or leaky hull: now a valid block holding every point to 1e-7 of its size
+  int count = 0;
+  for (const auto& entry : fs::directory_iterator(kData + "fuzz_regressions")) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind("hull_", 0) != 0) continue;
+    SCOPED_TRACE(name);
+    ++count;
+    const TriangleSoup soup = read_stl(entry.path().string());
+    std::vector<Vec3> points;
+    for (const auto& t : soup) points.insert(points.end(), {t.a, t.b, t.c});
+    const TriangleSoup hull = rigid::geometry::convex_hull(points);
+    EXPECT_NO_THROW(rigid::geometry::build_block(hull, 1.0, {}, name));
+    Vec3 lo = points[0], hi = points[0];
+    for (const Vec3& p : points) {
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+    const double tol = 1e-7 * (hi - lo).norm();
+    double worst = 0;
+    for (const auto& t : hull) {
+      const Vec3 n = (t.b - t.a).cross(t.c - t.a).normalized();
+      for (const Vec3& p : points) worst = std::max(worst, n.dot(p - t.a));
+    }
+    EXPECT_LE(worst, tol);
+  }
+  EXPECT_GE(count, 5);
 }
 
 }  // namespace
