@@ -1,0 +1,28 @@
+#pragma once
+/// The campaign driver: MPI master/worker over the task plan, checkpoints and resume, signals,
+/// progress. The only part of Rigid that knows MPI.
+#include <string>
+
+namespace rigid::campaign {
+
+/// Exit status of an interrupted (resumable) campaign: EX_TEMPFAIL.
+inline constexpr int kExitInterrupted = 75;
+
+struct CampaignOptions {
+  std::string job;              ///< job file
+  std::string output;           ///< overrides the job's output path when not empty
+  bool force = false;           ///< start anew over an output written by another job
+  bool dry_run = false;         ///< print the task count and an estimate, run nothing
+  bool noop = false;            ///< tasks return at once (measures dispatch throughput)
+  std::string progress = "auto";  ///< auto | bar | log | none
+  double log_interval = 10;     ///< seconds between plain progress lines (unit: s)
+  double checkpoint_interval = 0;  ///< overrides the job's when > 0 (unit: s)
+  double grace = -1;            ///< overrides the job's when >= 0 (unit: s)
+};
+
+/// Runs (or resumes) a campaign under MPI (a single process works without mpirun). Returns the
+/// process exit status: 0 complete, kExitInterrupted after a stop signal (checkpoint written).
+/// Bad input throws rigid::InputError on rank 0; other ranks return 2 quietly.
+int run_campaign(int& argc, char**& argv, const CampaignOptions& options);
+
+}  // namespace rigid::campaign

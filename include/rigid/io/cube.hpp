@@ -1,0 +1,121 @@
+#pragma once
+/// The fragility cube of a campaign: one HDF5 file per job, one group per object, datasets
+/// indexed [record, scale, rotation]. Written whole to FILE.tmp, flushed, then renamed over FILE,
+/// so a kill at any instant leaves either the previous or the new complete file.
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace rigid::io {
+
+/// Outcome of one cell (record, scale, rotation).
+enum class CellOutcome : std::int8_t {
+  not_run = 0,     ///< not simulated yet
+  survived = 1,    ///< simulated, did not overturn
+  overturned = 2,  ///< simulated, overturned
+  inferred = 3,    ///< not simulated: above N consecutive fully overturned scales (stop rule)
+  failed = 4,      ///< the simulation failed (exception, non-finite state); see failure_reason
+};
+
+/// Per-record metadata stored beside the cube.
+struct RecordMeta {
+  std::string name;          ///< record (set) name, e.g. "stochastic_s1"
+  std::string source;        ///< the set spec the motion was read from
+  std::string earthquake;    ///< from the record list, may be empty
+  double start_s = 0;        ///< time window start (unit: s)
+  double end_s = 0;          ///< time window end (unit: s)
+  double gmroti_pga_g = 0;   ///< GMRotI50 PGA of the windowed record as computed (unit: g)
+  double gmroti_pgv_cm_s = 0;///< GMRotI50 PGV (unit: cm/s)
+  double pgv_pga_s = 0;      ///< PGV/PGA (unit: s)
+  double listed_pga_g = 0;   ///< GMRotI PGA given by the record list, 0 if none (unit: g)
+  double listed_pgv_cm_s = 0;///< GMRotI PGV given by the record list, 0 if none (unit: cm/s)
+};
+
+/// Results of one object (scene) of the campaign. Every array has
+/// records.size() * scales_g.size() * rotations elements, row-major [record][scale][rotation].
+struct ObjectCube {
+  std::string name;                     ///< object name (HDF5 group name)
+  std::string scene;                    ///< scene file as given in the job
+  std::vector<std::int8_t> outcome;     ///< CellOutcome values
+  std::vector<double> rotation_deg;     ///< rotation of the horizontals about z (unit: deg)
+  std::vector<double> failure_time_s;   ///< NaN when none (unit: s)
+  std::vector<double> max_tilt_deg;     ///< NaN when not simulated (unit: deg)
+  std::vector<double> max_slip_m;       ///< NaN when not simulated (unit: m)
+  std::vector<double> wall_s;           ///< wall time of the simulation, NaN when none (unit: s)
+  std::vector<std::int32_t> failure_reason;  ///< 0 = none; FailureReason codes (campaign)
+};
+
+/// Everything written to the file.
+struct Cube {
+  std::vector<RecordMeta> records;
+  std::vector<double> scales_g;         ///< target GMRotI50 PGA of each scale (unit: g)
+  int rotations = 2;                    ///< rotations per (record, scale)
+  std::vector<ObjectCube> objects;
+  // provenance and settings, stored as root attributes
+  std::string job_text;                 ///< the job file as read
+  std::string job_hash;                 ///< hex SHA-256 (or other stable hash) of job_text
+  std::string software_version;         ///< e.g. "0.1.0 (abc1234)"
+  std::string physics_json;             ///< physics and accuracy settings as a JSON object
+  std::uint64_t seed = 0;
+  /// Edges of the PGV/PGA bins of the fragility surface (unit: s), 10 edges = 9 bins.
+  std::vector<double> pgv_pga_edges_s;
+};
+
+/// Version of the file layout written by write_cube (root attribute `schema_version`; the
+/// layout is described at the top of src/io/cube.cpp). read_cube rejects newer versions.
+inline constexpr int kCubeSchemaVersion = 1;
+
+/// The default PGV/PGA bin edges (unit: s), used when Cube::pgv_pga_edges_s is empty: ten edges,
+/// nine bins, {0, 0.06, 0.08, 0.10, 0.12, 0.15, 0.20, 0.25, 0.35, inf}. Round numbers chosen so
+/// that the study's 154 records (PGV/PGA 0.033-0.50 s, docs/table3_6_records.tsv) fall 13-24 per
+/// bin: narrow bins where the records are dense (0.06-0.15 s), wide ones in the tails.
+std::vector<double> default_pgv_pga_edges();
+
+/// The edges a cube uses: cube.pgv_pga_edges_s, or default_pgv_pga_edges() when it is empty.
+std::vector<double> pgv_pga_edges(const Cube& cube);
+
+/// Bin of a PGV/PGA value (unit: s): i such that edges_s[i] <= v < edges_s[i + 1], the last bin
+/// also holding v == edges_s.back(); -1 when v is NaN or outside the edges.
+int pgv_pga_bin(const std::vector<double>& edges_s, double pgv_pga_s);
+
+/// Problems that make a cube unwritable (array sizes, object names, bin edges, outcome codes), one
+/// message; empty when the cube is consistent. write_cube and the derived products check this.
+std::string cube_problem(const Cube& cube);
+
+/// Overturning probability of one object per (record, scale), row-major [record][scale]
+/// (records.size() * scales_g.size() values): over the rotations of that (record, scale), the
+/// fraction of known cells that overturned, where overturned and inferred count as overturned,
+/// survived as not, and not_run and failed cells are left out; NaN where no cell is known.
+/// Throws std::invalid_argument when the cube's rotations or edges, or `object`'s arrays, are
+/// inconsistent (the checks of cube_problem).
+std::vector<double> overturn_probability(const Cube& cube, const ObjectCube& object);
+
+/// The binned fragility surface P(overturn | PGA, PGV/PGA) of one object (physics.md §11).
+struct FragilitySurface {
+  std::vector<double> edges_s;        ///< PGV/PGA bin edges used (unit: s); bins() = size - 1
+  std::vector<double> probability;    ///< [scale][bin]: mean probability, NaN for empty bins
+  std::vector<std::int32_t> count;    ///< [scale][bin]: number of records contributing
+  std::size_t bins() const { return edges_s.empty() ? 0 : edges_s.size() - 1; }
+};
+
+/// For every scale and PGV/PGA bin (pgv_pga_edges(cube)): the mean, in record order, of
+/// overturn_probability over the records whose RecordMeta::pgv_pga_s falls in the bin and whose
+/// probability at that scale is known. Throws std::invalid_argument like overturn_probability.
+FragilitySurface fragility_surface(const Cube& cube, const ObjectCube& object);
+
+/// Writes the cube atomically (PATH.tmp then rename) with dimension scales, units and
+/// descriptions on every dataset, and the derived products (layout: src/io/cube.cpp):
+/// /objects/<object>/probability [record, scale] (overturned / (overturned + survived + inferred
+/// counted as overturned), NaN where nothing is known) and /objects/<object>/fragility
+/// [scale, pgv_pga bin] (mean probability of the records in each PGV/PGA bin, NaN for empty bins).
+/// Throws rigid::InputError(path, 0, ...) on failure.
+void write_cube(const std::string& path, const Cube& cube);
+
+/// Reads a cube written by write_cube (for resume and tests). Throws rigid::InputError when the
+/// file is missing, not HDF5, or not a Rigid cube.
+/// Objects come back in the order they were written; pgv_pga_edges_s holds the edges stored in
+/// the file (the defaults when the written cube had none).
+Cube read_cube(const std::string& path);
+
+}  // namespace rigid::io

@@ -1,0 +1,18 @@
+#pragma once
+/// Campaign job files (TOML). Every problem is reported before any work starts, naming the file
+/// and line: unknown keys, missing files, an empty or non-increasing scale list, impossible
+/// values.
+#include <string>
+
+#include "rigid/scenario/job.hpp"
+
+namespace rigid::io {
+
+/// Reads and checks a job file. Scene, state and record-list paths are relative to the job file;
+/// the output path is relative to the current directory.
+scenario::Job load_job(const std::string& path);
+
+/// Stable 64-bit FNV-1a hash of a text, as 16 hex digits.
+std::string text_hash(const std::string& text);
+
+}  // namespace rigid::io

@@ -1,0 +1,49 @@
+#pragma once
+/// A campaign job as read from a job file: which objects, which records, which scales and
+/// rotations, how to simulate, where to write. Plain data; rigid::io::load_job fills it.
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "rigid/scenario/scene.hpp"
+
+namespace rigid::scenario {
+
+/// One object (a scene) of a campaign.
+struct JobObject {
+  std::string name;   ///< unique; the HDF5 group name
+  std::string scene;  ///< scene file (resolved path)
+  std::string state;  ///< saved equilibrium state to start from (resolved path), may be empty
+};
+
+/// One record (a ground-motion set) of a campaign.
+struct JobRecord {
+  std::string name;        ///< unique record name
+  std::string spec;        ///< motion-set spec with resolved paths (see io::resolve_set)
+  double start = 0;        ///< window start (unit: s)
+  double end = std::numeric_limits<double>::infinity();  ///< window end (unit: s)
+  std::string earthquake;  ///< from the record list, may be empty
+  double listed_pga_g = 0;     ///< GMRotI PGA given by the list, 0 if none (unit: g)
+  double listed_pgv_cm_s = 0;  ///< GMRotI PGV given by the list, 0 if none (unit: cm/s)
+};
+
+struct Job {
+  std::string path;        ///< the job file
+  std::string text;        ///< its contents, stored in the cube
+  std::string hash;        ///< hex hash of text (FNV-1a 64): a changed job is refused on resume
+  std::string output;      ///< HDF5 cube path
+  std::uint64_t seed = 1;  ///< keys the rotation angles
+  std::vector<JobObject> objects;
+  std::vector<JobRecord> records;
+  std::vector<double> scales_g;   ///< target GMRotI50 PGA of each scale, increasing (unit: g)
+  int rotations = 2;              ///< random rotations per (record, scale)
+  /// Stop raising the scale for a record once this many consecutive scales overturned at every
+  /// rotation (the study's rule); 0 disables it.
+  int stop_after = 10;
+  RunSettings run;                ///< physics and accuracy settings of every simulation
+  double checkpoint_interval = 30;  ///< unit: s
+  double grace = 30;              ///< time in-flight tasks get after a stop signal (unit: s)
+};
+
+}  // namespace rigid::scenario

@@ -1,0 +1,45 @@
+// `rigid campaign`: run or resume a fragility campaign (MPI master/worker; see campaign/driver).
+#include <cstdlib>
+#include <memory>
+
+#include "commands.hpp"
+#include "rigid/campaign/driver.hpp"
+
+namespace rigid::app {
+
+namespace {
+int* g_argc = nullptr;
+char*** g_argv = nullptr;
+}  // namespace
+
+void set_campaign_arguments(int& argc, char**& argv) {
+  g_argc = &argc;
+  g_argv = &argv;
+}
+
+void register_campaign_command(CLI::App& app) {
+  auto o = std::make_shared<campaign::CampaignOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "campaign",
+      "Run a fragility campaign from a job file, or resume it when its output exists. Run under "
+      "`mpirun -np N` or as one process. Exit status: 0 complete, 75 stopped by SIGTERM/SIGINT/SIGUSR1 "
+      "(checkpoint written; run the same command to resume), 2 bad input, 1 internal error");
+  cmd->add_option("job", o->job, "Job file (TOML)")->required();
+  cmd->add_option("--out", o->output, "Output HDF5 cube; overrides the job's output path");
+  cmd->add_flag("--force", o->force, "Start anew over an output written by a different job file");
+  cmd->add_flag("--dry-run", o->dry_run, "Print the task count and an estimate of the work, run nothing");
+  cmd->add_flag("--noop", o->noop, "Tasks return at once without simulating; with several ranks only the workers take tasks, so this measures the master's dispatch rate");
+  cmd->add_option("--progress", o->progress, "auto (bar on a terminal, log lines otherwise), bar, log or none")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"auto", "bar", "log", "none"}));
+  cmd->add_option("--log-interval", o->log_interval, "Seconds between progress log lines when not on a terminal (s)")
+      ->capture_default_str();
+  cmd->add_option("--checkpoint-interval", o->checkpoint_interval, "Seconds between cube checkpoints; default: the job's (30 s)");
+  cmd->add_option("--grace", o->grace, "Seconds in-flight tasks get after a stop signal; default: the job's (30 s)");
+  cmd->callback([o] {
+    const int status = campaign::run_campaign(*g_argc, *g_argv, *o);
+    if (status != 0) std::exit(status);
+  });
+}
+
+}  // namespace rigid::app

@@ -1,0 +1,539 @@
+// MPI master/worker. Rank 0's main thread does all MPI, checkpoints and progress while a second
+// thread simulates tasks from the same plan, so on 2 ranks both cores simulate. Workers ask for
+// tasks with the results of their last batch. Every result is journalled at once and the cube is
+// rewritten atomically every checkpoint interval.
+#include "rigid/campaign/driver.hpp"
+
+#include <mpi.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+#include "rigid/campaign/journal.hpp"
+#include "rigid/campaign/plan.hpp"
+#include "rigid/campaign/runner.hpp"
+#include "rigid/core/error.hpp"
+#include "rigid/io/job_file.hpp"
+
+#if !defined(RIGID_VERSION) || !defined(RIGID_GIT_HASH)
+#error "the build defines RIGID_VERSION and RIGID_GIT_HASH"
+#endif
+
+namespace rigid::campaign {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+constexpr int kTagResults = 1;  // worker -> master: results of the last batch, and a request
+constexpr int kTagTasks = 2;    // master -> worker: task ids
+constexpr int kTagStop = 3;     // master -> worker: no more work
+
+volatile std::sig_atomic_t g_stop_signal = 0;
+extern "C" void on_stop_signal(int sig) { g_stop_signal = sig; }
+
+void install_signal_handlers() {
+  struct sigaction sa {};
+  sa.sa_handler = on_stop_signal;
+  sigemptyset(&sa.sa_mask);
+  for (int s : {SIGTERM, SIGINT, SIGUSR1}) sigaction(s, &sa, nullptr);
+}
+
+double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+std::string format_duration(double s) {
+  if (!std::isfinite(s) || s < 0) return "--:--";
+  const long t = std::lround(s);
+  char buf[32];
+  if (t >= 3600) {
+    std::snprintf(buf, sizeof buf, "%ld:%02ld:%02ld", t / 3600, (t / 60) % 60, t % 60);
+  } else {
+    std::snprintf(buf, sizeof buf, "%ld:%02ld", t / 60, t % 60);
+  }
+  return buf;
+}
+
+// Builds the cube from the plan's state (caller holds the plan lock).
+io::Cube make_cube(const scenario::Job& job, const TaskRunner& runner, const Plan& plan) {
+  io::Cube cube;
+  cube.records = runner.records();
+  cube.scales_g = job.scales_g;
+  cube.rotations = job.rotations;
+  cube.job_text = job.text;
+  cube.job_hash = job.hash;
+  cube.software_version = RIGID_VERSION " (" RIGID_GIT_HASH ")";
+  cube.seed = job.seed;
+  char physics[512];
+  const auto& law = runner.scene(0).law;
+  std::snprintf(physics, sizeof physics,
+                "{\"normal_stiffness\": %.17g, \"shear_stiffness\": %.17g, \"friction\": %.17g, "
+                "\"damping\": %.17g, \"dt_s\": %.17g, \"safety\": %.17g, \"integrator\": \"%s\", "
+                "\"duration_s\": %.17g, \"free_time_s\": %.17g, \"stop_after\": %d}",
+                law.normal_stiffness, law.shear_stiffness, law.friction, law.damping, job.run.step.dt,
+                job.run.step.safety,
+                job.run.step.rotation == dynamics::RotationIntegrator::rk4 ? "rk4" : "splitting",
+                job.run.duration, job.run.free_time, job.stop_after);
+  cube.physics_json = physics;
+  const std::vector<std::int8_t> outcome = plan.final_outcomes();
+  const std::vector<bool> kept = plan.kept_mask();
+  const long per_object = long(job.records.size()) * long(job.scales_g.size()) * job.rotations;
+  const double nan = std::nan("");
+  for (std::size_t o = 0; o < job.objects.size(); ++o) {
+    io::ObjectCube oc;
+    oc.name = job.objects[o].name;
+    oc.scene = job.objects[o].scene;
+    for (long i = 0; i < per_object; ++i) {
+      const long t = long(o) * per_object + i;
+      const TaskResult& r = plan.results()[t];
+      oc.outcome.push_back(outcome[t]);
+      oc.rotation_deg.push_back(rotation_angle_deg(job.seed, plan.cell(t)));
+      oc.failure_time_s.push_back(kept[t] ? r.failure_time_s : nan);
+      oc.max_tilt_deg.push_back(kept[t] ? r.max_tilt_deg : nan);
+      oc.max_slip_m.push_back(kept[t] ? r.max_slip_m : nan);
+      oc.wall_s.push_back(kept[t] ? r.wall_s : nan);
+      oc.failure_reason.push_back(kept[t] ? r.reason : 0);
+    }
+    cube.objects.push_back(std::move(oc));
+  }
+  return cube;
+}
+
+// Results already on disk: the cube's simulated cells, then the journal.
+void restore(const std::string& output, const scenario::Job& job, Plan& plan, bool force) {
+  const std::string journal = output + ".journal";
+  if (fs::exists(output)) {
+    const io::Cube old = io::read_cube(output);
+    if (old.job_hash != job.hash) {
+      if (!force) {
+        throw InputError(output, 0,
+                         "was written by a different job file (hash " + old.job_hash + ", now " + job.hash +
+                             "); use --force to start a new campaign over it, or another --out");
+      }
+      fs::remove(output);
+      fs::remove(journal);
+      return;
+    }
+    const long per_object = long(job.records.size()) * long(job.scales_g.size()) * job.rotations;
+    for (std::size_t o = 0; o < old.objects.size() && o < job.objects.size(); ++o) {
+      const auto& oc = old.objects[o];
+      for (long i = 0; i < per_object && i < long(oc.outcome.size()); ++i) {
+        const auto v = static_cast<io::CellOutcome>(oc.outcome[i]);
+        if (v != io::CellOutcome::survived && v != io::CellOutcome::overturned && v != io::CellOutcome::failed) continue;
+        TaskResult r;
+        r.task = long(o) * per_object + i;
+        r.outcome = oc.outcome[i];
+        r.reason = oc.failure_reason[i];
+        r.failure_time_s = oc.failure_time_s[i];
+        r.max_tilt_deg = oc.max_tilt_deg[i];
+        r.max_slip_m = oc.max_slip_m[i];
+        r.wall_s = oc.wall_s[i];
+        plan.restore(r);
+      }
+    }
+  } else if (force) {
+    fs::remove(journal);
+  }
+  for (const TaskResult& r : read_journal(journal, job.hash)) plan.restore(r);
+}
+
+class Progress {
+ public:
+  Progress(const std::string& mode, double log_interval, long total)
+      : log_interval_(log_interval), total_(total), start_(Clock::now()), last_(start_) {
+    bar_ = mode == "bar" || (mode == "auto" && isatty(STDERR_FILENO));
+    quiet_ = mode == "none";
+  }
+  bool due() const { return !quiet_ && seconds_since(last_) >= (bar_ ? 0.25 : log_interval_); }
+  void update(long done_now, long remaining, long failures, long done_at_start, bool final = false) {
+    if (quiet_) return;
+    if (!final && !due()) return;
+    last_ = Clock::now();
+    const double elapsed = seconds_since(start_);
+    const double rate = elapsed > 0 ? double(done_now - done_at_start) / elapsed : 0.0;
+    const double eta = rate > 0 ? double(remaining) / rate : NAN;
+    const long shown_total = done_now + remaining;
+    if (bar_) {
+      const int width = 30;
+      const int filled = shown_total > 0 ? int(width * double(done_now) / double(shown_total)) : width;
+      std::fprintf(stderr, "\r[%s%s] %ld/%ld tasks  %.1f sim/s  ETA %s  failures %ld   ",
+                   std::string(filled, '#').c_str(), std::string(width - filled, '.').c_str(), done_now,
+                   shown_total, rate, format_duration(eta).c_str(), failures);
+      if (final) std::fprintf(stderr, "\n");
+    } else {
+      std::fprintf(stderr, "rigid campaign: %ld/%ld tasks done (%ld of the %ld cells left to simulate), %.2f sim/s, ETA %s, failures %ld\n",
+                   done_now, shown_total, remaining, total_, rate, format_duration(eta).c_str(), failures);
+    }
+    std::fflush(stderr);
+  }
+
+ private:
+  double log_interval_;
+  long total_;
+  Clock::time_point start_, last_;
+  bool bar_ = false, quiet_ = false;
+};
+
+void print_summary(const scenario::Job& job, const io::Cube& cube, const std::string& output) {
+  std::printf("\nfragility cube: %s\n", fs::absolute(output).string().c_str());
+  std::printf("overturning probability (mean over records; inferred cells count as overturned)\n");
+  std::printf("%-20s", "object \\ scale (g)");
+  for (std::size_t s = 0; s < job.scales_g.size(); s += (job.scales_g.size() + 15) / 16) {
+    std::printf("%7.3g", job.scales_g[s]);
+  }
+  std::printf("\n");
+  const std::size_t R = job.records.size(), S = job.scales_g.size(), A = std::size_t(job.rotations);
+  // at most 16 columns: every k-th scale of a long list
+  const std::size_t stride = (S + 15) / 16;
+  if (stride > 1) std::printf("(every %zu-th scale of %zu)\n", stride, S);
+  for (const auto& oc : cube.objects) {
+    std::printf("%-20s", oc.name.c_str());
+    for (std::size_t s = 0; s < S; s += stride) {
+      double sum = 0;
+      int known = 0;
+      for (std::size_t r = 0; r < R; ++r) {
+        int over = 0, n = 0;
+        for (std::size_t k = 0; k < A; ++k) {
+          const auto v = static_cast<io::CellOutcome>(oc.outcome[(r * S + s) * A + k]);
+          if (v == io::CellOutcome::overturned || v == io::CellOutcome::inferred) ++over, ++n;
+          if (v == io::CellOutcome::survived) ++n;
+        }
+        if (n > 0) {
+          sum += double(over) / n;
+          ++known;
+        }
+      }
+      if (known > 0) {
+        std::printf("%7.2f", sum / known);
+      } else {
+        std::printf("%7s", "-");
+      }
+    }
+    std::printf("\n");
+  }
+}
+
+int dry_run(const scenario::Job& job, const TaskRunner& runner) {
+  const long cells = long(job.objects.size()) * long(job.records.size()) * long(job.scales_g.size()) * job.rotations;
+  double simulated = 0;
+  for (std::size_t r = 0; r < job.records.size(); ++r) simulated += runner.simulated_time(int(r));
+  simulated *= double(job.objects.size()) * double(job.scales_g.size()) * job.rotations;
+  // measure this machine's step cost on each object at rest
+  double steps = 0, wall = 0;
+  for (std::size_t o = 0; o < job.objects.size(); ++o) {
+    const scenario::Scene& scene = runner.scene(int(o));
+    dynamics::World world(scene.bodies, scene.law, job.run.step);
+    const auto start = Clock::now();
+    for (int k = 0; k < 2000; ++k) world.step(world.dt(), Vec3::Zero(), Vec3::Zero());
+    const double per_step = seconds_since(start) / 2000.0;
+    double object_sim = 0;
+    for (std::size_t r = 0; r < job.records.size(); ++r) object_sim += runner.simulated_time(int(r));
+    object_sim *= double(job.scales_g.size()) * job.rotations;
+    steps += object_sim / world.dt();
+    wall += object_sim / world.dt() * per_step;
+  }
+  std::printf("job %s: %zu objects x %zu records x %zu scales x %d rotations = %ld tasks\n", job.path.c_str(),
+              job.objects.size(), job.records.size(), job.scales_g.size(), job.rotations, cells);
+  std::printf("at most %.4g s simulated, %.4g time steps; about %s of one core if every task ran to its end\n",
+              simulated, steps, format_duration(wall).c_str());
+  std::printf("(overturned runs stop early and the stop rule skips scales, so the real cost is lower)\n");
+  return 0;
+}
+
+struct Master {
+  Master(const scenario::Job& j, const CampaignOptions& o, const TaskRunner& r, int n)
+      : job(j), options(o), runner(r), output(j.output), ranks(n) {}
+
+  const scenario::Job& job;
+  const CampaignOptions& options;
+  const TaskRunner& runner;
+  std::string output;
+  int ranks = 1;
+
+  std::mutex mutex;  // guards plan and journal
+  Plan* plan = nullptr;
+  Journal* journal = nullptr;
+  std::atomic<bool> stopping{false};
+  std::atomic<bool> local_done{false};
+  double mean_wall = 0.05;  // running mean task wall time, for batch sizes (unit: s)
+  long remote_tasks = 0, remote_messages = 0;  // handed to other ranks
+
+  std::vector<TaskResult> since_snapshot;  // results not in the cube being written
+
+  void record(const TaskResult& r) {
+    plan->complete(r);
+    journal->append(r);
+    since_snapshot.push_back(r);
+    mean_wall = 0.9 * mean_wall + 0.1 * r.wall_s;
+  }
+
+  // the master's own simulations, on a second thread that never calls MPI; with --noop on
+  // several ranks it stays idle, so the run measures what the master alone can hand out
+  void local_worker() {
+    const bool idle = options.noop && ranks > 1;
+    for (;;) {
+      if (idle) break;
+      std::optional<long> t;
+      {
+        std::lock_guard<std::mutex> lock(mutex);
+        if (stopping || plan->finished()) break;
+        t = plan->next();
+      }
+      if (!t) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(2));
+        continue;
+      }
+      const TaskResult r = runner.run(*t, plan->cell(*t), options.noop);
+      std::lock_guard<std::mutex> lock(mutex);
+      record(r);
+    }
+    local_done = true;
+  }
+
+  // tasks for one request: about a quarter second of work, fewer near the end
+  std::vector<std::int64_t> batch() {
+    const long left = plan->size() - plan->done() - plan->in_flight();
+    const long want = std::clamp(long(0.25 / std::max(mean_wall, 1e-6)), 1L,
+                                 std::max(1L, std::min(256L, left / (2L * ranks))));
+    std::vector<std::int64_t> ids;
+    while (long(ids.size()) < want) {
+      const auto t = plan->next();
+      if (!t) break;
+      ids.push_back(*t);
+    }
+    return ids;
+  }
+
+  void checkpoint() {
+    io::Cube cube;
+    {
+      std::lock_guard<std::mutex> lock(mutex);
+      journal->flush();
+      cube = make_cube(job, runner, *plan);
+      since_snapshot.clear();
+    }
+    io::write_cube(output, cube);
+    std::lock_guard<std::mutex> lock(mutex);
+    // the cube now holds everything but what arrived while it was written: journal only that
+    journal->reset();
+    for (const TaskResult& r : since_snapshot) journal->append(r);
+    journal->flush();
+  }
+
+  int run() {
+    const long total = plan->size();
+    const long done_at_start = plan->done();
+    const auto started = Clock::now();
+    Progress progress(options.progress, options.log_interval, total);
+    std::thread local([this] { local_worker(); });
+    std::vector<int> waiting;  // worker ranks whose request is unanswered
+    int active_workers = ranks - 1;
+    auto last_checkpoint = Clock::now();
+    std::optional<Clock::time_point> stop_since;
+    const double checkpoint_interval = options.checkpoint_interval > 0 ? options.checkpoint_interval : job.checkpoint_interval;
+    const double grace = options.grace >= 0 ? options.grace : job.grace;
+    bool abandoned = false;
+    std::vector<TaskResult> inbox;
+    for (;;) {
+      bool busy = false;
+      int flag = 0;
+      MPI_Status status;
+      // answer every pending request
+      while (MPI_Iprobe(MPI_ANY_SOURCE, kTagResults, MPI_COMM_WORLD, &flag, &status) == MPI_SUCCESS && flag) {
+        busy = true;
+        int bytes = 0;
+        MPI_Get_count(&status, MPI_BYTE, &bytes);
+        inbox.resize(std::size_t(bytes) / sizeof(TaskResult));
+        MPI_Recv(inbox.data(), bytes, MPI_BYTE, status.MPI_SOURCE, kTagResults, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+        std::lock_guard<std::mutex> lock(mutex);
+        for (const auto& r : inbox) record(r);
+        journal->flush();
+        waiting.push_back(status.MPI_SOURCE);
+      }
+      if (g_stop_signal && !stopping) {
+        stopping = true;
+        stop_since = Clock::now();
+        std::fprintf(stderr, "\nrigid campaign: signal %d: no new tasks; waiting up to %g s for %ld in flight\n",
+                     int(g_stop_signal), grace, plan->in_flight());
+      }
+      // hand out work, or stop workers that will get none
+      for (auto it = waiting.begin(); it != waiting.end();) {
+        std::vector<std::int64_t> ids;
+        bool stop = false;
+        {
+          std::lock_guard<std::mutex> lock(mutex);
+          if (!stopping) ids = batch();
+          stop = ids.empty() && (stopping || plan->finished());
+        }
+        if (!ids.empty()) {
+          MPI_Send(ids.data(), int(ids.size()), MPI_INT64_T, *it, kTagTasks, MPI_COMM_WORLD);
+          remote_tasks += long(ids.size());
+          ++remote_messages;
+          it = waiting.erase(it);
+        } else if (stop) {
+          MPI_Send(nullptr, 0, MPI_INT64_T, *it, kTagStop, MPI_COMM_WORLD);
+          --active_workers;
+          it = waiting.erase(it);
+        } else {
+          ++it;  // nothing to give now: tasks in flight may unblock more
+        }
+      }
+      {
+        std::lock_guard<std::mutex> lock(mutex);
+        journal->flush();
+        if (progress.due()) progress.update(plan->done(), plan->remaining(), plan->failures(), done_at_start);
+      }
+      if (seconds_since(last_checkpoint) >= checkpoint_interval) {
+        checkpoint();
+        last_checkpoint = Clock::now();
+      }
+      bool all_done;
+      {
+        std::lock_guard<std::mutex> lock(mutex);
+        all_done = active_workers == 0 && local_done && (stopping || plan->finished());
+      }
+      if (all_done) break;
+      if (stopping && seconds_since(*stop_since) > grace) {
+        abandoned = true;
+        break;
+      }
+      if (!busy) std::this_thread::sleep_for(std::chrono::microseconds(200));
+    }
+    if (abandoned) {
+      // in-flight work is given up: checkpoint what is done, then end every rank
+      stopping = true;
+      checkpoint();
+      std::fprintf(stderr, "rigid campaign: grace period over; %ld tasks abandoned (redone on resume)\n", plan->in_flight());
+      std::fflush(stderr);
+      MPI_Abort(MPI_COMM_WORLD, kExitInterrupted);
+    }
+    local.join();
+    checkpoint();
+    io::Cube cube;
+    {
+      std::lock_guard<std::mutex> lock(mutex);
+      progress.update(plan->done(), plan->remaining(), plan->failures(), done_at_start, true);
+      cube = make_cube(job, runner, *plan);
+    }
+    if (ranks > 1) {
+      std::fprintf(stderr, "rigid campaign: %ld tasks sent to %d worker ranks in %ld messages (%.0f tasks/s over %.2f s)\n",
+                   remote_tasks, ranks - 1, remote_messages, double(remote_tasks) / seconds_since(started), seconds_since(started));
+    }
+    if (stopping) {
+      std::fprintf(stderr, "rigid campaign: stopped; checkpoint written to %s; run the same command to resume\n",
+                   output.c_str());
+      return kExitInterrupted;
+    }
+    print_summary(job, cube, output);
+    fs::remove(output + ".journal");
+    return 0;
+  }
+};
+
+void worker_loop(const scenario::Job& job, const TaskRunner& runner, bool noop) {
+  std::vector<TaskResult> results;
+  std::vector<std::int64_t> ids;
+  const int records = int(job.records.size()), scales = int(job.scales_g.size());
+  for (;;) {
+    MPI_Send(results.data(), int(results.size() * sizeof(TaskResult)), MPI_BYTE, 0, kTagResults, MPI_COMM_WORLD);
+    results.clear();
+    MPI_Status status;
+    MPI_Probe(0, MPI_ANY_TAG, MPI_COMM_WORLD, &status);
+    int count = 0;
+    MPI_Get_count(&status, MPI_INT64_T, &count);
+    ids.resize(std::size_t(count));
+    MPI_Recv(ids.data(), count, MPI_INT64_T, 0, status.MPI_TAG, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    if (status.MPI_TAG == kTagStop) break;
+    for (std::int64_t t : ids) results.push_back(runner.run(t, cell_of(t, records, scales, job.rotations), noop));
+  }
+}
+
+}  // namespace
+
+int run_campaign(int& argc, char**& argv, const CampaignOptions& options) {
+  int provided = 0;
+  MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
+  int rank = 0, ranks = 1;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &ranks);
+  install_signal_handlers();
+
+  // every rank reads the job and its inputs; only rank 0 reports problems
+  scenario::Job job;
+  std::unique_ptr<TaskRunner> runner;
+  int ok = 1;
+  std::string error;
+  try {
+    job = io::load_job(options.job);
+    if (!options.output.empty()) job.output = options.output;
+    runner = std::make_unique<TaskRunner>(job);
+  } catch (const InputError& e) {
+    ok = 0;
+    error = e.what();
+  }
+  int all_ok = 0;
+  MPI_Allreduce(&ok, &all_ok, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+  if (!all_ok) {
+    MPI_Finalize();
+    if (rank == 0 && !ok) throw InputError("", 0, error);
+    if (rank == 0) throw InputError(options.job, 0, "another rank could not read the job's inputs");
+    return 2;
+  }
+
+  int status = 0;
+  if (rank == 0) {
+    Plan plan(int(job.objects.size()), int(job.records.size()), int(job.scales_g.size()), job.rotations,
+              job.stop_after, [&] {
+                std::vector<double> cost;
+                for (std::size_t r = 0; r < job.records.size(); ++r) cost.push_back(runner->simulated_time(int(r)));
+                return cost;
+              }());
+    int go = 1;
+    std::string problem;
+    try {
+      if (options.dry_run) {
+        go = 0;
+      } else {
+        restore(job.output, job, plan, options.force);
+        if (fs::path(job.output).has_parent_path()) fs::create_directories(fs::path(job.output).parent_path());
+      }
+    } catch (const InputError& e) {
+      go = -1;
+      problem = e.what();
+    }
+    MPI_Bcast(&go, 1, MPI_INT, 0, MPI_COMM_WORLD);
+    if (go == -1) {
+      MPI_Finalize();
+      throw InputError("", 0, problem);
+    }
+    if (go == 0) {
+      status = dry_run(job, *runner);
+    } else {
+      Journal journal(job.output + ".journal", job.hash);
+      Master master(job, options, *runner, ranks);
+      master.plan = &plan;
+      master.journal = &journal;
+      // the restored results go into the cube at once, which also proves the output writable
+      master.checkpoint();
+      std::fprintf(stderr, "rigid campaign: %ld tasks, %ld already done, %d ranks, output %s\n", plan.size(),
+                   plan.done(), ranks, job.output.c_str());
+      status = master.run();
+    }
+  } else {
+    int go = 0;
+    MPI_Bcast(&go, 1, MPI_INT, 0, MPI_COMM_WORLD);
+    if (go == 1) worker_loop(job, *runner, options.noop);
+    status = go == -1 ? 2 : 0;
+  }
+  MPI_Finalize();
+  return status;
+}
+
+}  // namespace rigid::campaign

@@ -1,0 +1,271 @@
+#include "rigid/io/job_file.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include <toml++/toml.h>
+
+#include "rigid/core/error.hpp"
+#include "rigid/io/at2.hpp"
+#include "rigid/io/record_list.hpp"
+
+namespace rigid::io {
+namespace fs = std::filesystem;
+
+std::string text_hash(const std::string& text) {
+  std::uint64_t h = 0xcbf29ce484222325ull;
+  for (unsigned char c : text) {
+    h ^= c;
+    h *= 0x100000001b3ull;
+  }
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+  return buf;
+}
+
+namespace {
+
+long line_of(const toml::node& n) { return static_cast<long>(n.source().begin.line); }
+
+void reject_unknown(const toml::table& t, const std::set<std::string>& allowed, const std::string& src,
+                    const std::string& where) {
+  for (const auto& [key, node] : t) {
+    if (!allowed.count(std::string(key.str()))) {
+      throw InputError(src, line_of(node), "unknown key '" + std::string(key.str()) + "' in " + where);
+    }
+  }
+}
+
+double number(const toml::node& n, const std::string& src, const std::string& what) {
+  const auto v = n.value<double>();
+  if (!v || !std::isfinite(*v)) throw InputError(src, line_of(n), what + " must be a finite number");
+  return *v;
+}
+
+double optional_number(const toml::table& t, const char* key, double fallback, const std::string& src) {
+  const toml::node* n = t.get(key);
+  return n ? number(*n, src, key) : fallback;
+}
+
+std::string text_of(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, 0, "cannot open job file");
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::vector<double> parse_scales(const toml::node& n, const std::string& src) {
+  std::vector<double> out;
+  if (const auto* arr = n.as_array()) {
+    for (const auto& v : *arr) out.push_back(number(v, src, "each scale (g)"));
+  } else if (const auto s = n.value<std::string>()) {
+    // start:stop:step in g, stop included when it falls on the grid
+    double a, b, c;
+    char extra;
+    if (std::sscanf(s->c_str(), "%lf:%lf:%lf%c", &a, &b, &c, &extra) != 3) {
+      throw InputError(src, line_of(n), "scales must be a list or \"start:stop:step\" (g), not \"" + *s + "\"");
+    }
+    if (!(c > 0) || !(b >= a) || !std::isfinite(a) || !std::isfinite(b)) {
+      throw InputError(src, line_of(n), "scales \"start:stop:step\" needs step > 0 and stop >= start");
+    }
+    const long count = std::lround(std::floor((b - a) / c + 1e-9)) + 1;
+    if (count > 100000) throw InputError(src, line_of(n), "too many scales");
+    for (long i = 0; i < count; ++i) out.push_back(a + double(i) * c);
+  } else {
+    throw InputError(src, line_of(n), "scales must be a list or \"start:stop:step\" (g)");
+  }
+  if (out.empty()) throw InputError(src, line_of(n), "the scale list is empty");
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    if (!(out[i] > 0)) throw InputError(src, line_of(n), "scales must be positive (g)");
+    if (i > 0 && !(out[i] > out[i - 1])) throw InputError(src, line_of(n), "scales must be strictly increasing");
+  }
+  return out;
+}
+
+std::string record_name(const std::string& spec) {
+  std::string first = spec.substr(0, spec.find(','));
+  const auto eq = first.find('=');
+  if (eq != std::string::npos) first = first.substr(eq + 1);
+  std::string stem = fs::path(first).stem().string();
+  if (stem.size() > 2 && stem[stem.size() - 2] == '-' && (stem.back() == 'X' || stem.back() == 'x')) {
+    stem.resize(stem.size() - 2);
+  }
+  return stem;
+}
+
+// Makes every file of a set spec absolute against base (keeping roles such as x=).
+std::string resolve_spec(const std::string& spec, const fs::path& base) {
+  std::string out;
+  std::stringstream in(spec);
+  std::string part;
+  while (std::getline(in, part, ',')) {
+    std::string role;
+    const auto eq = part.find('=');
+    if (eq != std::string::npos) {
+      role = part.substr(0, eq + 1);
+      part = part.substr(eq + 1);
+    }
+    const fs::path p = fs::path(part).is_absolute() ? fs::path(part) : base / part;
+    out += (out.empty() ? "" : ",") + role + p.lexically_normal().string();
+  }
+  return out;
+}
+
+}  // namespace
+
+scenario::Job load_job(const std::string& path) {
+  scenario::Job job;
+  job.path = path;
+  if (!fs::exists(path)) throw InputError(path, 0, "job file not found");
+  job.text = text_of(path);
+  job.hash = text_hash(job.text);
+  toml::table root;
+  try {
+    root = toml::parse(job.text, path);
+  } catch (const toml::parse_error& e) {
+    throw InputError(path, static_cast<long>(e.source().begin.line), std::string(e.description()));
+  }
+  const fs::path base = fs::path(path).parent_path();
+  reject_unknown(root, {"campaign", "object", "record", "records", "run"}, path, "the job");
+
+  const auto* c = root["campaign"].as_table();
+  if (!c) throw InputError(path, 0, "missing [campaign] table");
+  reject_unknown(*c, {"name", "seed", "output", "scales", "rotations", "stop_after", "checkpoint_interval_s", "grace_s"},
+                 path, "[campaign]");
+  if (const auto* o = c->get("output")) {
+    const auto s = o->value<std::string>();
+    if (!s || s->empty()) throw InputError(path, line_of(*o), "output must be a file name");
+    job.output = *s;
+  } else {
+    job.output = fs::path(path).stem().string() + ".h5";
+  }
+  if (const auto* s = c->get("seed")) {
+    const auto v = s->value<std::int64_t>();
+    if (!v || *v < 0) throw InputError(path, line_of(*s), "seed must be a non-negative integer");
+    job.seed = static_cast<std::uint64_t>(*v);
+  }
+  const toml::node* scales = c->get("scales");
+  if (!scales) throw InputError(path, line_of(*c), "[campaign] needs scales (list or \"start:stop:step\", g)");
+  job.scales_g = parse_scales(*scales, path);
+  if (const auto* r = c->get("rotations")) {
+    const auto v = r->value<std::int64_t>();
+    if (!v || *v < 1 || *v > 1000) throw InputError(path, line_of(*r), "rotations must be an integer from 1 to 1000");
+    job.rotations = static_cast<int>(*v);
+  }
+  if (const auto* s = c->get("stop_after")) {
+    const auto v = s->value<std::int64_t>();
+    if (!v || *v < 0) throw InputError(path, line_of(*s), "stop_after must be a non-negative integer (0 = off)");
+    job.stop_after = static_cast<int>(*v);
+  }
+  job.checkpoint_interval = optional_number(*c, "checkpoint_interval_s", job.checkpoint_interval, path);
+  job.grace = optional_number(*c, "grace_s", job.grace, path);
+  if (!(job.checkpoint_interval > 0)) throw InputError(path, line_of(*c), "checkpoint_interval_s must be positive");
+  if (!(job.grace >= 0)) throw InputError(path, line_of(*c), "grace_s must not be negative");
+
+  // objects
+  const auto* objects = root["object"].as_array();
+  if (!objects || objects->empty()) throw InputError(path, 0, "the job needs at least one [[object]]");
+  std::set<std::string> object_names;
+  for (const auto& node : *objects) {
+    const auto* t = node.as_table();
+    if (!t) throw InputError(path, line_of(node), "each [[object]] must be a table");
+    reject_unknown(*t, {"name", "scene", "state"}, path, "[[object]]");
+    scenario::JobObject o;
+    const auto scene = (*t)["scene"].value<std::string>();
+    if (!scene) throw InputError(path, line_of(node), "[[object]] needs scene = \"FILE\"");
+    o.scene = (base / *scene).lexically_normal().string();
+    if (!fs::exists(o.scene)) throw InputError(path, line_of(node), "scene file not found: " + o.scene);
+    if (const auto state = (*t)["state"].value<std::string>()) {
+      o.state = (base / *state).lexically_normal().string();
+      if (!fs::exists(o.state)) throw InputError(path, line_of(node), "state file not found: " + o.state);
+    }
+    o.name = (*t)["name"].value_or(fs::path(*scene).stem().string());
+    if (o.name.empty() || o.name.find('/') != std::string::npos) {
+      throw InputError(path, line_of(node), "object name must be non-empty and contain no '/'");
+    }
+    if (!object_names.insert(o.name).second) throw InputError(path, line_of(node), "duplicate object name '" + o.name + "'");
+    job.objects.push_back(o);
+  }
+
+  // records: a list file or [[record]] tables
+  if (root.contains("records") == root.contains("record")) {
+    throw InputError(path, 0, "give the records either as records = \"LIST\" or as [[record]] tables");
+  }
+  if (const auto* list = root.get("records")) {
+    const auto name = list->value<std::string>();
+    if (!name) throw InputError(path, line_of(*list), "records must be a record-list file name");
+    const fs::path list_path = base / *name;
+    if (!fs::exists(list_path)) throw InputError(path, line_of(*list), "record list not found: " + list_path.string());
+    const RecordList rl = read_record_list(list_path.string());
+    for (const auto& e : rl.records) {
+      scenario::JobRecord r;
+      r.spec = resolve_spec(e.file, fs::path(rl.base_dir));
+      r.name = record_name(e.file);
+      r.start = e.start;
+      r.end = e.end;
+      r.earthquake = e.earthquake;
+      r.listed_pga_g = std::isfinite(e.gmroti_pga_g) ? e.gmroti_pga_g : 0.0;
+      r.listed_pgv_cm_s = std::isfinite(e.gmroti_pgv_cm_s) ? e.gmroti_pgv_cm_s : 0.0;
+      job.records.push_back(r);
+    }
+  } else {
+    const auto* arr = root["record"].as_array();
+    if (!arr) throw InputError(path, 0, "record must be an array of tables ([[record]])");
+    for (const auto& node : *arr) {
+      const auto* t = node.as_table();
+      if (!t) throw InputError(path, line_of(node), "each [[record]] must be a table");
+      reject_unknown(*t, {"name", "motion", "start", "end", "earthquake"}, path, "[[record]]");
+      scenario::JobRecord r;
+      const auto motion = (*t)["motion"].value<std::string>();
+      if (!motion) throw InputError(path, line_of(node), "[[record]] needs motion = \"NAME-X.AT2\" or \"H1.AT2,H2.AT2\"");
+      r.spec = resolve_spec(*motion, base);
+      r.name = (*t)["name"].value_or(record_name(*motion));
+      r.start = optional_number(*t, "start", 0.0, path);
+      r.end = optional_number(*t, "end", std::numeric_limits<double>::infinity(), path);
+      r.earthquake = (*t)["earthquake"].value_or(std::string());
+      job.records.push_back(r);
+    }
+  }
+  if (job.records.empty()) throw InputError(path, 0, "the job has no records");
+  std::set<std::string> record_names;
+  for (auto& r : job.records) {
+    // every file of the set must exist now, not at the first task
+    std::stringstream parts(r.spec);
+    std::string part;
+    while (std::getline(parts, part, ',')) {
+      const auto eq = part.find('=');
+      const std::string file = eq == std::string::npos ? part : part.substr(eq + 1);
+      if (!fs::exists(file)) throw InputError(path, 0, "record " + r.name + ": motion file not found: " + file);
+    }
+    if (!(r.start >= 0) || !(r.end > r.start)) throw InputError(path, 0, "record " + r.name + ": window needs 0 <= start < end");
+    std::string unique = r.name;
+    for (int k = 2; !record_names.insert(unique).second; ++k) unique = r.name + "_" + std::to_string(k);
+    r.name = unique;
+  }
+
+  // simulation settings
+  if (const auto* run = root["run"].as_table()) {
+    reject_unknown(*run, {"duration_s", "free_time_s", "dt_s", "safety", "integrator"}, path, "[run]");
+    job.run.duration = optional_number(*run, "duration_s", 0.0, path);
+    job.run.free_time = optional_number(*run, "free_time_s", job.run.free_time, path);
+    job.run.step.dt = optional_number(*run, "dt_s", 0.0, path);
+    job.run.step.safety = optional_number(*run, "safety", job.run.step.safety, path);
+    if (job.run.duration < 0 || job.run.free_time < 0 || job.run.step.dt < 0 || !(job.run.step.safety > 0)) {
+      throw InputError(path, line_of(*run), "durations and dt must not be negative, safety must be positive");
+    }
+    const std::string integrator = (*run)["integrator"].value_or(std::string("splitting"));
+    if (integrator == "rk4") {
+      job.run.step.rotation = dynamics::RotationIntegrator::rk4;
+    } else if (integrator != "splitting") {
+      throw InputError(path, line_of(*run), "integrator must be \"splitting\" or \"rk4\"");
+    }
+  }
+  return job;
+}
+
+}  // namespace rigid::io

@@ -1,0 +1,99 @@
+// Job files: a good job loads with its defaults, and every kind of bad job is refused before any
+// work starts with the file, line and problem.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "rigid/core/error.hpp"
+#include "rigid/io/job_file.hpp"
+
+namespace rigid::io {
+namespace {
+
+namespace fs = std::filesystem;
+
+class JobFile : public ::testing::Test {
+ protected:
+  std::string write(const std::string& text) {
+    const fs::path dir = fs::path(RIGID_SOURCE_DIR) / "jobs";
+    path_ = (dir / ("test_job_" + std::to_string(::getpid()) + ".toml")).string();
+    std::ofstream(path_) << text;
+    return path_;
+  }
+  void TearDown() override {
+    if (!path_.empty()) fs::remove(path_);
+  }
+  void expect_error(const std::string& text, const std::string& fragment, long line = -1) {
+    try {
+      load_job(write(text));
+      ADD_FAILURE() << "accepted: " << text;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+      if (line >= 0) {
+        EXPECT_EQ(e.line(), line) << e.what();
+      }
+    }
+  }
+  std::string path_;
+};
+
+const char* kGood = R"([campaign]
+scales = "0.1:0.5:0.1"
+
+[[object]]
+scene = "../models/demo/block_a02.toml"
+
+[[record]]
+motion = "../waveforms/demo/stochastic_s1-X.AT2"
+)";
+
+TEST_F(JobFile, GoodJobLoadsWithTheStudysDefaults) {
+  const auto job = load_job(write(kGood));
+  ASSERT_EQ(job.scales_g.size(), 5u);
+  EXPECT_NEAR(job.scales_g.back(), 0.5, 1e-12);
+  EXPECT_EQ(job.rotations, 2);
+  EXPECT_EQ(job.stop_after, 10);
+  EXPECT_EQ(job.records.at(0).name, "stochastic_s1");
+  EXPECT_EQ(job.objects.at(0).name, "block_a02");
+  EXPECT_EQ(job.hash.size(), 16u);
+}
+
+TEST_F(JobFile, UnknownKeyIsRefusedWithItsLine) {
+  std::string t = kGood;
+  t.insert(t.find("scales"), "rotatons = 3\n");
+  expect_error(t, "rotatons", 2);
+}
+
+TEST_F(JobFile, MissingSceneIsRefused) {
+  std::string t = kGood;
+  t.replace(t.find("block_a02.toml"), 14, "nothere.toml");
+  expect_error(t, "nothere.toml");
+}
+
+TEST_F(JobFile, MissingMotionIsRefused) {
+  std::string t = kGood;
+  t.replace(t.find("stochastic_s1-X"), 15, "stochastic_s9-X");
+  expect_error(t, "stochastic_s9-X.AT2");
+}
+
+TEST_F(JobFile, EmptyScaleListIsRefused) {
+  std::string t = kGood;
+  t.replace(t.find("\"0.1:0.5:0.1\""), 13, "[]");
+  expect_error(t, "empty", 2);
+}
+
+TEST_F(JobFile, NonIncreasingScalesAreRefused) {
+  std::string t = kGood;
+  t.replace(t.find("\"0.1:0.5:0.1\""), 13, "[0.1, 0.3, 0.2]");
+  expect_error(t, "increasing", 2);
+}
+
+TEST_F(JobFile, MalformedTomlNamesTheLine) {
+  std::string t = kGood;
+  t.insert(t.find("[[object]]"), "scales = = 1\n");
+  expect_error(t, "", 4);
+}
+
+}  // namespace
+}  // namespace rigid::io
