@@ -41,22 +41,11 @@ case "$action" in
     ctest --test-dir "$build_dir" --output-on-failure -j "$jobs"
     ;;
   demo)
-    # Until the campaign runner exists, the main job is a small grid of single runs: the bundled
-    # 1 m block (alpha 0.2 rad) under the bundled synthetic motions, scaled to several PGAs.
+    # The main job: a small real campaign on the bundled models and generated waveforms, on two
+    # ranks. It resumes if interrupted (run the command again); delete out/ to start over.
     rigid="$build_dir/bin/rigid"
-    "$rigid" inspect models/demo/block_a02.toml
-    echo
-    echo "Overturning of models/demo/block_a02 (GMRotI50 PGA scaled to each column):"
-    pgas=(0.1 0.2 0.3 0.5 0.8)
-    printf '%-16s' "record"; for g in "${pgas[@]}"; do printf '%9s' "${g} g"; done; echo
-    for rec in stochastic_s1 stochastic_s2 stochastic_s3 mp_pulse_1s; do
-      printf '%-16s' "$rec"
-      for g in "${pgas[@]}"; do
-        out=$("$rigid" run models/demo/block_a02.toml --motion "waveforms/demo/$rec-X.AT2" --target-pga "$g" --json)
-        if grep -q '"overturned": true' <<<"$out"; then printf '%9s' "topples"; else printf '%9s' "stands"; fi
-      done
-      echo
-    done
+    "$rigid" campaign jobs/demo.toml --dry-run
+    mpirun --oversubscribe -np 2 "$rigid" campaign jobs/demo.toml
     ;;
   *) echo "usage: bash setup.sh demo|test|build" >&2; exit 2 ;;
 esac
