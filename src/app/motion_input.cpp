@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "rigid/core/error.hpp"
+#include "rigid/core/types.hpp"
 #include "rigid/io/at2.hpp"
 #include "rigid/motion/ground_motion.hpp"
 
@@ -22,7 +23,7 @@ void add_motion_options(CLI::App& cmd, MotionOptions& o) {
       ->capture_default_str();
 }
 
-scenario::GroundDrive load_ground_drive(const MotionOptions& o) {
+motion::GroundMotion load_motion(const MotionOptions& o) {
   if (!std::isfinite(o.factor)) throw InputError("", 0, "--factor must be finite");
   if (!std::isfinite(o.rotation_deg)) throw InputError("", 0, "--rotation must be finite");
   if (o.target_pga_g < 0 || !std::isfinite(o.target_pga_g)) {
@@ -35,13 +36,7 @@ scenario::GroundDrive load_ground_drive(const MotionOptions& o) {
   t.factor = o.factor;
   t.target_pga_g = o.target_pga_g;
   t.rotation = o.rotation_deg * kPi / 180.0;
-  const motion::GroundMotion m = motion::transformed(record, t);
-  const motion::GroundVelocity v = motion::ground_velocity(m);
-  scenario::GroundDrive drive;
-  drive.dt = v.dt;
-  drive.velocity.resize(v.vx.size());
-  for (std::size_t i = 0; i < v.vx.size(); ++i) drive.velocity[i] = Vec3(v.vx[i], v.vy[i], v.vz[i]);
-  return drive;
+  return motion::transformed(record, t);
 }
 
 }  // namespace rigid::app

@@ -6,7 +6,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "rigid/scenario/scene.hpp"
+#include "rigid/motion/ground_motion.hpp"
 
 namespace rigid::app {
 
@@ -21,7 +21,7 @@ struct MotionOptions {
 
 void add_motion_options(CLI::App& cmd, MotionOptions& o);
 
-/// Reads, windows, scales and rotates the record, and integrates it to ground velocity.
-scenario::GroundDrive load_ground_drive(const MotionOptions& o);
+/// Reads, windows, scales and rotates the record.
+motion::GroundMotion load_motion(const MotionOptions& o);
 
 }  // namespace rigid::app

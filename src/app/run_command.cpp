@@ -3,12 +3,14 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <optional>
 
 #include "commands.hpp"
 #include "json.hpp"
 #include "motion_input.hpp"
 #include "rigid/core/error.hpp"
 #include "rigid/io/scene_file.hpp"
+#include "rigid/scenario/rocking2d.hpp"
 #include "rigid/scenario/scene.hpp"
 
 namespace rigid::app {
@@ -23,6 +25,7 @@ struct RunOptions {
   double dt = 0;
   double safety = 0;
   std::string integrator = "splitting";
+  std::string model = "dem3d";
   bool json = false;
 };
 
@@ -52,11 +55,23 @@ void run(const RunOptions& o) {
   if (o.free_time < 0) throw InputError("", 0, "--free-time must not be negative");
   settings.free_time = o.free_time;
 
-  scenario::GroundDrive drive;
-  if (!o.motion.path.empty()) drive = load_ground_drive(o.motion);
+  if (o.model != "dem3d" && o.model != "rocking2d") throw InputError("", 0, "--model must be dem3d or rocking2d");
+  // the 2D model checks the scene before any motion is read
+  const auto block2d = o.model == "rocking2d" ? std::optional(scenario::rocking_block_of(scene)) : std::nullopt;
+  motion::GroundMotion m;
+  if (!o.motion.path.empty()) m = load_motion(o.motion);
 
   const auto start = std::chrono::steady_clock::now();
-  const scenario::RunOutcome r = scenario::run(scene, drive, settings);
+  scenario::RunOutcome r;
+  if (block2d) {
+    if (m.x.empty()) {
+      m.dt = 0.01;
+      m.x.assign(2, 0.0);
+    }
+    r = scenario::run_rocking2d(*block2d, m.x, m.dt, settings);
+  } else {
+    r = scenario::run(scene, m.x.empty() ? scenario::GroundDrive{} : scenario::ground_drive(m), settings);
+  }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   if (o.json) {
@@ -97,6 +112,10 @@ void register_run_command(CLI::App& app) {
   cmd->add_option("--dt", o->dt, "Time step (s); default: automatic from block masses and contact stiffness");
   cmd->add_option("--safety", o->safety, "Safety factor on the critical time step for the automatic step (default 0.2)");
   cmd->add_option("--integrator", o->integrator, "Rotation integrator: splitting (symplectic, default) or rk4")
+      ->capture_default_str();
+  cmd->add_option("--model", o->model,
+                  "dem3d (the 3D engine) or rocking2d (the 2D Housner reference, for a box block on a box "
+                  "pedestal, driven by the x component; overturned = on its side)")
       ->capture_default_str();
   cmd->add_flag("--json", o->json, "Print one JSON object");
   cmd->callback([o] { run(*o); });

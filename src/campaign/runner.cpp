@@ -14,6 +14,7 @@ TaskRunner::TaskRunner(const scenario::Job& job) : job_(job) {
   for (const auto& o : job.objects) {
     scenario::Scene s = io::load_scene(o.scene);
     if (!o.state.empty()) io::apply_state(o.state, s);
+    if (job.model == "rocking2d") rocking_.push_back(scenario::rocking_block_of(s));
     scenes_.push_back(std::move(s));
   }
   for (const auto& r : job.records) {
@@ -63,12 +64,9 @@ TaskResult TaskRunner::run(long task, const Cell& cell, bool noop) const {
     const double angle = rotation_angle_deg(job_.seed, cell) * kPi / 180.0;
     const motion::GroundMotion m = motion::rotated(
         motion::scaled(windowed_[cell.record], unit_factor_[cell.record] * job_.scales_g[cell.scale]), angle);
-    const motion::GroundVelocity v = motion::ground_velocity(m);
-    scenario::GroundDrive drive;
-    drive.dt = v.dt;
-    drive.velocity.resize(v.vx.size());
-    for (std::size_t i = 0; i < v.vx.size(); ++i) drive.velocity[i] = Vec3(v.vx[i], v.vy[i], v.vz[i]);
-    const scenario::RunOutcome r = scenario::run(scenes_[cell.object], drive, job_.run);
+    const scenario::RunOutcome r = job_.model == "rocking2d"
+        ? scenario::run_rocking2d(rocking_[cell.object], m.x, m.dt, job_.run)
+        : scenario::run(scenes_[cell.object], scenario::ground_drive(m), job_.run);
     if (!r.finite) {
       out.outcome = static_cast<std::int32_t>(io::CellOutcome::failed);
       out.reason = static_cast<std::int32_t>(FailureReason::non_finite);

@@ -37,7 +37,9 @@ std::string fmt(double x) {
   return buf;
 }
 
-std::string fmt(const Vec3& v) { return "(" + fmt(v.x()) + ", " + fmt(v.y()) + ", " + fmt(v.z()) + ")"; }
+std::string fmt(const Vec3& v) {
+  return "(" + fmt(v.x()) + ", " + fmt(v.y()) + ", " + fmt(v.z()) + ")";
+}
 
 [[noreturn]] void fail(const std::string& source, std::size_t facet, const std::string& what) {
   throw InputError(source, 0, "facet " + std::to_string(facet) + ": " + what);
@@ -80,10 +82,10 @@ struct CellHash {
 
 // One directed use of an undirected edge by a triangle.
 struct EdgeUse {
-  std::uint64_t key;   // (min vertex << 32) | max vertex
+  std::uint64_t key;  // (min vertex << 32) | max vertex
   int tri;
-  int local;           // edge from vertex local to vertex (local+1)%3
-  bool forward;        // runs from the smaller to the larger vertex index
+  int local;     // edge from vertex local to vertex (local+1)%3
+  bool forward;  // runs from the smaller to the larger vertex index
 };
 
 struct Adjacency {
@@ -199,7 +201,8 @@ std::vector<std::array<int, 3>> triangle_neighbors(const ClosedMesh& mesh) {
   const auto nv = static_cast<long long>(mesh.vertices.size());
   for (const auto& t : mesh.triangles) {
     for (int v : t) {
-      if (v < 0 || v >= nv) throw std::invalid_argument("triangle_neighbors: vertex index out of range");
+      if (v < 0 || v >= nv)
+        throw std::invalid_argument("triangle_neighbors: vertex index out of range");
     }
   }
   const Adjacency adj = build_adjacency(mesh.triangles);
@@ -234,8 +237,9 @@ ClosedMesh make_closed_mesh(const TriangleSoup& soup, const MeshOptions& options
     for (const Vec3* p : {&soup[f].a, &soup[f].b, &soup[f].c}) {
       if (!p->allFinite()) fail(source, f, "vertex coordinate is NaN or infinite");
       if (p->cwiseAbs().maxCoeff() > kMaxCoordinate) {
-        fail(source, f, "vertex " + fmt(*p) + " is farther than " + fmt(kMaxCoordinate) +
-                            " m from the origin");
+        fail(
+            source, f,
+            "vertex " + fmt(*p) + " is farther than " + fmt(kMaxCoordinate) + " m from the origin");
       }
       lo = lo.cwiseMin(*p);
       hi = hi.cwiseMax(*p);
@@ -262,12 +266,13 @@ ClosedMesh make_closed_mesh(const TriangleSoup& soup, const MeshOptions& options
       fail(source, f, "degenerate triangle (two of its vertices coincide after welding)");
     }
     const Vec3 &a = v[t[0]], &b = v[t[1]], &c = v[t[2]];
-    const double longest = std::sqrt(std::max({(b - a).squaredNorm(), (c - b).squaredNorm(),
-                                               (a - c).squaredNorm()}));
+    const double longest =
+        std::sqrt(std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()}));
     const double height = area_vector(a, b, c).norm() / longest;  // the smallest height
     if (!(height > min_height)) {
-      fail(source, f, "degenerate triangle (zero area: height " + fmt(height) +
-                          " m is below the tolerance " + fmt(min_height) + " m)");
+      fail(source, f,
+           "degenerate triangle (zero area: height " + fmt(height) + " m is below the tolerance " +
+               fmt(min_height) + " m)");
     }
   }
 
@@ -280,11 +285,13 @@ ClosedMesh make_closed_mesh(const TriangleSoup& soup, const MeshOptions& options
       const Vec3& a = v[mesh.triangles[f][i]];
       const Vec3& b = v[mesh.triangles[f][(i + 1) % 3]];
       if (n == 1) {
-        fail(source, f, "edge " + fmt(a) + "-" + fmt(b) +
-                            " belongs to no other facet (open edge): the mesh is not closed");
+        fail(source, f,
+             "edge " + fmt(a) + "-" + fmt(b) +
+                 " belongs to no other facet (open edge): the mesh is not closed");
       }
-      fail(source, f, "edge " + fmt(a) + "-" + fmt(b) + " is shared by " + std::to_string(n) +
-                          " facets (non-manifold edge)");
+      fail(source, f,
+           "edge " + fmt(a) + "-" + fmt(b) + " is shared by " + std::to_string(n) +
+               " facets (non-manifold edge)");
     }
   }
 
@@ -393,9 +400,10 @@ ClosedMesh make_closed_mesh(const TriangleSoup& soup, const MeshOptions& options
     if (top <= limit) continue;
     Eigen::Index worst = 0;  // the highest vertex, for the message
     (nx * xs + ny * ys + nz * zs).maxCoeff(&worst);
-    fail(source, f, "vertex " + fmt(v[static_cast<std::size_t>(worst)]) + " lies " +
-                        fmt(top - limit + conv_tol) + " m outside the plane of this facet " +
-                        "(tolerance " + fmt(conv_tol) + " m): the mesh is not convex");
+    fail(source, f,
+         "vertex " + fmt(v[static_cast<std::size_t>(worst)]) + " lies " +
+             fmt(top - limit + conv_tol) + " m outside the plane of this facet " + "(tolerance " +
+             fmt(conv_tol) + " m): the mesh is not convex");
   }
   return mesh;
 }

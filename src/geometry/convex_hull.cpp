@@ -21,16 +21,21 @@ constexpr double kHullRelativeTolerance = 1e-8;
 constexpr double kSliver = 0.25;
 // A vertex removed from the hull but found outside the new faces is retried at most this often,
 // which bounds the work on adversarial input.
-constexpr int kMaxRequeue = 2;
+constexpr int kMaxRequeue = 8;
 // Floor of the bend tolerance, as a fraction of the hull tolerance, so rounding between
 // coplanar faces does not count as a bend (unit: 1).
 constexpr double kMinBend = 1e-3;
 
+// Bounding-box diagonals outside this range would overflow or underflow the products of
+// coordinates the predicates use (unit: m).
+constexpr double kMinDiagonal = 1e-100;
+constexpr double kMaxDiagonal = 1e100;
+
 struct HullFace {
-  std::array<int, 3> v;   // counter-clockwise seen from outside
+  std::array<int, 3> v;               // counter-clockwise seen from outside
   std::array<int, 3> nb{-1, -1, -1};  // face across edge v[i] -> v[(i+1)%3]
-  Vec3 normal;            // outward unit normal
-  double offset = 0;      // plane: normal . x = offset
+  Vec3 normal;                        // outward unit normal
+  double offset = 0;                  // plane: normal . x = offset
   bool alive = true;
   std::vector<int> outside;  // points above this face by more than the tolerance
 };
@@ -59,8 +64,9 @@ class Hull {
       hi = hi.cwiseMax(q);
     }
     const double diag = (hi - lo).norm();
-    if (!(diag > 0) || !std::isfinite(diag)) {
-      throw std::invalid_argument("convex_hull: points coincide or span an infinite box");
+    if (!(diag > 0)) throw std::invalid_argument("convex_hull: all points coincide");
+    if (!(diag >= kMinDiagonal && diag <= kMaxDiagonal)) {
+      throw std::invalid_argument("convex_hull: points span a box too small or too large");
     }
     eps_ = kHullRelativeTolerance * diag;
     diag_ = diag;
@@ -83,6 +89,10 @@ class Hull {
       if (!faces_[f].alive || faces_[f].outside.empty()) continue;
       auto& out = faces_[f].outside;
       const int apex = best(out, [&](int i) { return distance(f, i); });
+      if (apex < 0) {  // no finite score: cannot happen with bounded coordinates
+        out.clear();
+        continue;
+      }
       out.erase(std::find(out.begin(), out.end(), apex));
       add_point(apex, f, work);
       if (faces_[f].alive && !faces_[f].outside.empty()) work.push_back(f);
@@ -122,7 +132,8 @@ class Hull {
   }
 
   bool set_plane(HullFace& face) const {
-    const Vec3 a = p_[face.v[0]] - center_, b = p_[face.v[1]] - center_, c = p_[face.v[2]] - center_;
+    const Vec3 a = p_[face.v[0]] - center_, b = p_[face.v[1]] - center_,
+               c = p_[face.v[2]] - center_;
     const Vec3 n = area_vector(a, b, c);
     const double len = n.norm();
     if (!(len > 0)) return false;
@@ -166,7 +177,7 @@ class Hull {
       HullFace face;
       face.v = {s[t[0]], s[t[1]], s[t[2]]};
       if (!below) std::swap(face.v[1], face.v[2]);
-      set_plane(face);
+      if (!set_plane(face)) throw std::invalid_argument("convex_hull: points are coplanar");
       faces_.push_back(face);
     }
     // adjacency of the tetrahedron: the face running an edge the other way
@@ -203,10 +214,14 @@ class Hull {
     if (target >= 0) faces_[target].outside.push_back(q);
   }
 
+  // How hard a new cap is checked: bends scaled by their lever arm, bends against the plain
+  // tolerance, or not at all.
+  enum class Checks { strict, plain, none };
+
   struct HorizonEdge {
-    int a, b;     // runs a -> b on the visible face being removed
-    int face;     // the invisible face across
-    int slot;     // edge index of b -> a in that face
+    int a, b;  // runs a -> b on the visible face being removed
+    int face;  // the invisible face across
+    int slot;  // edge index of b -> a in that face
   };
 
   // Horizon of the marked (visible) faces: edges from a visible to an invisible face, checked to
@@ -247,14 +262,20 @@ class Hull {
 
   // Adds the apex, trying first to treat faces it is coplanar with (within the tolerance) as
   // visible, which merges flat regions and avoids sliver faces whose planes tilt badly, then
-  // only the faces it is clearly above. A point for which neither gives a convex cap (possible
-  // only for near-degenerate input) is dropped and the hull left unchanged.
+  // only the faces it is clearly above.
   void add_point(int apex, int seed, std::deque<int>& work) {
-    if (try_add(apex, seed, -eps_, work)) return;
-    try_add(apex, seed, eps_, work);
+    // strict bend checks keep long thin hulls tight; near-degenerate input may need plain ones
+    for (const Checks checks : {Checks::strict, Checks::plain}) {
+      if (try_add(apex, seed, -eps_, checks, work) || try_add(apex, seed, eps_, checks, work)) {
+        return;
+      }
+    }
+    // last resort, so no clearly outside point is lost: any simple cap, convex or not (a
+    // concavity beyond the convexity tolerance then shows up in make_closed_mesh)
+    try_add(apex, seed, 0, Checks::none, work);
   }
 
-  bool try_add(int apex, int seed, double threshold, std::deque<int>& work) {
+  bool try_add(int apex, int seed, double threshold, Checks checks, std::deque<int>& work) {
     const int stamp = ++stamp_;
     // visible faces: connected to the seed, apex above by more than the threshold
     std::vector<int> visible{seed};
@@ -287,11 +308,12 @@ class Hull {
         created.push_back(std::move(face));
       }
       int grow_face = -1, hide_vertex = -1;
-      for (std::size_t h = 0; ok && h < horizon.size(); ++h) {
+      for (std::size_t h = 0; ok && checks != Checks::none && h < horizon.size(); ++h) {
         const auto& e = horizon[h];
-        // a sliver: one vertex near the line of the longest edge. The apex near a horizon vertex
-        // is a near-duplicate, better left out; the apex near the horizon edge means the old
-        // face beside it is seen edge-on; a horizon vertex near the line to the apex is hidden.
+        // slivers first: one vertex near the line of the longest edge. The apex near a horizon
+        // vertex is a near-duplicate, better left out; the apex near the horizon edge means the
+        // old face beside it is seen edge-on; a horizon vertex near the line to the apex is
+        // hidden (it lies between the apex and the other end).
         const Vec3 &pa = p_[e.a], &pb = p_[e.b], &pc = p_[apex];
         const double ab = (pb - pa).norm(), bc = (pc - pb).norm(), ca = (pa - pc).norm();
         const double twice_area = area_vector(pa, pb, pc).norm();
@@ -305,16 +327,25 @@ class Hull {
           }
           break;
         }
+      }
+      // then bends (a sliver's plane is unreliable, so slivers are resolved first)
+      for (std::size_t h = 0;
+           ok && checks != Checks::none && grow_face < 0 && hide_vertex < 0 && h < horizon.size();
+           ++h) {
+        const auto& e = horizon[h];
         // the edge with the old face across: bent the wrong way either side means that face
         // should have been visible
         const int far_old = faces_[e.face].v[(e.slot + 2) % 3];
-        if (bent(created[h], e.a, e.b, far_old) || bent(faces_[e.face], e.a, e.b, apex)) {
+        if (bent(created[h], e.a, e.b, far_old, checks) ||
+            bent(faces_[e.face], e.a, e.b, apex, checks)) {
           grow_face = e.face;
           break;
         }
-        // the edge b -> apex with the next new face: bent the wrong way means b is reflex
+        // the edge b -> apex with the next new face: bent the wrong way means b is reflex, so
+        // the apex hides it (if that cuts off too much, b comes back as an outside point)
         const std::size_t next = static_cast<std::size_t>(start_[e.b]);
-        if (bent(created[h], e.b, apex, horizon[next].b) || bent(created[next], e.b, apex, e.a)) {
+        if (bent(created[h], e.b, apex, horizon[next].b, checks) ||
+            bent(created[next], e.b, apex, e.a, checks)) {
           hide_vertex = e.b;
           break;
         }
@@ -380,9 +411,11 @@ class Hull {
   }
 
   // Whether vertex `far` of a neighbour sharing edge (a, b) with `face` lies above the face's
-  // plane by more than the tolerance scaled by its distance from the edge over the diagonal:
-  // that bounds the bend angle, so vertices far along a long thin hull stay inside it too.
-  bool bent(const HullFace& face, int a, int b, int far) const {
+  // plane by more than the tolerance. Strict: the tolerance is scaled by the vertex's distance
+  // from the edge over the diagonal, which bounds the bend angle, so vertices far along a long
+  // thin hull stay inside it too.
+  bool bent(const HullFace& face, int a, int b, int far, Checks checks) const {
+    if (checks != Checks::strict) return height(face, far) > eps_;
     const Vec3 edge = (p_[b] - p_[a]).normalized();
     const double arm = edge.cross(p_[far] - p_[a]).norm();
     return height(face, far) > eps_ * std::max(arm / diag_, kMinBend);
@@ -395,15 +428,15 @@ class Hull {
 
   const std::vector<Vec3>& p_;
   std::vector<HullFace> faces_;
-  std::vector<int> mark_;         // visit stamp per face
+  std::vector<int> mark_;  // visit stamp per face
   int stamp_ = 0;
   std::vector<int> start_, end_;  // per point: horizon edge starting / ending there, or -1
   std::vector<int> seen_;         // per point: the last apex whose removed faces it was on
   std::vector<int> requeued_;     // per point: how often it was handed back after removal
   double eps_ = 0;
   double diag_ = 0;
-  Vec3 center_ = Vec3::Zero();    // planes are stored relative to the box centre (precision)
-  Vec3 inner_ = Vec3::Zero();     // centroid of the first tetrahedron: strictly inside
+  Vec3 center_ = Vec3::Zero();  // planes are stored relative to the box centre (precision)
+  Vec3 inner_ = Vec3::Zero();   // centroid of the first tetrahedron: strictly inside
 };
 
 }  // namespace

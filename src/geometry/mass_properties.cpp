@@ -1,8 +1,7 @@
 /// Volume, centroid and inertia tensor of a homogeneous closed triangle mesh (physics.md §7).
+#include <Eigen/Eigenvalues>
 #include <cmath>
 #include <stdexcept>
-
-#include <Eigen/Eigenvalues>
 
 #include "rigid/geometry/polyhedron.hpp"
 
@@ -11,8 +10,8 @@ namespace {
 
 struct Moments {
   double volume = 0;
-  Vec3 first = Vec3::Zero();       // integral of x dV, relative to the origin used
-  Mat3 second = Mat3::Zero();      // covariance: integral of x x^T dV, relative to the origin
+  Vec3 first = Vec3::Zero();   // integral of x dV, relative to the origin used
+  Mat3 second = Mat3::Zero();  // covariance: integral of x x^T dV, relative to the origin
 };
 
 // Blow & Binstock: one signed tetrahedron (origin, a, b, c) per outward triangle (physics.md §7).
@@ -41,7 +40,8 @@ MassProperties mass_properties(const ClosedMesh& mesh, double density) {
   const auto nv = static_cast<long long>(mesh.vertices.size());
   for (const auto& t : mesh.triangles) {
     for (int v : t) {
-      if (v < 0 || v >= nv) throw std::invalid_argument("mass_properties: vertex index out of range");
+      if (v < 0 || v >= nv)
+        throw std::invalid_argument("mass_properties: vertex index out of range");
     }
   }
   if (mesh.triangles.empty()) throw std::invalid_argument("mass_properties: mesh has no triangles");

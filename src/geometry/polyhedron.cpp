@@ -1,12 +1,12 @@
 /// Checked mesh + mass properties -> convex block in its principal body frame, with planar faces.
+#include "rigid/geometry/polyhedron.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <map>
 #include <stdexcept>
 #include <vector>
-
-#include "rigid/geometry/polyhedron.hpp"
 
 namespace rigid::geometry {
 namespace {
@@ -20,7 +20,9 @@ Vec3 area_vector(const Vec3& a, const Vec3& b, const Vec3& c) {
 }
 
 // Angle between unit vectors; atan2 keeps it accurate near zero, where acos loses digits.
-double angle_between(const Vec3& u, const Vec3& v) { return std::atan2(u.cross(v).norm(), u.dot(v)); }
+double angle_between(const Vec3& u, const Vec3& v) {
+  return std::atan2(u.cross(v).norm(), u.dot(v));
+}
 
 // Boundary loop of a set of triangles (directed edges whose twin lies outside the set), starting
 // at its smallest vertex. Empty when the boundary is not one simple loop (a pinch or a hole).

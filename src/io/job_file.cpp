@@ -250,7 +250,11 @@ scenario::Job load_job(const std::string& path) {
 
   // simulation settings
   if (const auto* run = root["run"].as_table()) {
-    reject_unknown(*run, {"duration_s", "free_time_s", "dt_s", "safety", "integrator"}, path, "[run]");
+    reject_unknown(*run, {"model", "duration_s", "free_time_s", "dt_s", "safety", "integrator"}, path, "[run]");
+    job.model = (*run)["model"].value_or(std::string("dem3d"));
+    if (job.model != "dem3d" && job.model != "rocking2d") {
+      throw InputError(path, line_of(*run), "model must be \"dem3d\" or \"rocking2d\", not \"" + job.model + "\"");
+    }
     job.run.duration = optional_number(*run, "duration_s", 0.0, path);
     job.run.free_time = optional_number(*run, "free_time_s", job.run.free_time, path);
     job.run.step.dt = optional_number(*run, "dt_s", 0.0, path);

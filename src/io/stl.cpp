@@ -44,7 +44,9 @@ bool is_control(char c) {
 bool iequals(std::string_view a, std::string_view b) {
   if (a.size() != b.size()) return false;
   for (std::size_t i = 0; i < a.size(); ++i) {
-    const auto lower = [](char c) { return c >= 'A' && c <= 'Z' ? static_cast<char>(c - 'A' + 'a') : c; };
+    const auto lower = [](char c) {
+      return c >= 'A' && c <= 'Z' ? static_cast<char>(c - 'A' + 'a') : c;
+    };
     if (lower(a[i]) != lower(b[i])) return false;
   }
   return true;
@@ -95,7 +97,8 @@ class Lexer {
  private:
   void skip_space() {
     while (pos_ < s_.size() && is_space(s_[pos_])) {
-      if (s_[pos_] == '\n' || (s_[pos_] == '\r' && (pos_ + 1 == s_.size() || s_[pos_ + 1] != '\n'))) {
+      if (s_[pos_] == '\n' ||
+          (s_[pos_] == '\r' && (pos_ + 1 == s_.size() || s_[pos_ + 1] != '\n'))) {
         ++line_;
       }
       ++pos_;
@@ -112,7 +115,8 @@ enum class NumberError { none, malformed, out_of_range };
 
 NumberError parse_double(std::string_view token, double& value) {
   // from_chars rejects a leading '+', which some writers emit
-  if (token.size() > 1 && token[0] == '+' && token[1] != '-' && token[1] != '+') token.remove_prefix(1);
+  if (token.size() > 1 && token[0] == '+' && token[1] != '-' && token[1] != '+')
+    token.remove_prefix(1);
   const char* end = token.data() + token.size();
   const auto [ptr, ec] = std::from_chars(token.data(), end, value, std::chars_format::general);
   if (ec == std::errc::result_out_of_range) return NumberError::out_of_range;
@@ -156,7 +160,8 @@ class AsciiParser {
       t = lx_.next();
       if (t.text.empty()) break;
       if (!iequals(t.text, "solid")) {
-        fail(name_, t.line, "expected 'solid' or end of file after 'endsolid', found " + quote(t.text));
+        fail(name_, t.line,
+             "expected 'solid' or end of file after 'endsolid', found " + quote(t.text));
       }
     }
     if (soup.empty()) fail(name_, 0, "no facets");
@@ -184,8 +189,9 @@ class AsciiParser {
     double x = 0;
     switch (parse_double(t.text, x)) {
       case NumberError::malformed:
-        fail(name_, t.line, std::string("malformed number ") + quote(t.text) +
-                                (vertex ? " in vertex" : " in facet normal"));
+        fail(name_, t.line,
+             std::string("malformed number ") + quote(t.text) +
+                 (vertex ? " in vertex" : " in facet normal"));
       case NumberError::out_of_range:
         fail(name_, t.line, "number " + quote(t.text) + " is out of range");
       case NumberError::none:
@@ -207,8 +213,9 @@ class AsciiParser {
       t = expect_token("'outer'");
     }
     if (!iequals(t.text, "outer")) {
-      fail(name_, t.line, std::string(has_normal ? "expected 'outer'" : "expected 'normal' or 'outer'") +
-                              ", found " + quote(t.text));
+      fail(name_, t.line,
+           std::string(has_normal ? "expected 'outer'" : "expected 'normal' or 'outer'") +
+               ", found " + quote(t.text));
     }
     expect("loop");
     Triangle tri;
@@ -218,14 +225,16 @@ class AsciiParser {
       if (iequals(v.text, "endloop")) {
         fail(name_, v.line, "facet has " + std::to_string(i) + " vertices; a facet needs 3");
       }
-      if (!iequals(v.text, "vertex")) fail(name_, v.line, "expected 'vertex', found " + quote(v.text));
+      if (!iequals(v.text, "vertex"))
+        fail(name_, v.line, "expected 'vertex', found " + quote(v.text));
       for (int k = 0; k < 3; ++k) (*corner[i])[k] = number(true);
     }
     const Token e = expect_token("'endloop'");
     if (iequals(e.text, "vertex")) {
       fail(name_, e.line, "facet has more than 3 vertices; only triangles are supported");
     }
-    if (!iequals(e.text, "endloop")) fail(name_, e.line, "expected 'endloop', found " + quote(e.text));
+    if (!iequals(e.text, "endloop"))
+      fail(name_, e.line, "expected 'endloop', found " + quote(e.text));
     expect("endfacet");
     return tri;
   }
@@ -306,18 +315,19 @@ geometry::TriangleSoup read_stl_from_memory(std::string_view bytes, const std::s
     const std::uint64_t expected = kHeaderBytes + kFacetBytes * n;
     if (expected == size) return parse_binary(bytes, name);
     if (!text) {
-      fail(name, 0, "binary STL is truncated or corrupt: " + std::to_string(size) +
-                        " bytes, but its header declares " + std::to_string(n) +
-                        " facets (84 + 50 * " + std::to_string(n) + " = " +
-                        std::to_string(expected) + " bytes)");
+      fail(name, 0,
+           "binary STL is truncated or corrupt: " + std::to_string(size) +
+               " bytes, but its header declares " + std::to_string(n) + " facets (84 + 50 * " +
+               std::to_string(n) + " = " + std::to_string(expected) + " bytes)");
     }
   }
   if (text) {
     if (first.text.empty()) fail(name, 0, "file contains only whitespace");
     fail(name, first.line, "not an STL file: expected 'solid', found " + quote(first.text));
   }
-  fail(name, 0, "not an STL file: " + std::to_string(size) +
-                    " bytes is too short for binary STL (84 bytes at least) and it is not text");
+  fail(name, 0,
+       "not an STL file: " + std::to_string(size) +
+           " bytes is too short for binary STL (84 bytes at least) and it is not text");
 }
 
 geometry::TriangleSoup read_stl(const std::string& path) {

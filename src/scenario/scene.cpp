@@ -15,6 +15,15 @@ Vec3 GroundDrive::at(double t) const {
   return (1 - f) * velocity[k] + f * velocity[k + 1];
 }
 
+GroundDrive ground_drive(const motion::GroundMotion& m) {
+  const motion::GroundVelocity v = motion::ground_velocity(m);
+  GroundDrive drive;
+  drive.dt = v.dt;
+  drive.velocity.resize(v.vx.size());
+  for (std::size_t i = 0; i < v.vx.size(); ++i) drive.velocity[i] = Vec3(v.vx[i], v.vy[i], v.vz[i]);
+  return drive;
+}
+
 double tilt(const Quat& initial, const Quat& current) {
   // initial vertical axis in body coordinates, carried to the world by the current pose
   const Vec3 axis = current * (initial.conjugate() * Vec3::UnitZ());
@@ -45,12 +54,15 @@ RunOutcome run(const Scene& scene, const GroundDrive& ground, const RunSettings&
   const long steps = static_cast<long>(std::ceil(duration / dt - 1e-9));
   const auto& defs = scene.bodies;
   double rest_since = -1;
+  const long observe_every = std::max(1L, std::lround(settings.observe_interval / dt));
+  if (settings.observer) settings.observer(world);
   for (long k = 0; k < steps; ++k) {
     const double t0 = double(k) * dt;
     const double t1 = double(k + 1) * dt;
     world.step(dt, ground.at(t0), ground.at(t1));
     out.steps = k + 1;
     out.simulated = t1;
+    if (settings.observer && (k + 1) % observe_every == 0) settings.observer(world);
     out.max_overlap = std::max(out.max_overlap, world.max_overlap());
 
     // the lowest point of the pedestals, for the study's failure rule
@@ -93,6 +105,7 @@ RunOutcome run(const Scene& scene, const GroundDrive& ground, const RunSettings&
   for (std::size_t i = 0; i < defs.size(); ++i) {
     if (!defs[i].fixed) out.max_slip = std::max(out.max_slip, world.slip()[i]);
   }
+  if (settings.observer && out.steps % observe_every != 0) settings.observer(world);
   return out;
 }
 

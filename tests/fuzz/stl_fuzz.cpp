@@ -59,13 +59,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     } catch (const rigid::InputError&) {
       std::abort();
     }
-    // every input point inside the hull, to a small fraction of its size
+    // every input point inside the hull, to the convexity tolerance (1e-6 of its size)
     rigid::Vec3 lo = points[0], hi = points[0];
     for (const auto& p : points) {
       lo = lo.cwiseMin(p);
       hi = hi.cwiseMax(p);
     }
-    const double tol = 1e-7 * (hi - lo).norm();
+    const double tol = 1e-6 * (hi - lo).norm();
     for (const auto& t : hull) {
       const rigid::Vec3 n = (t.b - t.a).cross(t.c - t.a).normalized();
       for (const auto& p : points) {

@@ -149,7 +149,7 @@ TEST(ConvexHull, NearlyCoplanarClusterStaysAValidMesh) {
   expect_contains_all(hull, pts, 1e-7);
 }
 
-TEST(ConvexHull, RejectsTooFewCollinearCoplanarOrNonFinitePoints) {
+TEST(ConvexHull, RejectsTooFewCollinearCoplanarNonFiniteOrExtremePoints) {
   EXPECT_THROW(convex_hull({}), std::invalid_argument);
   EXPECT_THROW(convex_hull({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)}), std::invalid_argument);
   std::vector<Vec3> same(10, Vec3(1, 2, 3));
@@ -161,6 +161,14 @@ TEST(ConvexHull, RejectsTooFewCollinearCoplanarOrNonFinitePoints) {
   }
   EXPECT_THROW(convex_hull(line), std::invalid_argument);
   EXPECT_THROW(convex_hull(plane), std::invalid_argument);
+  // scales whose coordinate products would overflow or underflow
+  std::vector<Vec3> huge = ball(8, 20), tiny = ball(8, 20), small = ball(8, 20);
+  for (Vec3& p : huge) p *= 1e150;
+  for (Vec3& p : tiny) p *= 1e-150;
+  for (Vec3& p : small) p *= 1e-60;
+  EXPECT_THROW(convex_hull(huge), std::invalid_argument);
+  EXPECT_THROW(convex_hull(tiny), std::invalid_argument);
+  EXPECT_EQ(convex_hull(small).size(), convex_hull(ball(8, 20)).size());
   std::vector<Vec3> bad = ball(7, 10);
   bad[4].y() = std::numeric_limits<double>::quiet_NaN();
   EXPECT_THROW(convex_hull(bad), std::invalid_argument);

@@ -340,7 +340,8 @@ TEST(StlRobustness, FuzzRegressionInputsFailCleanly) {
 
 TEST(StlRobustness, HullsOfFuzzFoundPointCloudsAreValidTightBlocks) {
   // near-degenerate clouds (needles, nearly coplanar and collinear points) that once gave a
-  // concave, sliver or leaky hull: now a valid block holding every point to 1e-7 of its size
+  // concave, sliver or leaky hull: now a valid block holding every point to within the
+  // convexity tolerance (1e-6 of its size; generic clouds are held to 1e-8)
   int count = 0;
   for (const auto& entry : fs::directory_iterator(kData + "fuzz_regressions")) {
     const std::string name = entry.path().filename().string();
@@ -357,7 +358,7 @@ TEST(StlRobustness, HullsOfFuzzFoundPointCloudsAreValidTightBlocks) {
       lo = lo.cwiseMin(p);
       hi = hi.cwiseMax(p);
     }
-    const double tol = 1e-7 * (hi - lo).norm();
+    const double tol = 1e-6 * (hi - lo).norm();
     double worst = 0;
     for (const auto& t : hull) {
       const Vec3 n = (t.b - t.a).cross(t.c - t.a).normalized();
@@ -365,7 +366,7 @@ TEST(StlRobustness, HullsOfFuzzFoundPointCloudsAreValidTightBlocks) {
     }
     EXPECT_LE(worst, tol);
   }
-  EXPECT_GE(count, 5);
+  EXPECT_GE(count, 9);
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 
 #include "rigid/campaign/plan.hpp"
 #include "rigid/motion/ground_motion.hpp"
+#include "rigid/scenario/rocking2d.hpp"
 #include "rigid/scenario/job.hpp"
 
 namespace rigid::campaign {
@@ -26,6 +27,7 @@ class TaskRunner {
  private:
   const scenario::Job& job_;
   std::vector<scenario::Scene> scenes_;
+  std::vector<rocking::RockingBlock> rocking_;  // per object, for model = "rocking2d"
   std::vector<motion::GroundMotion> windowed_;  // per record, window applied
   std::vector<double> unit_factor_;             // per record: factor for a target of 1 g
   std::vector<io::RecordMeta> meta_;

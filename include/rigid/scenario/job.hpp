@@ -42,6 +42,9 @@ struct Job {
   /// rotation (the study's rule); 0 disables it.
   int stop_after = 10;
   RunSettings run;                ///< physics and accuracy settings of every simulation
+  /// Which model simulates: "dem3d" (the engine) or "rocking2d" (the 2D Housner reference,
+  /// driven by the x component of the rotated motion; scenes must admit it).
+  std::string model = "dem3d";
   double checkpoint_interval = 30;  ///< unit: s
   double grace = 30;              ///< time in-flight tasks get after a stop signal (unit: s)
 };

@@ -1,11 +1,13 @@
 #pragma once
 /// A scene (blocks, contact law, failure rule) and one shaking run of it: the unit of work of a
 /// campaign. Depends only on its inputs, so a run is reproducible bit for bit.
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "rigid/dynamics/world.hpp"
+#include "rigid/motion/ground_motion.hpp"
 
 namespace rigid::scenario {
 
@@ -42,6 +44,9 @@ struct GroundDrive {
   double duration() const { return velocity.empty() ? 0.0 : dt * double(velocity.size() - 1); }
 };
 
+/// The trapezoid-integrated ground velocity of a motion (absent components are zero).
+GroundDrive ground_drive(const motion::GroundMotion& m);
+
 /// Settings of one run.
 struct RunSettings {
   dynamics::StepSettings step;
@@ -54,6 +59,10 @@ struct RunSettings {
   /// At rest: every free block below these speeds (unit: m/s and rad/s).
   double rest_speed = 1e-3;
   double rest_angular_speed = 1e-3;
+  /// Optional observer (e.g. a trajectory writer): called with the world at t = 0, then every
+  /// observe_interval of simulated time, and once more when the run ends.
+  std::function<void(const dynamics::World&)> observer;
+  double observe_interval = 0.02;  ///< unit: s
 };
 
 /// What one run produced.
