@@ -13,7 +13,8 @@ jobs=${JOBS:-$(nproc)}
 packages=(build-essential cmake git pkg-config
   openmpi-bin libopenmpi-dev libeigen3-dev libhdf5-dev hdf5-tools libcli11-dev
   googletest libgtest-dev libtomlplusplus-dev libbenchmark-dev
-  python3 python3-numpy python3-h5py python3-matplotlib)
+  python3 python3-numpy python3-h5py python3-matplotlib
+  slurm-wlm munge)
 
 missing=()
 for p in "${packages[@]}"; do
@@ -22,8 +23,17 @@ done
 if ((${#missing[@]})); then
   sudo=""; [[ $(id -u) -ne 0 ]] && sudo="sudo"
   echo "setup: installing ${missing[*]}"
+  # no service may start during the install (munge's postinst would, on machines without systemd);
+  # the Slurm test brings up its own daemons (slurm/local-cluster.sh)
+  made_policy=0
+  if [[ ! -e /usr/sbin/policy-rc.d ]]; then
+    printf '#!/bin/sh\nexit 101\n' | $sudo tee /usr/sbin/policy-rc.d >/dev/null
+    $sudo chmod 755 /usr/sbin/policy-rc.d
+    made_policy=1
+  fi
   $sudo apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+  if ((made_policy)); then $sudo rm -f /usr/sbin/policy-rc.d; fi
 fi
 
 # Open MPI refuses root unless told (CI and containers run as root).

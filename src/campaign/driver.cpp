@@ -473,6 +473,15 @@ int run_campaign(int& argc, char**& argv, const CampaignOptions& options) {
   try {
     job = io::load_job(options.job);
     if (!options.output.empty()) job.output = options.output;
+    if (!options.model.empty()) {
+      if (options.model != "dem3d" && options.model != "rocking2d") {
+        throw InputError("", 0, "--model must be dem3d or rocking2d");
+      }
+      // the override is part of what the cube holds: a resume with another model is refused
+      job.model = options.model;
+      job.text += "\n# command line: --model " + options.model + "\n";
+      job.hash = io::text_hash(job.text);
+    }
     runner = std::make_unique<TaskRunner>(job);
   } catch (const InputError& e) {
     ok = 0;
