@@ -32,7 +32,7 @@ kills=0
 for attempt in $(seq 1 20); do
   setsid mpirun -np 2 "$rigid" campaign "$job" --out killed.h5 --progress none >> killed.log 2>&1 &
   pid=$!
-  delay=$(awk -v s="$RANDOM" 'BEGIN { srand(s); printf "%.2f", 0.3 + rand() * 0.8 }')
+  delay=$(awk -v s="$RANDOM" 'BEGIN { srand(s); printf "%.2f", 0.35 + rand() * 0.5 }')
   sleep "$delay"
   if kill -0 "$pid" 2> /dev/null; then
     kill -9 -- "-$pid" 2> /dev/null
@@ -45,6 +45,7 @@ for attempt in $(seq 1 20); do
   fi
 done
 echo "killed $kills times"
+check "killed at least twice" test "$kills" -ge 2
 timeout 300 mpirun -np 2 "$rigid" campaign "$job" --out killed.h5 --progress none >> killed.log 2>&1
 check "resumed campaign completes after $kills kills" test $? -eq 0
 check "killed and resumed equals uninterrupted" $compare ref.h5 killed.h5
