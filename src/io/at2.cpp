@@ -389,7 +389,11 @@ SetFiles resolve_set(const std::string& spec_in, const std::string& base_dir) {
   const std::string spec(trim(spec_in));
   if (spec.empty()) fail("", 0, "empty motion set");
   SetFiles s;
-  if (spec.find(',') != std::string::npos) {
+  // a single role-keyed file (x=FILE) is a one-element list; other '=' belong to the path
+  const std::size_t eq0 = spec.find('=');
+  const std::string key0 = eq0 == std::string::npos ? "" : upper(trim(std::string_view(spec).substr(0, eq0)));
+  const bool single_role = key0 == "X" || key0 == "H1" || key0 == "Y" || key0 == "H2" || key0 == "Z" || key0 == "V";
+  if (spec.find(',') != std::string::npos || single_role) {
     std::vector<std::string> parts;
     std::size_t start = 0;
     while (true) {

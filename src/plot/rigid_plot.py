@@ -1,0 +1,1120 @@
+#!/usr/bin/python3
+"""Fragility maps, per-record curves, a probit fit, 3D-vs-2D difference maps and scenario tables
+from Rigid's HDF5 fragility cubes (README "The fragility cube (HDF5)"; physics.md sections 1, 11).
+
+    rigid_plot.py maps  CUBE --out DIR [--object NAME]... [--alpha [NAME=]RAD]... [--p [NAME=]RAD_S]...
+    rigid_plot.py diff  CUBE_A CUBE_B --out DIR [--label-a 3D] [--label-b 2D] [--object NAME]...
+    rigid_plot.py table CUBE [CUBE...] --out FILE.md [--scale G] [--layout auto|objects|records]
+
+`rigid plot ARGS...` runs this file with Debian's /usr/bin/python3 (python3-numpy, python3-h5py,
+python3-matplotlib); no scipy: the normal CDF comes from math.erfc and the maximum-likelihood fit
+is our own damped Newton iteration.
+
+The fit ("this project's fit", NOT the coefficients of Purvance et al. 2008, which we do not have):
+
+    P(overturn) = Phi((u - mu(x)) / sigma(x)),   u = ln(PGA / (g tan alpha)),
+                                                 x = ln((PGV/PGA) p / alpha),
+    mu(x) = m0 + m1 x (+ m2 x^2 ...),  ln sigma(x) = s0 (+ s1 x ...)   (--mu-degree, --sigma-degree)
+
+fitted by maximum likelihood to the binomial outcomes of every known cell (record, scale,
+rotation): overturned and inferred count as overturned, survived as survived, not-run and failed
+cells are left out (the same rule as the cube's `probability`). PGA is the cell's scale (target
+GMRotI50 PGA, g), PGV/PGA the record's `pgv_pga_s` (scaling does not change it).
+alpha (rad) and p (rad/s) come from the command line (--alpha, --p; one value for all objects or
+NAME=VALUE per object), else from the attributes `alpha_rad` / `p_rad_s` of the object group, else
+of the root group; without alpha u = ln(PGA / g) and without alpha or p x = ln(PGV/PGA / 1 s).
+The normalisation only shifts the coefficients (u and x move by constants, and mu is a polynomial),
+so the fitted probabilities and the 1/50/99 % contours are the same either way; it matters only
+when comparing coefficients between blocks. The k % contour is the curve P = k/100, i.e.
+PGA = g tan(alpha) exp(mu(x) + sigma(x) Phi^-1(k/100)); it is drawn only over the records'
+PGV/PGA range (polynomials are not extrapolated).
+
+Exit status: 0 done, 2 bad input (missing file, no such object, incompatible cubes), 1 internal.
+"""
+import argparse
+import csv
+import json
+import math
+import os
+import re
+import sys
+
+try:
+    import h5py
+    import numpy as np
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib import colors as mcolors
+    from matplotlib import patches as mpatches
+    from matplotlib import lines as mlines
+    from matplotlib import patheffects as pe
+    from matplotlib import ticker as mticker
+except ImportError as e:  # pragma: no cover
+    sys.stderr.write(f"rigid_plot: error: {e}; install python3-numpy python3-h5py python3-matplotlib "
+                     f"and run with /usr/bin/python3 (this is {sys.executable})\n")
+    sys.exit(2)
+
+DPI = 120
+NOT_RUN, SURVIVED, OVERTURNED, INFERRED, FAILED = 0, 1, 2, 3, 4
+FIT_LABEL = "this project's probit fit (not Purvance et al. 2008)"
+CONTOUR_LEVELS = (1, 50, 99)
+CONTOUR_STYLE = {1: dict(ls=(0, (1.2, 1.6)), lw=2.0), 50: dict(ls="-", lw=2.2),
+                 99: dict(ls=(0, (5, 2.5)), lw=2.0)}
+# The study's reported mismatch (2D model minus Rigid 3D, mean and sd over cells; physics.md 11).
+STUDY_MISMATCH_2D_MINUS_3D = {0.1: (0.03, 0.12), 0.2: (0.02, 0.08), 0.3: (0.02, 0.10), 0.4: (0.03, 0.14)}
+
+
+class InputError(Exception):
+    pass
+
+
+# --------------------------------------------------------------------------------------------
+# Normal distribution without scipy
+
+_SQRT2 = math.sqrt(2.0)
+_LOG_SQRT_2PI = 0.5 * math.log(2.0 * math.pi)
+_erfc = np.frompyfunc(math.erfc, 1, 1)
+
+
+def norm_cdf(z):
+    z = np.asarray(z, dtype=float)
+    return 0.5 * np.asarray(_erfc(-z / _SQRT2), dtype=float)
+
+
+def norm_logcdf(z):
+    """ln Phi(z), accurate in the far lower tail (asymptotic series below z = -30)."""
+    z = np.atleast_1d(np.asarray(z, dtype=float))
+    out = np.empty_like(z)
+    far = z < -30.0
+    near = ~far
+    out[near] = np.log(norm_cdf(z[near]))
+    zf = z[far]
+    out[far] = -0.5 * zf * zf - _LOG_SQRT_2PI - np.log(-zf) + np.log1p(-1.0 / zf**2 + 3.0 / zf**4 - 15.0 / zf**6 + 105.0 / zf**8)
+    return out
+
+
+def norm_ppf(p):
+    """Phi^-1(p) for 0 < p < 1, by bisection on math.erfc (to ~1e-15)."""
+    if not 0.0 < p < 1.0:
+        raise ValueError("norm_ppf needs 0 < p < 1")
+    lo, hi = -40.0, 40.0
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        if 0.5 * math.erfc(-mid / _SQRT2) < p:
+            lo = mid
+        else:
+            hi = mid
+        if hi - lo < 1e-15:
+            break
+    return 0.5 * (lo + hi)
+
+
+def mills(z):
+    """phi(z) / Phi(z) (the inverse Mills ratio of -z), stable for very negative z."""
+    z = np.asarray(z, dtype=float)
+    logphi = -0.5 * z * z - _LOG_SQRT_2PI
+    return np.exp(logphi - norm_logcdf(z))
+
+
+# --------------------------------------------------------------------------------------------
+# Maximum-likelihood probit fit with a heteroscedastic scale
+
+
+def _design(x, degree):
+    return np.vstack([x**j for j in range(degree + 1)]).T  # [n, degree+1]
+
+
+def probit_loglik(theta, u, x, k, n, mu_degree, sigma_degree):
+    dm = mu_degree + 1
+    mu = _design(x, mu_degree) @ theta[:dm]
+    eta = _design(x, sigma_degree) @ theta[dm:]
+    z = (u - mu) * np.exp(-eta)
+    return float(np.sum(k * norm_logcdf(z) + (n - k) * norm_logcdf(-z)))
+
+
+def _probit_derivatives(theta, u, x, k, n, mu_degree, sigma_degree):
+    """Log-likelihood, gradient and Hessian of the binomial probit in theta = (m..., s...)."""
+    dm = mu_degree + 1
+    Xm = _design(x, mu_degree)
+    Xs = _design(x, sigma_degree)
+    mu = Xm @ theta[:dm]
+    inv_sigma = np.exp(-(Xs @ theta[dm:]))
+    z = (u - mu) * inv_sigma
+    ll = float(np.sum(k * norm_logcdf(z) + (n - k) * norm_logcdf(-z)))
+    lp, lm = mills(z), mills(-z)
+    g1 = k * lp - (n - k) * lm                                   # d ll / dz
+    g2 = -k * lp * (z + lp) - (n - k) * lm * (-z + lm)           # d2 ll / dz2 (< 0)
+    J = np.hstack([-Xm * inv_sigma[:, None], -Xs * z[:, None]])  # dz / dtheta
+    grad = J.T @ g1
+    H = (J * g2[:, None]).T @ J
+    # second derivatives of z: d2z/dm ds = x^j x^l / sigma, d2z/ds ds = z x^j x^l
+    cross = (Xm * (g1 * inv_sigma)[:, None]).T @ Xs
+    H[:dm, dm:] += cross
+    H[dm:, :dm] += cross.T
+    H[dm:, dm:] += (Xs * (g1 * z)[:, None]).T @ Xs
+    return ll, grad, H
+
+
+def fit_probit(u, x, k, n, mu_degree=1, sigma_degree=0, max_iter=300):
+    """Maximum-likelihood fit of P = Phi((u - mu(x)) / sigma(x)) to k successes out of n trials
+    at (u, x). Levenberg-damped Newton on the exact Hessian. Returns a dict (see maps' JSON)."""
+    u, x, k, n = (np.asarray(a, dtype=float) for a in (u, x, k, n))
+    dm, ds = mu_degree + 1, sigma_degree + 1
+    w = n / n.sum()
+    u0 = float(np.sum(w * u))
+    sd0 = max(float(np.sqrt(np.sum(w * (u - u0) ** 2))), 0.05)
+    theta = np.zeros(dm + ds)
+    theta[0] = u0
+    theta[dm] = math.log(sd0)
+    ll, grad, H = _probit_derivatives(theta, u, x, k, n, mu_degree, sigma_degree)
+    lam = 1e-3
+    converged = False
+    it = 0
+    for it in range(1, max_iter + 1):
+        A = -H
+        improved = False
+        for _ in range(60):
+            try:
+                step = np.linalg.solve(A + lam * np.diag(np.maximum(np.diag(A), 1e-12)) + lam * 1e-9 * np.eye(len(theta)), grad)
+            except np.linalg.LinAlgError:
+                lam *= 10.0
+                continue
+            cand = theta + step
+            ll_c = probit_loglik(cand, u, x, k, n, mu_degree, sigma_degree)
+            if np.isfinite(ll_c) and ll_c >= ll - 1e-12:
+                improved = True
+                break
+            lam *= 10.0
+        if not improved:
+            break
+        theta = cand
+        ll_old = ll
+        ll, grad, H = _probit_derivatives(theta, u, x, k, n, mu_degree, sigma_degree)
+        lam = max(lam / 10.0, 1e-12)
+        if abs(ll - ll_old) < 1e-11 * (1.0 + abs(ll)) and np.max(np.abs(step)) < 1e-7:
+            converged = True
+            break
+        if np.min(_design(x, sigma_degree) @ theta[dm:]) < math.log(1e-6):
+            break  # sigma collapsing: the outcomes are (quasi-)separated, no finite MLE
+    sigma_data = np.exp(_design(x, sigma_degree) @ theta[dm:])
+    separated = bool(np.min(sigma_data) < 1e-4) or not converged
+    se = [float("nan")] * len(theta)
+    try:
+        cov = np.linalg.inv(-H)
+        d = np.diag(cov)
+        if np.all(d > 0):
+            se = [float(v) for v in np.sqrt(d)]
+    except np.linalg.LinAlgError:
+        pass
+    # null model (constant probability) for a likelihood-ratio summary
+    pbar = float(k.sum() / n.sum())
+    ll0 = float(np.sum(k * math.log(pbar) + (n - k) * math.log(1 - pbar))) if 0 < pbar < 1 else 0.0
+    return {
+        "mu_coefficients": [float(v) for v in theta[:dm]],
+        "log_sigma_coefficients": [float(v) for v in theta[dm:]],
+        "mu_se": se[:dm],
+        "log_sigma_se": se[dm:],
+        "log_likelihood": ll,
+        "null_log_likelihood": ll0,
+        "iterations": it,
+        "converged": bool(converged),
+        "separated": separated,
+        "gradient_norm": float(np.max(np.abs(grad))),
+    }
+
+
+def fit_mu(fit, x):
+    return np.polyval(fit["mu_coefficients"][::-1], x)
+
+
+def fit_sigma(fit, x):
+    return np.exp(np.polyval(fit["log_sigma_coefficients"][::-1], x))
+
+
+# --------------------------------------------------------------------------------------------
+# Reading cubes
+
+
+def _strings(ds):
+    return [s for s in ds.asstr()[()]]
+
+
+class ObjectData:
+    def __init__(self, name, attrs, outcome, probability, fragility, count):
+        self.name = name
+        self.attrs = attrs
+        self.outcome = outcome          # [R, S, A] int8
+        self.probability = probability  # [R, S]
+        self.fragility = fragility      # [S, B]
+        self.count = count              # [S, B]
+
+
+class Cube:
+    """The parts of a cube the plots need, read once."""
+
+    def __init__(self, path):
+        if not os.path.isfile(path):
+            raise InputError(f"{path}: no such file")
+        try:
+            f = h5py.File(path, "r")
+        except OSError as e:
+            raise InputError(f"{path}: not an HDF5 file ({e})")
+        self.path = path
+        self.label = os.path.splitext(os.path.basename(path))[0]
+        with f:
+            try:
+                self.records = _strings(f["axes/record"])
+                self.scales = f["axes/scale_g"][()].astype(float)
+                self.edges = f["axes/pgv_pga_edges_s"][()].astype(float)
+                self.pgv_pga = f["records/pgv_pga_s"][()].astype(float)
+                rec = f["records"]
+                R = len(self.records)
+                self.windows = list(zip(_strings(rec["source"]) if "source" in rec else [""] * R,
+                                        rec["start_s"][()] if "start_s" in rec else [0.0] * R,
+                                        rec["end_s"][()] if "end_s" in rec else [math.inf] * R))
+                self.root_attrs = {k: f.attrs[k] for k in f.attrs}
+                groups = f["objects"]
+                items = []
+                for name in groups:
+                    g = groups[name]
+                    attrs = {a: g.attrs[a] for a in g.attrs}
+                    outcome = g["outcome"][()].astype(np.int8)
+                    prob = g["probability"][()] if "probability" in g else probability_from_outcome(outcome)
+                    if "fragility" in g and "fragility_count" in g:
+                        frag, cnt = g["fragility"][()], g["fragility_count"][()]
+                    else:
+                        frag, cnt = fragility_from_probability(prob, self.pgv_pga, self.edges)
+                    items.append((int(attrs.get("index", len(items))),
+                                  ObjectData(name, attrs, outcome, np.asarray(prob, float),
+                                             np.asarray(frag, float), np.asarray(cnt, int))))
+            except KeyError as e:
+                raise InputError(f"{path}: not a Rigid fragility cube (missing {e})")
+        items.sort(key=lambda t: t[0])
+        self.objects = [o for _, o in items]
+        R, S, B = len(self.records), len(self.scales), len(self.edges) - 1
+        for o in self.objects:
+            if o.outcome.shape[:2] != (R, S) or o.fragility.shape != (S, B):
+                raise InputError(f"{path}: object {o.name}: datasets do not match the axes")
+
+    def object(self, name):
+        for o in self.objects:
+            if o.name == name:
+                return o
+        raise InputError(f"{self.path}: no object {name!r} (objects: {', '.join(o.name for o in self.objects)})")
+
+    def select(self, names):
+        return [self.object(n) for n in names] if names else list(self.objects)
+
+    def bin_of_records(self):
+        return np.array([pgv_pga_bin(self.edges, v) for v in self.pgv_pga], dtype=int)
+
+
+def pgv_pga_bin(edges, v):
+    """Bin i holds edges[i] <= v < edges[i+1]; the last bin also its upper edge; -1 outside."""
+    if not np.isfinite(v) and not (v == math.inf and edges[-1] == math.inf):
+        return -1
+    B = len(edges) - 1
+    for i in range(B):
+        if edges[i] <= v < edges[i + 1] or (i == B - 1 and v == edges[-1]):
+            return i
+    return -1
+
+
+def probability_from_outcome(outcome):
+    over = np.sum((outcome == OVERTURNED) | (outcome == INFERRED), axis=2)
+    known = over + np.sum(outcome == SURVIVED, axis=2)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return np.where(known > 0, over / np.maximum(known, 1), np.nan)
+
+
+def fragility_from_probability(prob, pgv_pga, edges):
+    R, S = prob.shape
+    B = len(edges) - 1
+    total = np.zeros((S, B))
+    count = np.zeros((S, B), dtype=int)
+    for r in range(R):
+        b = pgv_pga_bin(edges, pgv_pga[r])
+        if b < 0:
+            continue
+        ok = np.isfinite(prob[r])
+        total[ok, b] += prob[r, ok]
+        count[ok, b] += 1
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return np.where(count > 0, total / np.maximum(count, 1), np.nan), count
+
+
+# --------------------------------------------------------------------------------------------
+# Block parameters and the fit of one object
+
+
+def parse_per_object(values, option):
+    """['0.2', 'rock_a=0.3'] -> (default or None, {name: value})."""
+    default, per = None, {}
+    for v in values or []:
+        if "=" in v:
+            name, _, num = v.rpartition("=")
+        else:
+            name, num = None, v
+        try:
+            val = float(num)
+        except ValueError:
+            raise InputError(f"{option} {v!r}: expected a number or NAME=NUMBER")
+        if not (val > 0 and math.isfinite(val)):
+            raise InputError(f"{option} {v!r}: must be positive")
+        if name is None:
+            default = val
+        else:
+            per[name] = val
+    return default, per
+
+
+def block_parameter(cube, obj, attr, cli):
+    default, per = cli
+    if obj.name in per:
+        return per[obj.name], "command line"
+    if default is not None:
+        return default, "command line"
+    for where, attrs in (("object attribute", obj.attrs), ("root attribute", cube.root_attrs)):
+        if attr in attrs:
+            try:
+                v = float(np.asarray(attrs[attr]).reshape(-1)[0])
+            except (TypeError, ValueError):
+                continue
+            if v > 0 and math.isfinite(v):
+                return v, f"{where} {attr}"
+    return None, "unknown"
+
+
+class Normalisation:
+    def __init__(self, alpha, alpha_src, p, p_src):
+        self.alpha, self.alpha_src, self.p, self.p_src = alpha, alpha_src, p, p_src
+        self.u_shift = -math.log(math.tan(alpha)) if alpha else 0.0          # u = ln(PGA_g) + u_shift
+        self.x_shift = math.log(p / alpha) if (alpha and p) else 0.0          # x = ln(PGV/PGA) + x_shift
+
+    def describe(self):
+        u = "ln(PGA / (g tan alpha))" if self.alpha else "ln(PGA / g)  (alpha unknown: not normalised)"
+        x = ("ln((PGV/PGA) p / alpha)" if (self.alpha and self.p)
+             else "ln(PGV/PGA / 1 s)  (alpha or p unknown: not normalised)")
+        return u, x
+
+    def pga_g(self, u):
+        return np.exp(np.asarray(u) - self.u_shift)
+
+    def x_of(self, pgv_pga):
+        return np.log(np.asarray(pgv_pga, float)) + self.x_shift
+
+
+def fit_object(cube, obj, norm, mu_degree, sigma_degree):
+    """Binomial rows (u, x, k, n) of one object and its fit; None fit if too little data."""
+    known = (obj.outcome == SURVIVED) | (obj.outcome == OVERTURNED) | (obj.outcome == INFERRED)
+    over = (obj.outcome == OVERTURNED) | (obj.outcome == INFERRED)
+    n = known.sum(axis=2).astype(float)          # [R, S]
+    k = over.sum(axis=2).astype(float)
+    R, S = n.shape
+    rec_ok = np.isfinite(cube.pgv_pga) & (cube.pgv_pga > 0)
+    rows = [(r, s) for r in range(R) for s in range(S) if n[r, s] > 0 and rec_ok[r] and cube.scales[s] > 0]
+    info = {"object": obj.name, "label": FIT_LABEL,
+            "model": "P = Phi((u - mu(x)) / sigma(x)), mu polynomial in x, ln sigma polynomial in x",
+            "u": norm.describe()[0], "x": norm.describe()[1],
+            "alpha_rad": norm.alpha, "alpha_source": norm.alpha_src,
+            "p_rad_s": norm.p, "p_source": norm.p_src,
+            "outcomes": "known cells (record, scale, rotation); overturned and inferred = 1, survived = 0",
+            "n_cells": int(sum(n[r, s] for r, s in rows)),
+            "n_overturned": int(sum(k[r, s] for r, s in rows)),
+            "n_records": int(len({r for r, _ in rows}))}
+    if not rows:
+        info["fit"] = None
+        info["reason"] = "no known cells"
+        return info, None
+    rr = np.array([r for r, _ in rows])
+    ss = np.array([s for _, s in rows])
+    u = np.log(cube.scales[ss]) + norm.u_shift
+    x = norm.x_of(cube.pgv_pga[rr])
+    kk, nn = k[rr, ss], n[rr, ss]
+    distinct_x = len(np.unique(np.round(x, 12)))
+    md = min(mu_degree, distinct_x - 1)
+    sd = min(sigma_degree, distinct_x - 1)
+    info["mu_degree"], info["sigma_degree"] = md, sd
+    if md < mu_degree or sd < sigma_degree:
+        info["degree_note"] = f"reduced to the {distinct_x} distinct PGV/PGA values"
+    n_par = md + sd + 2
+    if info["n_overturned"] < 2 or info["n_cells"] - info["n_overturned"] < 2 or info["n_cells"] < n_par + 3:
+        info["fit"] = None
+        info["reason"] = "too little data (needs >= 2 overturned, >= 2 survived, > parameters + 2 cells)"
+        return info, None
+    if n_par > distinct_x:
+        info["warning"] = (f"{n_par} parameters for {distinct_x} distinct PGV/PGA values: the fit interpolates "
+                           "between few records; lower --mu-degree/--sigma-degree")
+    fit = fit_probit(u, x, kk, nn, md, sd)
+    info["fit"] = fit
+    if fit["separated"]:
+        info["reason"] = ("no finite maximum-likelihood estimate: the outcomes are (quasi-)separated "
+                          "(sigma -> 0); contours not drawn")
+        return info, None
+    info["x_range"] = [float(x.min()), float(x.max())]
+    info["pgv_pga_range_s"] = [float(cube.pgv_pga[rr].min()), float(cube.pgv_pga[rr].max())]
+    # the contour PGA at each bin's median record PGV/PGA, for tables
+    bins = cube.bin_of_records()
+    table = []
+    for b in range(len(cube.edges) - 1):
+        sel = [r for r in set(rr.tolist()) if bins[r] == b]
+        if not sel:
+            continue
+        v = float(np.median(cube.pgv_pga[sel]))
+        row = {"bin": b, "pgv_pga_s": v}
+        for lev in CONTOUR_LEVELS:
+            row[f"pga_g_{lev}pct"] = float(contour_pga(fit, norm, np.array([v]), lev)[0])
+        table.append(row)
+    info["contours_at_bin_median_pgv_pga"] = table
+    return info, fit
+
+
+def contour_pga(fit, norm, pgv_pga, level_pct):
+    x = norm.x_of(pgv_pga)
+    q = norm_ppf(level_pct / 100.0)
+    return norm.pga_g(fit_mu(fit, x) + fit_sigma(fit, x) * q)
+
+
+def fit_probability(fit, norm, pga_g, pgv_pga):
+    x = norm.x_of(pgv_pga)
+    u = np.log(pga_g) + norm.u_shift
+    return norm_cdf((u - fit_mu(fit, x)) / fit_sigma(fit, x))
+
+
+# --------------------------------------------------------------------------------------------
+# Drawing
+
+
+def safe_name(name):
+    return re.sub(r"[^A-Za-z0-9._-]+", "_", name) or "object"
+
+
+def scale_cell_edges(scales):
+    s = np.asarray(scales, float)
+    if len(s) == 1:
+        w = 0.05 * s[0] if s[0] > 0 else 0.05
+        return np.array([s[0] - w, s[0] + w])
+    mid = 0.5 * (s[1:] + s[:-1])
+    return np.concatenate([[s[0] - (mid[0] - s[0])], mid, [s[-1] + (s[-1] - mid[-1])]])
+
+
+def display_y_edges(edges, pgv_pga):
+    """Bin edges for a log axis: open or zero outer edges clipped to the records' range."""
+    e = np.array(edges, float)
+    finite = pgv_pga[np.isfinite(pgv_pga) & (pgv_pga > 0)]
+    lo_data = finite.min() if finite.size else None
+    hi_data = finite.max() if finite.size else None
+    if not e[0] > 0:
+        inner = e[1] if len(e) > 2 else 0.1
+        lo = inner / 2.0
+        if lo_data is not None:
+            lo = min(lo, 0.85 * lo_data)
+        e[0] = min(lo, 0.9 * inner)
+    if not np.isfinite(e[-1]):
+        inner = e[-2]
+        hi = inner * 1.6
+        if hi_data is not None:
+            hi = max(hi, 1.15 * hi_data)
+        e[-1] = max(hi, 1.1 * inner)
+    return e
+
+
+def _fmt_edge(v):
+    if v == 0:
+        return "0"
+    if not np.isfinite(v):
+        return "\u221e"
+    return f"{v:.3g}"
+
+
+def _setup_map_axes(ax, cube, yedges, scale_edges):
+    ax.set_yscale("log")
+    ax.set_ylim(yedges[0], yedges[-1])
+    ax.set_xlim(scale_edges[0], scale_edges[-1])
+    inner = [v for v in cube.edges[1:-1]]
+    ticks = list(inner)
+    labels = [_fmt_edge(v) for v in inner]
+    if cube.edges[0] > 0:
+        ticks.insert(0, cube.edges[0]); labels.insert(0, _fmt_edge(cube.edges[0]))
+    if np.isfinite(cube.edges[-1]):
+        ticks.append(cube.edges[-1]); labels.append(_fmt_edge(cube.edges[-1]))
+    ax.yaxis.set_major_locator(mticker.FixedLocator(ticks))
+    ax.yaxis.set_major_formatter(mticker.FixedFormatter(labels))
+    ax.yaxis.set_minor_locator(mticker.NullLocator())
+    S = len(cube.scales)
+    step = 1 if S <= 12 else int(math.ceil(S / 12))
+    ax.set_xticks(cube.scales[::step])
+    ax.set_xticklabels([f"{v:g}" for v in cube.scales[::step]])
+    ax.set_xlabel("PGA = target GMRotI50 PGA (g)")
+    ax.set_ylabel("PGV/PGA bin edges (s), log axis")
+
+
+def _hatch_background(ax, scale_edges, yedges):
+    ax.add_patch(mpatches.Rectangle((scale_edges[0], yedges[0]), scale_edges[-1] - scale_edges[0],
+                                    yedges[-1] - yedges[0], facecolor="white", edgecolor="0.7",
+                                    hatch="///", lw=0, zorder=0))
+
+
+def draw_surface(ax, cube, values, count, cmap, norm, counts="none"):
+    """Cells coloured by value over (scale, PGV/PGA bin); empty cells show the hatched background.
+    counts: "none"; "deviations": print a cell's record count only where it is below its bin's
+    number of records (not-run or failed cells); "all": print every cell's count."""
+    scale_edges = scale_cell_edges(cube.scales)
+    yedges = display_y_edges(cube.edges, cube.pgv_pga)
+    _hatch_background(ax, scale_edges, yedges)
+    data = np.ma.masked_invalid(np.asarray(values, float).T)  # [B, S]
+    mesh = ax.pcolormesh(scale_edges, yedges, data, cmap=cmap, norm=norm, edgecolors="0.35",
+                         linewidth=0.4, zorder=1)
+    _setup_map_axes(ax, cube, yedges, scale_edges)
+    if counts != "none" and count is not None:
+        B, S = data.shape
+        in_bin = np.bincount(cube.bin_of_records()[cube.bin_of_records() >= 0], minlength=B)
+        for b in range(B):
+            yc = math.sqrt(yedges[b] * yedges[b + 1])
+            for s in range(S):
+                if data.mask is not np.ma.nomask and data.mask[b, s]:
+                    continue
+                if counts == "deviations" and count[s, b] >= in_bin[b]:
+                    continue
+                rgba = cmap(norm(data[b, s]))
+                lum = 0.299 * rgba[0] + 0.587 * rgba[1] + 0.114 * rgba[2]
+                ax.text(0.5 * (scale_edges[s] + scale_edges[s + 1]), yc, str(int(count[s, b])),
+                        ha="center", va="center", fontsize=7, color="black" if lum > 0.5 else "white",
+                        zorder=3)
+    return mesh, yedges, scale_edges
+
+
+def add_bin_totals(ax, cube, yedges):
+    """The number of records of each PGV/PGA bin, as labels on the right-hand axis."""
+    B = len(cube.edges) - 1
+    in_bin = np.bincount(cube.bin_of_records()[cube.bin_of_records() >= 0], minlength=B)
+    sec = ax.secondary_yaxis("right")
+    centres = [math.sqrt(yedges[b] * yedges[b + 1]) for b in range(B)]
+    sec.yaxis.set_major_locator(mticker.FixedLocator(centres))
+    sec.yaxis.set_major_formatter(mticker.FixedFormatter([f"{n}" for n in in_bin]))
+    sec.yaxis.set_minor_locator(mticker.NullLocator())
+    sec.tick_params(axis="y", length=0, labelsize=8)
+    sec.set_ylabel("records in bin", fontsize=9)
+    return sec
+
+
+def draw_contours(ax, fit, norm_, pgv_range, color="black", label_prefix="", levels=CONTOUR_LEVELS):
+    """The fit's k % contours as PGA(PGV/PGA) curves over the records' PGV/PGA range."""
+    handles = []
+    v = np.geomspace(pgv_range[0], pgv_range[1], 200) if pgv_range[1] > pgv_range[0] else np.array(pgv_range)
+    for lev in levels:
+        pga = contour_pga(fit, norm_, v, lev)
+        style = CONTOUR_STYLE[lev]
+        x0, x1 = ax.get_xlim()
+        where = ""
+        if not np.any((pga >= x0) & (pga <= x1)):
+            where = " (left of the plot)" if np.all(pga < x0) else (" (right of the plot)" if np.all(pga > x1)
+                                                                   else " (outside the plot)")
+        (line,) = ax.plot(pga, v, color=color, ls=style["ls"], lw=style["lw"], zorder=4,
+                          path_effects=[pe.Stroke(linewidth=style["lw"] + 2.2, foreground="white"), pe.Normal()],
+                          label=f"{label_prefix}{lev} % contour{where}")
+        ax.set_xlim(x0, x1)
+        if len(v) == 1:
+            line.set_marker("o")
+        handles.append(line)
+    return handles
+
+
+def counts_mode(cube, option):
+    """--counts on: every cell; off: none; auto: cells whose count is below their bin's records."""
+    return {"on": "all", "off": "none"}.get(option, "deviations")
+
+
+def plot_map(cube, obj, fit, norm_, info, path, counts):
+    fig, ax = plt.subplots(figsize=(9.5, 6.2), dpi=DPI)
+    cmap = plt.get_cmap("viridis")
+    cnorm = mcolors.Normalize(0.0, 1.0)
+    mesh, yedges, _ = draw_surface(ax, cube, obj.fragility, obj.count, cmap, cnorm, counts)
+    add_bin_totals(ax, cube, yedges)
+    cb = fig.colorbar(mesh, ax=ax, ticks=[0, 0.25, 0.5, 0.75, 1.0], pad=0.09)
+    cb.set_label("P(overturn): mean over the records of the cell")
+    handles = [mpatches.Patch(facecolor="white", edgecolor="0.5", hatch="///", label="no record in bin")]
+    if fit is not None:
+        handles += draw_contours(ax, fit, norm_, info["pgv_pga_range_s"])
+        sig = fit_sigma(fit, np.array(info["x_range"]))
+        sig_txt = f"{sig.min():.2g}" if abs(sig[0] - sig[1]) < 1e-9 else f"{sig.min():.2g}\u2013{sig.max():.2g}"
+        fit_text = (f"{FIT_LABEL}: {info['n_cells']} cells of {info['n_records']} records, "
+                    f"\u03c3 = {sig_txt} (ln PGA)")
+    else:
+        fit_text = f"no fit: {info.get('reason', '')}"
+    alpha_txt = f", alpha = {norm_.alpha:g} rad" if norm_.alpha else ""
+    note = {"all": "cell numbers: records averaged",
+            "deviations": "cell numbers: records averaged where fewer than the bin's (not run/failed)",
+            "none": "each cell: mean over the bin's records"}[counts]
+    ax.set_title(f"{obj.name}{alpha_txt}: binned overturning probability\n"
+                 f"cube {os.path.basename(cube.path)}; {note}", fontsize=11)
+    ax.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, -0.12), ncol=4, fontsize=9,
+              frameon=False, title=fit_text, title_fontsize=9)
+    fig.tight_layout()
+    fig.savefig(path, dpi=DPI)
+    plt.close(fig)
+
+
+def plot_records(cube, obj, fit, norm_, path):
+    B = len(cube.edges) - 1
+    ncol = 3 if B >= 3 else B
+    nrow = int(math.ceil(B / ncol))
+    fig, axes = plt.subplots(nrow, ncol, figsize=(4.1 * ncol + 1.2, 2.9 * nrow + 1.3), dpi=DPI,
+                             sharex=True, sharey=True, squeeze=False)
+    bins = cube.bin_of_records()
+    finite = cube.pgv_pga[np.isfinite(cube.pgv_pga) & (cube.pgv_pga > 0)]
+    lo, hi = (finite.min(), finite.max()) if finite.size else (0.05, 0.5)
+    if hi <= lo:
+        lo, hi = lo / 1.2, hi * 1.2
+    cnorm = mcolors.LogNorm(lo, hi)
+    cmap = mcolors.LinearSegmentedColormap.from_list(
+        "plasma_trunc", plt.get_cmap("plasma")(np.linspace(0.0, 0.82, 256)))  # no pale yellow on white
+    marker = "o" if len(cube.scales) <= 25 else None
+    sgrid = np.linspace(max(cube.scales.min() * 0.5, 1e-3), cube.scales.max(), 200)
+    for b in range(nrow * ncol):
+        ax = axes[b // ncol][b % ncol]
+        if b >= B:
+            ax.set_visible(False)
+            continue
+        recs = [r for r in range(len(cube.records)) if bins[r] == b]
+        ax.set_title(f"PGV/PGA {_fmt_edge(cube.edges[b])}\u2013{_fmt_edge(cube.edges[b + 1])} s "
+                     f"({len(recs)} record{'s' if len(recs) != 1 else ''})", fontsize=9)
+        ax.grid(True, color="0.88", lw=0.6)
+        ax.set_ylim(-0.05, 1.05)
+        ax.set_yticks([0, 0.5, 1])
+        if not recs:
+            ax.text(0.5, 0.5, "no records", transform=ax.transAxes, ha="center", va="center", color="0.5")
+            continue
+        for r in recs:  # above the bin mean, so a bin of one record still shows its colour
+            ax.plot(cube.scales, obj.probability[r], color=cmap(cnorm(cube.pgv_pga[r])), lw=1.3,
+                    marker=marker, ms=3.5, alpha=0.85, zorder=7,
+                    label=f"{cube.records[r]} ({cube.pgv_pga[r]:.3g} s)")
+        if len(recs) <= 6:
+            ax.legend(loc="lower right", fontsize=7, frameon=True, framealpha=0.85, handlelength=1.5)
+        ax.plot(cube.scales, obj.fragility[:, b], color="black", lw=2.6, ls="--", zorder=5)
+        if fit is not None:
+            v = float(np.median(cube.pgv_pga[recs]))
+            ax.plot(sgrid, fit_probability(fit, norm_, sgrid, v), color="tab:green", lw=2.0, zorder=6)
+    for ax in axes[-1]:
+        ax.set_xlabel("PGA (g)")
+    for row in axes:
+        row[0].set_ylabel("P(overturn)")
+    handles = [mlines.Line2D([], [], color="0.4", lw=1.2, marker=marker, ms=3,
+                             label="one record (colour = its PGV/PGA)"),
+               mlines.Line2D([], [], color="black", lw=2.0, ls="--", label="bin mean (the map's cells)")]
+    if fit is not None:
+        handles.append(mlines.Line2D([], [], color="tab:green", lw=2.0,
+                                     label=f"{FIT_LABEL}, at the bin's median PGV/PGA"))
+    alpha_txt = f" (alpha = {norm_.alpha:g} rad)" if norm_.alpha else ""
+    fig.suptitle(f"{obj.name}{alpha_txt}: P(overturn) per record vs PGA, one panel per PGV/PGA bin\n"
+                 f"P = fraction of rotations overturned (inferred counted as overturned); "
+                 f"cube {os.path.basename(cube.path)}", fontsize=11)
+    fig.legend(handles=handles, loc="lower center", ncol=3, fontsize=9, frameon=False)
+    fig.tight_layout(rect=(0, 0.05, 0.9, 1))
+    cax = fig.add_axes([0.915, 0.15, 0.018, 0.7])
+    sm = plt.cm.ScalarMappable(norm=cnorm, cmap=cmap)
+    cb = fig.colorbar(sm, cax=cax)
+    cb.set_label("record PGV/PGA (s)")
+    ticks = [lo] + [e for e in cube.edges if lo * 1.08 < e < hi / 1.08] + [hi]
+    cb.set_ticks(ticks)
+    cb.set_ticklabels([f"{t:.3g}" for t in ticks])
+    cb.ax.yaxis.set_minor_locator(mticker.NullLocator())
+    fig.savefig(path, dpi=DPI)
+    plt.close(fig)
+
+
+# --------------------------------------------------------------------------------------------
+# Subcommands
+
+
+def normalisation_for(cube, obj, args):
+    alpha, asrc = block_parameter(cube, obj, "alpha_rad", parse_per_object(args.alpha, "--alpha"))
+    p, psrc = block_parameter(cube, obj, "p_rad_s", parse_per_object(args.p, "--p"))
+    if alpha is not None and not alpha < math.pi / 2:
+        raise InputError(f"{obj.name}: alpha = {alpha} rad is not below pi/2")
+    return Normalisation(alpha, asrc, p, psrc)
+
+
+def _json_clean(v):
+    """Strict JSON: non-finite numbers become null."""
+    if isinstance(v, dict):
+        return {k: _json_clean(x) for k, x in v.items()}
+    if isinstance(v, (list, tuple)):
+        return [_json_clean(x) for x in v]
+    if isinstance(v, (float, np.floating)):
+        return float(v) if math.isfinite(v) else None
+    if isinstance(v, np.integer):
+        return int(v)
+    return v
+
+
+def cmd_maps(args):
+    cube = Cube(args.cube)
+    objs = cube.select(args.object)
+    os.makedirs(args.out, exist_ok=True)
+    summary = {"cube": os.path.abspath(cube.path), "label": FIT_LABEL,
+               "contour_levels_pct": list(CONTOUR_LEVELS), "objects": []}
+    show = counts_mode(cube, args.counts)
+    for obj in objs:
+        norm_ = normalisation_for(cube, obj, args)
+        info, fit = fit_object(cube, obj, norm_, args.mu_degree, args.sigma_degree)
+        base = os.path.join(args.out, safe_name(obj.name))
+        plot_map(cube, obj, fit, norm_, info, base + "_map.png", show)
+        plot_records(cube, obj, fit, norm_, base + "_records.png")
+        info["files"] = [base + "_map.png", base + "_records.png"]
+        summary["objects"].append(info)
+        f = info.get("fit")
+        if f is not None and fit is not None:
+            sig = fit_sigma(f, np.array([np.mean(info["x_range"])]))[0]
+            print(f"{obj.name}: n = {info['n_cells']} cells ({info['n_overturned']} overturned), "
+                  f"mu = {', '.join(f'{c:.4g}' for c in f['mu_coefficients'])}, "
+                  f"ln sigma = {', '.join(f'{c:.4g}' for c in f['log_sigma_coefficients'])} "
+                  f"(sigma {sig:.3g} at mid x), log-likelihood {f['log_likelihood']:.4g}")
+        else:
+            print(f"{obj.name}: n = {info['n_cells']} cells, no fit: {info.get('reason')}")
+        if "warning" in info:
+            print(f"  warning: {info['warning']}")
+        print(f"  wrote {base}_map.png, {base}_records.png")
+    jpath = os.path.join(args.out, "fit.json")
+    with open(jpath, "w") as fh:
+        json.dump(_json_clean(summary), fh, indent=2, allow_nan=False)
+        fh.write("\n")
+    print(f"wrote {jpath}")
+    return 0
+
+
+def _fmt(v, digits=3):
+    return "" if v is None or (isinstance(v, float) and not math.isfinite(v)) else f"{v:.{digits}f}"
+
+
+def _sfmt(v, digits=3):
+    """Signed: +0.050, -0.042, 0.000."""
+    if v is None or not math.isfinite(v):
+        return ""
+    return f"{v:+.{digits}f}" if round(v, digits) != 0 else f"{0:.{digits}f}"
+
+
+def mismatch(a, b):
+    """Per-cell A - B where both are defined: (diff [S,B] with NaN elsewhere, n, mean, sd)."""
+    d = a - b
+    ok = np.isfinite(d)
+    vals = d[ok]
+    n = int(vals.size)
+    mean = float(vals.mean()) if n else float("nan")
+    sd = float(vals.std(ddof=1)) if n > 1 else (0.0 if n == 1 else float("nan"))
+    return np.where(ok, d, np.nan), n, mean, sd
+
+
+def _common_scales(ca, cb):
+    ia, ib = [], []
+    for i, s in enumerate(ca.scales):
+        j = np.where(np.abs(cb.scales - s) <= 1e-9 * max(1.0, abs(s)))[0]
+        if j.size:
+            ia.append(i)
+            ib.append(int(j[0]))
+    return np.array(ia, int), np.array(ib, int)
+
+
+class _View:
+    """A cube restricted to some scales (for side-by-side drawing of two cubes)."""
+
+    def __init__(self, cube, idx):
+        self.path, self.records, self.edges, self.pgv_pga = cube.path, cube.records, cube.edges, cube.pgv_pga
+        self.scales = cube.scales[idx]
+
+    def bin_of_records(self):
+        return np.array([pgv_pga_bin(self.edges, v) for v in self.pgv_pga], dtype=int)
+
+
+def plot_diff(view_a, view_b, name, fa, ca_, fb, cb_, d, stats, la, lb, fits, path, counts):
+    fig = plt.figure(figsize=(18.5, 6.4), dpi=DPI)
+    outer = fig.add_gridspec(1, 2, width_ratios=[2.1, 1.08], wspace=0.13,
+                             left=0.045, right=0.965, bottom=0.2, top=0.84)
+    left = outer[0].subgridspec(1, 3, width_ratios=[1, 1, 0.045], wspace=0.07)
+    right = outer[1].subgridspec(1, 2, width_ratios=[1, 0.045], wspace=0.06)
+    ax_a, ax_b, cax_p = fig.add_subplot(left[0]), fig.add_subplot(left[1]), fig.add_subplot(left[2])
+    ax_d, cax_d = fig.add_subplot(right[0]), fig.add_subplot(right[1])
+    cmap = plt.get_cmap("viridis")
+    pn = mcolors.Normalize(0.0, 1.0)
+    for ax, v, frag, cnt, lab, fit in ((ax_a, view_a, fa, ca_, la, fits[0]), (ax_b, view_b, fb, cb_, lb, fits[1])):
+        mesh, _, _ = draw_surface(ax, v, frag, cnt, cmap, pn, counts)
+        ax.set_title(f"{lab}: P(overturn)  ({os.path.basename(v.path)})", fontsize=10)
+        if fit is not None:
+            draw_contours(ax, fit[0], fit[1], fit[2]["pgv_pga_range_s"])
+    fig.colorbar(mesh, cax=cax_p, ticks=[0, 0.25, 0.5, 0.75, 1], label="P(overturn)")
+    dmap = plt.get_cmap("RdBu_r")
+    dn = mcolors.Normalize(-1.0, 1.0)
+    mesh_d, _, _ = draw_surface(ax_d, view_a, d, None, dmap, dn, "none")
+    handles = []
+    for fit, color, lab in ((fits[0], "black", la), (fits[1], "tab:orange", lb)):
+        if fit is not None:
+            handles += draw_contours(ax_d, fit[0], fit[1], fit[2]["pgv_pga_range_s"], color=color,
+                                     label_prefix=f"{lab} ", levels=(50,))
+    ax_d.set_title(f"difference {la} \u2212 {lb} (red: {la} more fragile)\n"
+                   f"mean \u00b1 sd = {stats[1]:+.3f} \u00b1 {stats[2]:.3f} over {stats[0]} cells", fontsize=10)
+    for ax in (ax_b, ax_d):
+        ax.set_ylabel("")
+    ax_b.tick_params(axis="y", labelleft=False)
+    fig.colorbar(mesh_d, cax=cax_d, ticks=[-1, -0.5, 0, 0.5, 1], label=f"P({la}) \u2212 P({lb})")
+    leg = [mpatches.Patch(facecolor="white", edgecolor="0.5", hatch="///", label="no record / not in both")]
+    if fits[0] is not None or fits[1] is not None:
+        leg += [mlines.Line2D([], [], color="black", lw=2, ls=CONTOUR_STYLE[k]["ls"], label=f"{k} % contour")
+                for k in CONTOUR_LEVELS]
+        leg += [mlines.Line2D([], [], color=h.get_color(), lw=2, label=f"{h.get_label()} (right)") for h in handles]
+    fig.legend(handles=leg, loc="lower center", ncol=len(leg), fontsize=9, frameon=False,
+               title=FIT_LABEL if len(leg) > 1 else None, title_fontsize=9)
+    fig.suptitle(f"{name}: {la} vs {lb}, binned fragility (each cell: mean over the bin's records)", fontsize=12)
+    fig.savefig(path, dpi=DPI)
+    plt.close(fig)
+
+
+def cmd_diff(args):
+    ca, cb = Cube(args.cube_a), Cube(args.cube_b)
+    if len(ca.edges) != len(cb.edges) or not np.array_equal(ca.edges, cb.edges):
+        raise InputError(f"the cubes have different PGV/PGA bin edges ({ca.edges.tolist()} vs {cb.edges.tolist()})")
+    ia, ib = _common_scales(ca, cb)
+    if ia.size == 0:
+        raise InputError("the cubes share no scale")
+    names_b = {o.name for o in cb.objects}
+    objs = ca.select(args.object)
+    common = [o for o in objs if o.name in names_b]
+    if not common:
+        raise InputError(f"no object name in both cubes ({[o.name for o in ca.objects]} vs {sorted(names_b)})")
+    os.makedirs(args.out, exist_ok=True)
+    la, lb = args.label_a, args.label_b
+    va, vb = _View(ca, ia), _View(cb, ib)
+    show = counts_mode(ca, args.counts)
+    print(f"sign convention: difference = {la} \u2212 {lb} (A \u2212 B: {ca.path} minus {cb.path}); "
+          f"positive = {la} more fragile. The study (report section 3.5) reported 2D model minus Rigid 3D.")
+    rows = []
+    for oa in common:
+        ob = cb.object(oa.name)
+        fa, fb = oa.fragility[ia], ob.fragility[ib]
+        d, n, mean, sd = mismatch(fa, fb)
+        mad = float(np.nanmean(np.abs(d))) if n else float("nan")
+        norm_a = normalisation_for(ca, oa, args)
+        fits = []
+        for cube, o, nrm in ((ca, oa, norm_a), (cb, ob, normalisation_for(cb, ob, args))):
+            info, fit = fit_object(cube, o, nrm, args.mu_degree, args.sigma_degree)
+            fits.append((fit, nrm, info) if fit is not None else None)
+        png = os.path.join(args.out, safe_name(oa.name) + "_diff.png")
+        plot_diff(va, vb, oa.name, fa, oa.count[ia], fb, ob.count[ib], d, (n, mean, sd), la, lb, fits, png, show)
+        ref = None
+        if norm_a.alpha is not None:
+            for key, val in STUDY_MISMATCH_2D_MINUS_3D.items():
+                if abs(norm_a.alpha - key) < 1e-6:
+                    ref = val
+        rows.append({"object": oa.name, "alpha_rad": norm_a.alpha, "n_cells": n, "mean_a_minus_b": mean,
+                     "sd": sd, "mean_b_minus_a": -mean if n else float("nan"), "mean_abs": mad,
+                     "study_2d_minus_3d": ref, "png": png})
+        print(f"{oa.name}: {la} \u2212 {lb} = {mean:+.4f} \u00b1 {sd:.4f} (mean \u00b1 sd over {n} cells; "
+              f"{lb} \u2212 {la} = {-mean:+.4f}; mean |diff| {mad:.4f})  -> {png}")
+    skipped = [o.name for o in objs if o.name not in names_b]
+    if skipped:
+        print(f"not in {cb.path}: {', '.join(skipped)}")
+    csv_path = os.path.join(args.out, "mismatch.csv")
+    with open(csv_path, "w", newline="") as fh:
+        w = csv.writer(fh)
+        w.writerow(["object", "alpha_rad", "n_cells", f"mean_{la}_minus_{lb}", "sd", f"mean_{lb}_minus_{la}",
+                    "mean_abs_diff", "study_2D_minus_3D_mean", "study_2D_minus_3D_sd"])
+        for r in rows:
+            w.writerow([r["object"], "" if r["alpha_rad"] is None else f"{r['alpha_rad']:g}", r["n_cells"],
+                        _fmt(r["mean_a_minus_b"], 6), _fmt(r["sd"], 6), _fmt(r["mean_b_minus_a"], 6),
+                        _fmt(r["mean_abs"], 6), "" if r["study_2d_minus_3d"] is None else r["study_2d_minus_3d"][0],
+                        "" if r["study_2d_minus_3d"] is None else r["study_2d_minus_3d"][1]])
+    md_path = os.path.join(args.out, "mismatch.md")
+    with open(md_path, "w") as fh:
+        fh.write(f"# Binned fragility mismatch: {la} \u2212 {lb}\n\n")
+        fh.write(f"- A ({la}): `{ca.path}`\n- B ({lb}): `{cb.path}`\n")
+        fh.write(f"- Sign: **{la} \u2212 {lb}** per cell (positive: {la} more fragile); the column "
+                 f"{lb} \u2212 {la} is its negative. The study reported 2D model minus Rigid 3D.\n")
+        fh.write("- Cells: (scale, PGV/PGA bin) defined in both cubes (scales common to both); "
+                 "mean and sample sd (n \u2212 1) over cells, unweighted.\n\n")
+        fh.write(f"| object | alpha (rad) | cells | {la} \u2212 {lb} mean \u00b1 sd | {lb} \u2212 {la} mean | "
+                 f"mean \\|diff\\| | study 2D \u2212 3D |\n|---|---|---|---|---|---|---|\n")
+        for r in rows:
+            ref = "" if r["study_2d_minus_3d"] is None else f"{r['study_2d_minus_3d'][0]:.2f} \u00b1 {r['study_2d_minus_3d'][1]:.2f}"
+            alpha = "" if r["alpha_rad"] is None else f"{r['alpha_rad']:g}"
+            fh.write(f"| {r['object']} | {alpha} | {r['n_cells']} | {_sfmt(r['mean_a_minus_b'])} \u00b1 {_fmt(r['sd'])} | "
+                     f"{_sfmt(r['mean_b_minus_a'])} | {_fmt(r['mean_abs'])} | {ref} |\n")
+    print(f"wrote {csv_path}, {md_path}")
+    return 0
+
+
+def outcome_counts(outcome, scale_index=None):
+    o = outcome if scale_index is None else outcome[:, scale_index:scale_index + 1, :]
+    return {name: int(np.sum(o == code)) for name, code in
+            (("not_run", NOT_RUN), ("survived", SURVIVED), ("overturned", OVERTURNED),
+             ("inferred", INFERRED), ("failed", FAILED))}
+
+
+def _fraction(c):
+    known = c["survived"] + c["overturned"] + c["inferred"]
+    return (c["overturned"] + c["inferred"]) / known if known else float("nan"), known
+
+
+def cmd_table(args):
+    cubes = [Cube(p) for p in args.cubes]
+    multi = len(cubes) > 1
+    records = []
+    seen = {}
+    differing = []
+    for c in cubes:
+        for r, w in zip(c.records, c.windows):
+            if r not in records:
+                records.append(r)
+                seen[r] = w
+            elif (os.path.basename(seen[r][0]), float(seen[r][1]), float(seen[r][2])) != \
+                    (os.path.basename(w[0]), float(w[1]), float(w[2])) and r not in differing:
+                differing.append(r)
+    if differing:
+        sys.stderr.write("rigid plot: warning: records matched by name differ in source or time window "
+                         f"between cubes: {', '.join(differing)}\n")
+    rows = []  # (row label, {record: counts}, all counts, cube, object)
+    long_rows = []
+    for c in cubes:
+        si = None
+        if args.scale is not None:
+            j = np.where(np.abs(c.scales - args.scale) <= 1e-9 * max(1.0, abs(args.scale)))[0]
+            if j.size == 0:
+                raise InputError(f"{c.path}: no scale {args.scale:g} g (scales: {', '.join(f'{v:g}' for v in c.scales)})")
+            si = int(j[0])
+        for o in c.select(args.object):
+            per = {}
+            for r, name in enumerate(c.records):
+                cnt = outcome_counts(o.outcome[r:r + 1], si)
+                per[name] = cnt
+                frac, known = _fraction(cnt)
+                long_rows.append([c.label, o.name, name, "all" if si is None else f"{c.scales[si]:g}",
+                                  cnt["survived"], cnt["overturned"], cnt["inferred"], cnt["not_run"],
+                                  cnt["failed"], known, _fmt(frac, 6)])
+            allc = outcome_counts(o.outcome, si)
+            frac, known = _fraction(allc)
+            long_rows.append([c.label, o.name, "all", "all" if si is None else f"{c.scales[si]:g}",
+                              allc["survived"], allc["overturned"], allc["inferred"], allc["not_run"],
+                              allc["failed"], known, _fmt(frac, 6)])
+            rows.append((f"{c.label}: {o.name}" if multi else o.name, per, allc))
+
+    def cell(cnt):
+        if cnt is None:
+            return "\u2013"
+        frac, known = _fraction(cnt)
+        if known == 0:
+            return "n/a"
+        txt = f"{frac:.2f}"
+        if args.counts:
+            txt += f" ({cnt['overturned'] + cnt['inferred']}/{known})"
+        if cnt["failed"]:
+            txt += "\u2020"
+        return txt
+
+    layout = args.layout
+    if layout == "auto":
+        layout = "records" if len(records) > 10 and len(records) > len(rows) else "objects"
+    where = "all scales" if args.scale is None else f"scale {args.scale:g} g"
+    lines = [f"# Scenario table: overturn fraction ({where})", "",
+             "Overturn fraction = (overturned + inferred) / (overturned + inferred + survived) over the "
+             f"cells (scale, rotation) at {where}; not-run and failed cells are left out "
+             "(\u2020: some failed; \u2013: record not in that cube; n/a: no known cell)."
+             + (" Parentheses: overturned/known cells." if args.counts else ""),
+             "", "Cubes: " + ", ".join(f"`{c.path}`" for c in cubes), ""]
+    if differing:
+        lines[-1:-1] = ["", "Records are matched by name; these differ in source file or time window between "
+                        "the cubes: " + ", ".join(differing) + "."]
+    if layout == "objects":
+        head = ["object"] + records + ["all"]
+        lines.append("| " + " | ".join(head) + " |")
+        lines.append("|" + "---|" * len(head))
+        for label, per, allc in rows:
+            lines.append("| " + " | ".join([label] + [cell(per.get(r)) for r in records] + [cell(allc)]) + " |")
+    else:
+        head = ["record"] + [label for label, _, _ in rows]
+        lines.append("| " + " | ".join(head) + " |")
+        lines.append("|" + "---|" * len(head))
+        for r in records:
+            lines.append("| " + " | ".join([r] + [cell(per.get(r)) for _, per, _ in rows]) + " |")
+        lines.append("| **all** | " + " | ".join(cell(allc) for _, _, allc in rows) + " |")
+    out = args.out
+    d = os.path.dirname(os.path.abspath(out))
+    os.makedirs(d, exist_ok=True)
+    with open(out, "w") as fh:
+        fh.write("\n".join(lines) + "\n")
+    csv_path = os.path.splitext(out)[0] + ".csv"
+    with open(csv_path, "w", newline="") as fh:
+        w = csv.writer(fh)
+        w.writerow(["cube", "object", "record", "scale_g", "survived", "overturned", "inferred", "not_run",
+                    "failed", "known", "overturn_fraction"])
+        w.writerows(long_rows)
+    print("\n".join(lines))
+    print(f"wrote {out}, {csv_path}")
+    return 0
+
+
+def build_parser():
+    p = argparse.ArgumentParser(
+        prog="rigid plot",
+        description="Fragility maps, per-record curves, a probit fit (this project's, not Purvance's), "
+                    "difference maps and scenario tables from Rigid fragility cubes (HDF5).",
+        epilog="Run with Debian's /usr/bin/python3 (python3-numpy, python3-h5py, python3-matplotlib). "
+               "Exit status: 0 done, 2 bad input, 1 internal error.")
+    sub = p.add_subparsers(dest="command", required=True, metavar="{maps,diff,table}")
+
+    def fit_options(sp):
+        sp.add_argument("--alpha", action="append", metavar="[NAME=]RAD",
+                        help="block slenderness alpha (rad) for the fit's normalisation, for all objects or "
+                             "NAME=RAD per object (repeatable); default: attribute alpha_rad of the object or root "
+                             "group, else none (PGA not normalised)")
+        sp.add_argument("--p", action="append", metavar="[NAME=]RAD_S",
+                        help="block frequency parameter p (rad/s), like --alpha; default: attribute p_rad_s, "
+                             "else none (PGV/PGA not normalised)")
+        sp.add_argument("--mu-degree", type=int, default=1, choices=range(0, 4), metavar="D",
+                        help="degree of the polynomial mu(x) (default 1)")
+        sp.add_argument("--sigma-degree", type=int, default=0, choices=range(0, 3), metavar="D",
+                        help="degree of the polynomial ln sigma(x) (default 0: constant sigma)")
+        sp.add_argument("--counts", choices=("auto", "on", "off"), default="auto",
+                        help="print the number of records in each map cell (auto: when there are <= 25 scales)")
+
+    m = sub.add_parser("maps", help="per object: fragility map PNG with the fit's 1/50/99 %% contours, "
+                                    "per-record curves PNG, fit.json")
+    m.add_argument("cube", help="campaign cube (HDF5)")
+    m.add_argument("--out", required=True, help="output directory")
+    m.add_argument("--object", action="append", help="only this object (repeatable); default: all")
+    fit_options(m)
+    m.set_defaults(func=cmd_maps)
+
+    d = sub.add_parser("diff", help="difference map A - B per object present in both, mismatch mean +- sd "
+                                    "(CSV, markdown)")
+    d.add_argument("cube_a", metavar="CUBE_A")
+    d.add_argument("cube_b", metavar="CUBE_B")
+    d.add_argument("--out", required=True, help="output directory")
+    d.add_argument("--label-a", default="3D", help="name of cube A in plots and tables (default 3D)")
+    d.add_argument("--label-b", default="2D", help="name of cube B (default 2D)")
+    d.add_argument("--object", action="append", help="only this object (repeatable)")
+    fit_options(d)
+    d.set_defaults(func=cmd_diff)
+
+    t = sub.add_parser("table", help="scenario table: objects x records, overturn fraction (markdown + CSV)")
+    t.add_argument("cubes", nargs="+", metavar="CUBE")
+    t.add_argument("--out", required=True, help="markdown file; the CSV (long format, with counts) goes beside it")
+    t.add_argument("--scale", type=float, help="only this scale (g); default: all scales")
+    t.add_argument("--object", action="append", help="only this object (repeatable)")
+    t.add_argument("--layout", choices=("auto", "objects", "records"), default="auto",
+                   help="rows are objects (records as columns, plus 'all') or records (plus an 'all' row); "
+                        "auto: records as rows when there are more than 10")
+    t.add_argument("--counts", action="store_true", help="add overturned/known cell counts to each entry")
+    t.set_defaults(func=cmd_table)
+    return p
+
+
+def main(argv=None):
+    args = build_parser().parse_args(argv)
+    try:
+        return args.func(args)
+    except InputError as e:
+        sys.stderr.write(f"rigid plot: error: {e}\n")
+        return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main())
