@@ -10,7 +10,9 @@ void register_inspect_command(CLI::App& app);
 void register_motion_command(CLI::App& app);
 void register_bench_command(CLI::App& app);
 void register_model_command(CLI::App& app);
+void add_library_subcommand(CLI::App& model_command);
 void register_campaign_command(CLI::App& app);
+void register_plot_command(CLI::App& app);
 /// The campaign initialises MPI, which wants main()'s arguments.
 void set_campaign_arguments(int& argc, char**& argv);
 

@@ -68,6 +68,7 @@ void write_block_model(const BlockModelOptions& o) {
 void register_model_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("model", "Generate model files");
   cmd->require_subcommand(1);
+  add_library_subcommand(*cmd);
   auto o = std::make_shared<BlockModelOptions>();
   CLI::App* block = cmd->add_subcommand("block", "A rectangular block on a pedestal (STL, model file, TOML scene)");
   block->add_option("--height", o->height, "Block height (m)")->capture_default_str();

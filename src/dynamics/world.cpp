@@ -136,6 +136,11 @@ void World::drift_rotation(int i, double dt) {
 
 void World::step(double dt, const Vec3& ground_velocity_start, const Vec3& ground_velocity_end) {
   const Vec3 ground_velocity = 0.5 * (ground_velocity_start + ground_velocity_end);
+  // contact force on the pedestals at the start of the step (all move with the same velocity)
+  Vec3 pedestal_force_start = Vec3::Zero();
+  for (std::size_t i = 0; i < defs_.size(); ++i) {
+    if (defs_[i].fixed) pedestal_force_start += contact_force_[i];
+  }
   for (std::size_t i = 0; i < defs_.size(); ++i) {
     auto& s = states_[i];
     if (defs_[i].fixed) {
@@ -154,6 +159,16 @@ void World::step(double dt, const Vec3& ground_velocity_start, const Vec3& groun
   }
   time_ += dt;
   compute_forces(dt);
+  // Work of the pedestals on the free blocks over the step: their displacement dt * v_mid against
+  // the mean of the contact forces at both ends (trapezoid). This is what the velocity-Verlet kicks
+  // transmit, so kinetic + potential + elastic energy changes by exactly this work, up to a bounded
+  // O(dt^2) term and the contacts' dissipation. (The end-of-step force alone made an O(dt) error
+  // that accumulated: -1.6 J in 30 s for a 166 kg block riding a 0.3 g, 2 Hz pedestal.)
+  Vec3 pedestal_force_end = Vec3::Zero();
+  for (std::size_t i = 0; i < defs_.size(); ++i) {
+    if (defs_[i].fixed) pedestal_force_end += contact_force_[i];
+  }
+  pedestal_work_ -= 0.5 * dt * (pedestal_force_start + pedestal_force_end).dot(ground_velocity);
   for (std::size_t i = 0; i < defs_.size(); ++i) {
     auto& s = states_[i];
     if (defs_[i].fixed) {
@@ -238,9 +253,6 @@ void World::compute_forces(double dt) {
     contact_force_[p.a] -= total;
     if (!da.fixed) slip_[p.a] += pair_slip;
     if (!db.fixed) slip_[p.b] += pair_slip;
-    // power the moving pedestal delivers through this contact
-    if (da.fixed) pedestal_work_ += dt * total.dot(sa.velocity);
-    if (db.fixed) pedestal_work_ -= dt * total.dot(sb.velocity);
   }
   if (settings_.local_damping > 0) {
     // Itasca local damping: oppose the unbalanced force where it drives motion (physics.md §9)
