@@ -1,6 +1,8 @@
 // convex_hull and box_soup: containment, extremality, degenerate inputs, speed, determinism.
 #include <gtest/gtest.h>
 
+#include "support/rng.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -16,16 +18,7 @@ namespace {
 using rigid::Vec3;
 using namespace rigid::geometry;
 
-struct Rng {
-  std::uint64_t s;
-  double uniform() {
-    std::uint64_t z = (s += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    z ^= z >> 31;
-    return static_cast<double>(z >> 11) * 0x1.0p-53;
-  }
-};
+using rigid::test::Rng;
 
 std::vector<Vec3> ball(std::uint64_t seed, int n) {
   Rng rng{seed};

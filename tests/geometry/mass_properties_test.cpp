@@ -1,6 +1,8 @@
 // Mass properties of closed meshes against closed forms and an independent quadrature oracle.
 #include <gtest/gtest.h>
 
+#include "support/rng.hpp"
+
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -18,16 +20,7 @@ using namespace rigid::geometry;
 constexpr double kRel = 1e-10;
 
 // splitmix64: the same stream on every platform (std distributions are not portable)
-struct Rng {
-  std::uint64_t s;
-  double uniform() {
-    std::uint64_t z = (s += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    z ^= z >> 31;
-    return static_cast<double>(z >> 11) * 0x1.0p-53;
-  }
-};
+using rigid::test::Rng;
 
 ClosedMesh mesh_of(const TriangleSoup& soup) { return make_closed_mesh(soup, {}, "test"); }
 

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include "support/rng.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -19,16 +21,7 @@ using rigid::Quat;
 using rigid::Vec3;
 using namespace rigid::geometry;
 
-struct Rng {
-  std::uint64_t s;
-  double uniform() {
-    std::uint64_t z = (s += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    z ^= z >> 31;
-    return static_cast<double>(z >> 11) * 0x1.0p-53;
-  }
-};
+using rigid::test::Rng;
 
 // Structural invariants every block must satisfy, whatever its shape.
 void expect_consistent(const ConvexPolyhedron& p) {
