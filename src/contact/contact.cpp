@@ -61,25 +61,39 @@ double depth_to_contact_face(const geometry::ConvexPolyhedron& shape, const Mat3
   return best_alignment > 0 ? best_below / best_alignment : 0.0;
 }
 
-// Clips the world segment p0 -> p1 by the block's face planes pushed out by `tolerance` (Cyrus-
-// Beck). Returns false when no part of it is inside; else [t0, t1], the inside part's parameters.
-bool clip_segment(const geometry::ConvexPolyhedron& shape, const Mat3& rotation,
-                  const Vec3& position, const Vec3& p0, const Vec3& p1, double tolerance,
-                  double& t0, double& t1) {
-  const Vec3 q0 = rotation.transpose() * (p0 - position);
-  const Vec3 q1 = rotation.transpose() * (p1 - position);
+// Clips the segment q0 -> q1 (body frame) by the block's face planes pushed out by `tolerance`
+// (Cyrus-Beck), testing face `first` first (one q0 is outside of, for a quick rejection). Returns
+// false when no part of it is inside; else [t0, t1], the inside part's parameters, and the faces
+// through which it enters and leaves (-1 at an end inside every face).
+bool clip_segment(const geometry::ConvexPolyhedron& shape, const Vec3& q0, const Vec3& q1,
+                  double tolerance, int first, double& t0, double& t1, int& enter, int& leave) {
   t0 = 0;
   t1 = 1;
-  for (const auto& f : shape.faces) {
+  enter = leave = -1;
+  auto clip = [&](int index) {
+    const auto& f = shape.faces[index];
     const double s0 = f.offset + tolerance - f.normal.dot(q0);  // >= 0 inside
     const double s1 = f.offset + tolerance - f.normal.dot(q1);
     if (s0 < 0 && s1 < 0) return false;
     if (s0 < 0) {
-      t0 = std::max(t0, s0 / (s0 - s1));
+      const double t = s0 / (s0 - s1);
+      if (t > t0) {
+        t0 = t;
+        enter = index;
+      }
     } else if (s1 < 0) {
-      t1 = std::min(t1, s0 / (s0 - s1));
+      const double t = s0 / (s0 - s1);
+      if (t < t1) {
+        t1 = t;
+        leave = index;
+      }
     }
-    if (t0 > t1) return false;
+    return t0 <= t1;
+  };
+  if (first >= 0 && !clip(first)) return false;
+  const int nf = static_cast<int>(shape.faces.size());
+  for (int f = 0; f < nf; ++f) {
+    if (f != first && !clip(f)) return false;
   }
   return true;
 }
@@ -186,11 +200,14 @@ void collect_subcontacts(const PlacedHull& a, const PlacedHull& b, const CommonP
   // moved the indentation of a vertex 0.1 m from the extreme one by 1e-5 m per 1e-4 rad, and a
   // stack of offset blocks gained energy from nothing at every switch.
   double exit = 0;
+  int a_past = 0, a_inside = 0, b_past = 0, b_inside = 0;  // vertices past the other's plane / inside
   for (std::size_t i = 0; i < na; ++i) {
     const Vec3 p = a.world_vertices[i] + a.offset;
     double depth = n.dot(p) - min_b;
     if (depth <= 0) continue;
+    ++a_past;
     if (!inside(*b.shape, b.rotation, b.position + b.offset, p, -n, tolerance, exit)) continue;
+    ++a_inside;
     depth = std::min(depth, exit);
     if (depth <= 0) continue;
     out.push_back({subcontact_key(0, static_cast<int>(i)), p - 0.5 * depth * n, depth});
@@ -200,7 +217,9 @@ void collect_subcontacts(const PlacedHull& a, const PlacedHull& b, const CommonP
     const Vec3 p = b.world_vertices[j] + b.offset;
     double depth = max_a - n.dot(p);
     if (depth <= 0) continue;
+    ++b_past;
     if (!inside(*a.shape, a.rotation, a.position + a.offset, p, n, tolerance, exit)) continue;
+    ++b_inside;
     depth = std::min(depth, exit);
     if (depth <= 0) continue;
     // a vertex of B sitting on a vertex of A is one contact, not two
@@ -218,9 +237,11 @@ void collect_subcontacts(const PlacedHull& a, const PlacedHull& b, const CommonP
   // points such a contact had no support between the vertex subcontacts, and the edge sank into
   // the face unresisted (by 1.4 cm under 10 g shaking) until the last vertex left and one
   // subcontact at full depth threw the block. Each end of the edge's inside part that is not the
-  // edge's own vertex is a subcontact, indented along n to the face it is pressed into; points on
-  // that face itself (indentation ~0: the edge leaves through the contact face) are no contact.
-  // The same corner found from both blocks (crossing edges) counts once.
+  // edge's own vertex and lies on a side face of the other block is a subcontact, indented along
+  // n to the face it is pressed into. Such a corner is where an edge of A crosses an edge of B
+  // (seen along n) and is found from either block, so A's edges suffice; and there is none when
+  // every vertex of one block past the other's supporting plane is inside the other (one contact
+  // polygon inside the other: a block standing within its pedestal's top costs nothing more).
   auto add_crossings = [&](const PlacedHull& edges_of, const PlacedHull& other, int side,
                            double limit) {
     const auto& shape = *edges_of.shape;
@@ -240,10 +261,13 @@ void collect_subcontacts(const PlacedHull& a, const PlacedHull& b, const CommonP
     // An edge can reach into the other block only past its supporting plane, so only edges with
     // an end there are tried, each once, from its lower-numbered end when both ends are there.
     const int nv = static_cast<int>(shape.vertices.size());
+    const Mat3 to_other = other.rotation.transpose();
     for (int v = 0; v < nv; ++v) {
       if (!past(v)) continue;
       const bool v_inside = has_subcontact(v);
       const auto& around = shape.vertex_neighbors[v];
+      Vec3 qv{0, 0, 0};  // v in the other block's body frame, and the face it is most outside of
+      int v_out = -2;    // -2: not computed yet; -1: inside every face
       for (std::size_t slot = 0; slot < around.size(); ++slot) {
         const int u = around[slot];
         const bool u_past = past(u);
@@ -263,14 +287,35 @@ void collect_subcontacts(const PlacedHull& a, const PlacedHull& b, const CommonP
         const double t_near =
             len2 > 0 ? std::clamp((other_position - p0).dot(d) / len2, 0.0, 1.0) : 0.0;
         if ((p0 + t_near * d - other_position).squaredNorm() > reach2) continue;
-        double t0 = 0, t1 = 1;
-        if (!clip_segment(*other.shape, other.rotation, other_position, p0, p1, tolerance, t0, t1)) {
-          continue;
+        if (v_out == -2) {
+          qv = to_other * (edges_of.world_vertices[v] + edges_of.offset - other_position);
+          double most = 0;
+          v_out = -1;
+          const auto& faces = other.shape->faces;
+          for (std::size_t f = 0; f < faces.size(); ++f) {
+            const double outside = faces[f].normal.dot(qv) - faces[f].offset - tolerance;
+            if (outside > most) {
+              most = outside;
+              v_out = static_cast<int>(f);
+            }
+          }
         }
+        const Vec3 qu = to_other * (edges_of.world_vertices[u] + edges_of.offset - other_position);
+        const Vec3& q0 = v0 == v ? qv : qu;
+        const Vec3& q1 = v0 == v ? qu : qv;
+        double t0 = 0, t1 = 1;
+        int enter = -1, leave = -1;
+        if (!clip_segment(*other.shape, q0, q1, tolerance, v_out, t0, t1, enter, leave)) continue;
         const double t_ends[2] = {t0, t1};
+        const int faces_at[2] = {enter, leave};
         for (int end = 0; end < 2; ++end) {
           const double t = t_ends[end];
           if (t <= 1e-9 || t >= 1 - 1e-9) continue;  // the edge's own vertex: handled above
+          // only where the edge passes through a side face (within 60 degrees of parallel to n);
+          // through a face turned towards the contact the edge just leaves the overlap, and an
+          // edge-edge contact (faces at 45 degrees either side) is left to the shortest link
+          const Vec3 side_normal = other.rotation * other.shape->faces[faces_at[end]].normal;
+          if (std::abs(side_normal.dot(n)) > 0.5) continue;
           const Vec3 x = p0 + t * d;
           const double depth = std::min(
               sign * (n.dot(x) - limit),
@@ -290,8 +335,7 @@ void collect_subcontacts(const PlacedHull& a, const PlacedHull& b, const CommonP
       }
     }
   };
-  add_crossings(a, b, 0, min_b);
-  add_crossings(b, a, 1, max_a);
+  if (a_inside < a_past && b_inside < b_past) add_crossings(a, b, 0, min_b);
 
   if (out.size() == first && plane.overlap > 0) {
     out.push_back({kEdgeSubcontact, 0.5 * (plane.point_a + plane.point_b), plane.overlap});

@@ -156,7 +156,7 @@ struct RockSpec {
   double taper = 0.0;         // x, y scaled by 1 + taper z / c (local z)
   double lean_x = 0, lean_y = 0, yaw = 0;  // rotations about x, then y, then z (rad)
   double jitter = 0.05;       // radial jitter amplitude (fraction of the radius)
-  int points = 80;
+  int points = 56;
   std::uint64_t seed = 1;
   std::vector<HeightPlane> floors, ceilings;
   std::vector<SideCut> sides;
@@ -167,7 +167,7 @@ struct RockSpec {
 constexpr double kSnapBand = 0.005;
 // Points on the outline of each flat cut: enough for a round-looking contact face, few enough to
 // keep the contact search cheap (its cost grows with the vertices of touching faces).
-constexpr int kRingPoints = 12;
+constexpr int kRingPoints = 10;
 
 // Puts a point of a rock's cloud through its cuts (see RockSpec).
 Vec3 apply_cuts(const RockSpec& s, Vec3 p) {
@@ -220,7 +220,7 @@ std::vector<Vec3> rock_points(const RockSpec& s) {
     p.y() *= widen;
     out.push_back(apply_cuts(s, r * p + s.center));
   }
-  // Ring points where each floor and ceiling meets the smooth surface. A cut through a small cap
+  // Ring points where each cut meets the smooth surface. A cut through a small cap
   // holds only the few cloud points that fell in the cap, whose hull is a polygon well inside the
   // true cross-section; the ring makes the cut face the cross-section (slightly jittered inwards).
   const auto shape = [&](const Vec3& q) {  // > 1 outside the tapered superellipsoid
@@ -259,6 +259,30 @@ std::vector<Vec3> rock_points(const RockSpec& s) {
         (shape(at(mid)) < 1 ? inside : outside) = mid;
       }
       out.push_back(apply_cuts(s, at(inside * (1.0 - s.jitter * rng.uniform()))));
+    }
+  }
+  // the same for the side cuts, marching in the vertical plane of the cut
+  for (const auto& cut : s.sides) {
+    const double off = cut.nx * s.center.x() + cut.ny * s.center.y() - cut.d;
+    const Vec3 start(s.center.x() - off * cut.nx, s.center.y() - off * cut.ny, s.center.z());
+    if (shape(start) >= 1) continue;
+    const Vec3 along(-cut.ny, cut.nx, 0);
+    for (int j = 0; j < kRingPoints; ++j) {
+      const double phi = 2.0 * kPi * (j + 0.3 * rng.symmetric()) / kRingPoints;
+      const Vec3 dir = std::cos(phi) * along + std::sin(phi) * Vec3::UnitZ();
+      double inside = 0, outside = reach;
+      for (double t = 0.02 * reach; t <= reach; t += 0.02 * reach) {
+        if (shape(start + t * dir) >= 1) {
+          outside = t;
+          break;
+        }
+        inside = t;
+      }
+      for (int k = 0; k < 40; ++k) {
+        const double mid = 0.5 * (inside + outside);
+        (shape(start + mid * dir) < 1 ? inside : outside) = mid;
+      }
+      out.push_back(apply_cuts(s, start + inside * (1.0 - s.jitter * rng.uniform()) * dir));
     }
   }
   return out;
@@ -406,17 +430,13 @@ LibraryModel geode() {
 }
 
 // A single PBR on a pedestal: a flattened, top-heavy boulder (wider at the top, cut flat at a
-// narrow base). `cut` is the fraction of the vertical semi-axis below the centre where the base is
-// cut: the deeper the cut, the narrower the base and the more fragile the rock.
+// narrow base). `height` sizes the smooth shape (the jittered hull comes out within a few per cent
+// of it); `cut` is the fraction of the vertical semi-axis below the centre where the base is cut:
+// the deeper the cut, the narrower the base and the more fragile the rock.
 LibraryModel single_rock(const std::string& name, double height, double cut, double lean,
                          double yaw, std::uint64_t seed) {
   LibraryModel model;
   model.name = name;
-  char text[200];
-  std::snprintf(text, sizeof text,
-                "Single rock %.2f m tall: flattened top-heavy boulder on a narrow flat base, on a rock "
-                "pedestal (analogue of the study's single Yucca Mountain rocks, 0.5-0.9 m)", height);
-  model.description = text;
   RockSpec rock;
   rock.semi = Vec3(0.46 * height, 0.33 * height, 0);
   rock.exponent = 2.2;
@@ -425,9 +445,14 @@ LibraryModel single_rock(const std::string& name, double height, double cut, dou
   rock.lean_y = 0.5 * lean;
   rock.yaw = yaw;
   rock.seed = seed;
-  rock.points = 110;
+  rock.points = 64;
   fit_on(rock, 0.0, height, cut);
   const TriangleSoup r = shaped_rock(rock);
+  char text[200];
+  std::snprintf(text, sizeof text,
+                "Single rock %.2f m tall: flattened top-heavy boulder on a narrow flat base, on a rock "
+                "pedestal (analogue of the study's single Yucca Mountain rocks, 0.5-0.9 m)", max_z(r));
+  model.description = text;
   const TriangleSoup pedestal =
       support_under(vertices_on(r, {0, 0, 0}), {0, 0, 0}, kMargin, 0.3, 0.8, seed + 1000);
   model.pieces.push_back({"pedestal", pedestal, true});
@@ -492,7 +517,7 @@ LibraryModel five_stack_wall() {
     s.yaw = 0.3 * i;
     s.jitter = 0.06;
     s.seed = 301 + std::uint64_t(i);
-    s.points = 52;
+    s.points = 40;
     s.sides.push_back({1, 0, 0});  // x <= 0: flat against the wall
     if (i > 0) s.seats.push_back(seat_on(free.back()));
     if (i < 4) {
@@ -544,7 +569,7 @@ LibraryModel block_against_face() {
   s.yaw = 0.2;
   s.jitter = 0.04;
   s.seed = 401;
-  s.points = 110;
+  s.points = 64;
   s.sides.push_back({1, 0, 0});
   fit_on(s, 0.0, 1.0, 0.85);
   RockSpec face;
@@ -583,7 +608,7 @@ LibraryModel four_stack_unstable_pedestal() {
   ped.taper = 0.2;
   ped.lean_x = 0.03;
   ped.seed = 501;
-  ped.points = 72;
+  ped.points = 56;
   fit_between(ped, 0.0, 0.42, 0.8, 0.5);
   std::vector<TriangleSoup> free{shaped_rock(ped)};
   const double thickness[4] = {0.34, 0.3, 0.28, 0.3};
@@ -597,7 +622,7 @@ LibraryModel four_stack_unstable_pedestal() {
     s.yaw = 0.5 + 0.7 * i;
     s.jitter = 0.06;
     s.seed = 502 + std::uint64_t(i);
-    s.points = 64;
+    s.points = 48;
     s.seats.push_back(seat_on(free.back()));
     const double z = max_z(free.back());
     if (i < 3) {
@@ -631,7 +656,7 @@ LibraryModel three_stack_wedge() {
   bottom.exponent = 2.3;
   bottom.taper = 0.1;
   bottom.seed = 601;
-  bottom.points = 72;
+  bottom.points = 56;
   fit_between(bottom, flat, 0.45, 0.6, 0.6);  // floor z = flat, ceiling 0.45
   bottom.floors.push_back(pedestal_top);      // uphill the base follows the slope
   const TriangleSoup b = shaped_rock(bottom);
@@ -641,7 +666,7 @@ LibraryModel three_stack_wedge() {
   wedge.exponent = 2.5;
   wedge.jitter = 0.04;
   wedge.seed = 602;
-  wedge.points = 40;
+  wedge.points = 32;
   wedge.sides.push_back({-1, 0, -(crease + 0.05)});  // x >= crease + 5 cm: no knife edge
   wedge.floors.push_back(pedestal_top);
   wedge.ceilings.push_back({flat, 0, 0});
@@ -658,7 +683,7 @@ LibraryModel three_stack_wedge() {
     s.taper = 0.15;
     s.yaw = 1.1 + 0.9 * i;
     s.seed = 603 + std::uint64_t(i);
-    s.points = 64;
+    s.points = 48;
     s.seats.push_back(seat_on(free.back()));
     const double z = max_z(free.back());
     if (i == 0) {
@@ -754,8 +779,8 @@ std::vector<LibraryModel> rock_library() {
   lib.push_back(three_stack_wedge());
   lib.push_back(single_rock("single_rock_050", 0.50, 0.66, 0.03, 0.3, 901));
   lib.push_back(single_rock("single_rock_060", 0.60, 0.76, 0.03, 1.4, 902));
-  lib.push_back(single_rock("single_rock_075", 0.75, 0.84, 0.03, 2.5, 903));
-  lib.push_back(single_rock("single_rock_090", 0.90, 0.88, 0.03, 4.0, 904));
+  lib.push_back(single_rock("single_rock_075", 0.765, 0.84, 0.03, 2.5, 903));
+  lib.push_back(single_rock("single_rock_090", 0.915, 0.88, 0.03, 4.0, 904));
   return lib;
 }
 

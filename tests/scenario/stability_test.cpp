@@ -397,18 +397,20 @@ TEST(Stability, ExactlyCoplanarFaceFace) {
   check_case(c);
 }
 
-// Crossing edge-edge contact: a free square bar, edge down along y, balanced exactly on a fixed
-// square bar, edge up along x (a point contact between two edges); it tips off onto a floor.
+// Crossing edge-edge contact: a free bar of flat rhombic section (faces 20 degrees off the
+// horizontal), edge down along y, balanced exactly on a fixed square bar, edge up along x: a point
+// contact between two crossing edges. It tips 20 degrees onto a face lying across the fixed edge
+// (an edge-face contact whose ends are edge crossings) and rocks there.
 TEST(Stability, CrossingEdgeEdge) {
   Case c;
   c.name = "crossing edge-edge";
-  const double a = 0.05, half = 0.3;
+  const double a = 0.05, half = 0.3, w = 0.08, h = w * std::tan(20 * kPi / 180);
   std::vector<Vec3> fixed_bar, free_bar;
   for (double s : {-half, half}) {
     for (const auto& q : {Vec3(0, 0, 0), Vec3(0, a, -a), Vec3(0, 0, -2 * a), Vec3(0, -a, -a)}) {
       fixed_bar.push_back(q + Vec3(s, 0, 0));
     }
-    for (const auto& q : {Vec3(0, 0, 0), Vec3(a, 0, a), Vec3(0, 0, 2 * a), Vec3(-a, 0, a)}) {
+    for (const auto& q : {Vec3(0, 0, 0), Vec3(w, 0, h), Vec3(0, 0, 2 * h), Vec3(-w, 0, h)}) {
       free_bar.push_back(q + Vec3(0, s, 0));
     }
   }
