@@ -3,6 +3,9 @@
 #   bash setup.sh demo    install, build, run the main job (the demo)
 #   bash setup.sh test    install, build, run every test (what CI runs)
 #   bash setup.sh build   install and build only
+#   bash setup.sh sanitize  install, build with AddressSanitizer + UndefinedBehaviorSanitizer
+#                         (in build-sanitize), run the tests there but the longest physics runs
+#                         (CI runs it after `test`; the `stability` cases are all in it)
 # Environment: BUILD_DIR (default build), JOBS (default nproc), RIGID_CMAKE_ARGS (extra cmake args).
 set -euo pipefail
 cd "$(dirname "$0")"
@@ -41,8 +44,19 @@ if [[ $(id -u) -eq 0 ]]; then
   export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 fi
 
+build_type=Release
+if [[ $action == sanitize ]]; then
+  # optimised with debug lines, so the suite runs in minutes and reports name source lines
+  build_dir=${BUILD_DIR:-build-sanitize}
+  build_type=RelWithDebInfo
+  RIGID_CMAKE_ARGS="-DRIGID_SANITIZE=ON ${RIGID_CMAKE_ARGS:-}"
+  # any finding fails the test; Open MPI's own allocations at exit are not ours to report
+  export ASAN_OPTIONS=${ASAN_OPTIONS:-abort_on_error=1:detect_leaks=1}
+  export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
+  export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$PWD/tests/lsan_suppressions.txt:print_suppressions=0}
+fi
 # shellcheck disable=SC2086
-cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=Release ${RIGID_CMAKE_ARGS:-} >/dev/null
+cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=$build_type ${RIGID_CMAKE_ARGS:-} >/dev/null
 cmake --build "$build_dir" -j "$jobs"
 
 case "$action" in
@@ -50,12 +64,23 @@ case "$action" in
   test)
     ctest --test-dir "$build_dir" --output-on-failure -j "$jobs"
     ;;
+  sanitize)
+    # Every test but the five long physics runs whose code paths the rest already cover (the
+    # 20 s stands of the rock stacks, the slow tilt tests, the 1e10-stiffness pulse, the reduced
+    # validation campaign) and the Slurm daemons: under the sanitizers those alone take 20 min.
+    ctest --test-dir "$build_dir" --output-on-failure -j "$jobs" \
+      -E 'RockAnalogue|TiltTest|K1e10|validation_reduced|slurm_campaign'
+    ;;
   demo)
     # The main job: a small real campaign on the bundled models and generated waveforms, on two
     # ranks. It resumes if interrupted (run the command again); delete out/ to start over.
     rigid="$build_dir/bin/rigid"
     "$rigid" campaign jobs/demo.toml --dry-run
     mpirun --oversubscribe -np 2 "$rigid" campaign jobs/demo.toml
+    # what people look at: fragility maps per object and the scenario table (objects x records)
+    "$rigid" plot maps out/demo.h5 --out out/demo_plots
+    "$rigid" plot table out/demo.h5 --out out/demo_plots/scenario_table.md
+    cat out/demo_plots/scenario_table.md
     ;;
-  *) echo "usage: bash setup.sh demo|test|build" >&2; exit 2 ;;
+  *) echo "usage: bash setup.sh demo|test|sanitize|build" >&2; exit 2 ;;
 esac

@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
   rigid::app::register_model_command(app);
   rigid::app::register_campaign_command(app);
   rigid::app::register_plot_command(app);
+  rigid::app::register_study_command(app);
   rigid::app::set_campaign_arguments(argc, argv);
   try {
     app.parse(argc, argv);

@@ -11,6 +11,7 @@
 #include "rigid/core/error.hpp"
 #include "rigid/io/scene_file.hpp"
 #include "rigid/io/trajectory.hpp"
+#include "rigid/scenario/accuracy.hpp"
 #include "rigid/scenario/rocking2d.hpp"
 #include "rigid/scenario/scene.hpp"
 
@@ -25,8 +26,10 @@ struct RunOptions {
   double free_time = 5.0;
   double dt = 0;
   double safety = 0;
-  std::string integrator = "splitting";
+  std::string integrator;  // empty: the preset's
+  std::string accuracy = scenario::kDefaultAccuracy;
   std::string model = "dem3d";
+  std::string effects = "auto";
   std::string trajectory;
   double trajectory_interval = 0.02;
   bool json = false;
@@ -36,27 +39,74 @@ void check_positive_option(double v, const char* name) {
   if (!(v > 0) || !std::isfinite(v)) throw InputError("", 0, std::string(name) + " must be positive");
 }
 
+const char* end_name(scenario::ActiveEffects::End end) {
+  switch (end) {
+    case scenario::ActiveEffects::End::failure: return "failure";
+    case scenario::ActiveEffects::End::at_rest: return "at_rest";
+    default: return "full_duration";
+  }
+}
+
+// The effects a run simulated (issue 6), as the "effects" object of --json.
+std::string effects_json(const scenario::ActiveEffects& e) {
+  JsonObject j;
+  j.add("selected", e.selected)
+      .add("vertical_motion", e.vertical_motion)
+      .add("pairs_total", e.pairs_total)
+      .add("pairs_fixed_fixed", e.pairs_fixed_fixed)
+      .add("pairs_never_tested", e.pairs_never_tested)
+      .add("pair_steps_culled", e.pair_steps_culled)
+      .add("sleep_possible", e.sleep_possible)
+      .add("sleep_intervals", e.sleep_intervals)
+      .add("asleep_s", e.asleep_s)
+      .add("steps_skipped", e.steps_skipped)
+      .add("sliding", e.sliding)
+      .add("contact_steps", e.contact_steps)
+      .add("sliding_steps", e.sliding_steps)
+      .add("end", end_name(e.end))
+      .add("time_saved_s", e.time_saved_s);
+  return j.str();
+}
+
+std::string effects_line(const scenario::ActiveEffects& e) {
+  char buf[512];
+  std::snprintf(buf, sizeof buf,
+                "effects (%s): vertical %s; pairs %ld (%ld fixed-fixed never tested, %ld others never tested); "
+                "asleep %.3f s in %ld intervals (%ld steps skipped); slip bookkeeping in %ld of %ld contact "
+                "evaluations; end: %s, %.3f s before the requested duration",
+                e.selected ? "auto" : "all", e.vertical_motion ? "yes" : "no", e.pairs_total, e.pairs_fixed_fixed,
+                e.pairs_never_tested, e.asleep_s, e.sleep_intervals, e.steps_skipped, e.sliding_steps, e.contact_steps,
+                end_name(e.end), e.time_saved_s);
+  return buf;
+}
+
 void run(const RunOptions& o) {
   scenario::Scene scene = io::load_scene(o.scene);
   if (!o.state.empty()) io::apply_state(o.state, scene);
   scenario::RunSettings settings;
+  // the accuracy preset, then the explicit --dt, --safety and --integrator over it
+  const scenario::AccuracyPreset* preset = scenario::find_accuracy_preset(o.accuracy);
+  if (!preset) throw InputError("", 0, "--accuracy must be " + scenario::accuracy_preset_list());
+  scenario::AccuracyOverrides overrides;
   if (o.dt != 0) {
     check_positive_option(o.dt, "--dt");
-    settings.step.dt = o.dt;
+    overrides.dt = o.dt;
   }
   if (o.safety != 0) {
     check_positive_option(o.safety, "--safety");
-    settings.step.safety = o.safety;
+    overrides.safety = o.safety;
   }
-  if (o.integrator == "rk4") {
-    settings.step.rotation = dynamics::RotationIntegrator::rk4;
-  } else if (o.integrator != "splitting") {
-    throw InputError("", 0, "--integrator must be splitting or rk4");
+  if (!o.integrator.empty()) {
+    overrides.rotation = scenario::parse_integrator(o.integrator);
+    if (!overrides.rotation) throw InputError("", 0, "--integrator must be splitting or rk4");
   }
+  scenario::apply_accuracy(*preset, overrides, settings);
   if (o.duration != 0) check_positive_option(o.duration, "--duration");
   settings.duration = o.duration;
   if (o.free_time < 0) throw InputError("", 0, "--free-time must not be negative");
   settings.free_time = o.free_time;
+  if (o.effects != "auto" && o.effects != "all") throw InputError("", 0, "--effects must be auto or all");
+  settings.select_effects = o.effects == "auto";
 
   if (o.model != "dem3d" && o.model != "rocking2d") throw InputError("", 0, "--model must be dem3d or rocking2d");
   // the 2D model checks the scene before any motion is read
@@ -98,12 +148,14 @@ void run(const RunOptions& o) {
         .add("max_overlap_m", r.max_overlap)
         .add("ended_at_rest", r.ended_at_rest)
         .add("finite", r.finite);
+    if (!block2d) j.raw("effects", effects_json(r.effects));
     std::printf("%s\n", j.str().c_str());
   } else {
     std::printf("%s after %.3f s simulated (%ld steps of %.3g s, %.3f s wall)\n",
                 r.overturned ? "OVERTURNED" : "survived", r.simulated, r.steps, r.dt, wall);
     if (r.failure_time) std::printf("failure: %s at %.4f s\n", r.failed_block.c_str(), *r.failure_time);
     std::printf("max tilt %.3f deg, max slip %.4g m\n", r.max_tilt * 180.0 / kPi, r.max_slip);
+    if (!block2d) std::printf("%s\n", effects_line(r.effects).c_str());
   }
   if (!r.finite) throw std::runtime_error("the simulation produced a non-finite state");
 }
@@ -120,8 +172,11 @@ void register_run_command(CLI::App& app) {
   cmd->add_option("--free-time", o->free_time, "Time left to rock after the motion ends, when --duration is not given (s)")
       ->capture_default_str();
   cmd->add_option("--dt", o->dt, "Time step (s); default: automatic from block masses and contact stiffness");
-  cmd->add_option("--safety", o->safety, "Safety factor on the critical time step for the automatic step (default 0.2)");
-  cmd->add_option("--integrator", o->integrator, "Rotation integrator: splitting (symplectic, default) or rk4")
+  cmd->add_option("--safety", o->safety, "Safety factor on the critical time step for the automatic step (default: the preset's)");
+  cmd->add_option("--integrator", o->integrator, "Rotation integrator: splitting (symplectic) or rk4 (default: the preset's)");
+  cmd->add_option("--accuracy", o->accuracy,
+                  "Accuracy preset: fast, balanced or reference (time-step safety, integrator, at-rest stop; "
+                  "docs/accuracy.md); --dt, --safety and --integrator override its values")
       ->capture_default_str();
   cmd->add_option("--model", o->model,
                   "dem3d (the 3D engine) or rocking2d (the 2D Housner reference, for a box block on a box "
@@ -130,6 +185,11 @@ void register_run_command(CLI::App& app) {
   cmd->add_option("--trajectory", o->trajectory,
                   "Write block poses over time to this .xdmf (with a .h5 beside it) for ParaView (dem3d only)");
   cmd->add_option("--trajectory-interval", o->trajectory_interval, "Time between trajectory frames (s)")
+      ->capture_default_str();
+  cmd->add_option("--effects", o->effects,
+                  "auto: simulate only the effects the scene and motion call for (sleeping on a quiet "
+                  "pedestal, pair culling, no vertical work without a vertical component, early end); "
+                  "all: every effect, the reference")
       ->capture_default_str();
   cmd->add_flag("--json", o->json, "Print one JSON object");
   cmd->callback([o] { run(*o); });

@@ -22,6 +22,7 @@
 #include "rigid/campaign/runner.hpp"
 #include "rigid/core/error.hpp"
 #include "rigid/io/job_file.hpp"
+#include "rigid/scenario/rocking_parameters.hpp"
 
 #if !defined(RIGID_VERSION) || !defined(RIGID_GIT_HASH)
 #error "the build defines RIGID_VERSION and RIGID_GIT_HASH"
@@ -71,16 +72,19 @@ io::Cube make_cube(const scenario::Job& job, const TaskRunner& runner, const Pla
   cube.job_hash = job.hash;
   cube.software_version = RIGID_VERSION " (" RIGID_GIT_HASH ")";
   cube.seed = job.seed;
-  char physics[512];
+  char physics[1024];
   const auto& law = runner.scene(0).law;
   std::snprintf(physics, sizeof physics,
                 "{\"normal_stiffness\": %.17g, \"shear_stiffness\": %.17g, \"friction\": %.17g, "
                 "\"damping\": %.17g, \"dt_s\": %.17g, \"safety\": %.17g, \"integrator\": \"%s\", "
-                "\"duration_s\": %.17g, \"free_time_s\": %.17g, \"stop_after\": %d}",
+                "\"duration_s\": %.17g, \"free_time_s\": %.17g, \"stop_after\": %d, \"accuracy\": \"%s\", "
+                "\"rest_speed_m_s\": %.17g, \"rest_angular_speed_rad_s\": %.17g, \"rest_time_s\": %.17g, "
+                "\"effects\": \"%s\"}",
                 law.normal_stiffness, law.shear_stiffness, law.friction, law.damping, job.run.step.dt,
                 job.run.step.safety,
                 job.run.step.rotation == dynamics::RotationIntegrator::rk4 ? "rk4" : "splitting",
-                job.run.duration, job.run.free_time, job.stop_after);
+                job.run.duration, job.run.free_time, job.stop_after, job.accuracy.c_str(), job.run.rest_speed,
+                job.run.rest_angular_speed, job.run.rest_time, job.run.select_effects ? "auto" : "all");
   cube.physics_json = physics;
   const std::vector<std::int8_t> outcome = plan.final_outcomes();
   const std::vector<bool> kept = plan.kept_mask();
@@ -90,6 +94,10 @@ io::Cube make_cube(const scenario::Job& job, const TaskRunner& runner, const Pla
     io::ObjectCube oc;
     oc.name = job.objects[o].name;
     oc.scene = job.objects[o].scene;
+    if (const auto rocking = scenario::rocking_parameters(runner.scene(int(o)))) {
+      oc.alpha_rad = rocking->alpha;
+      oc.p_rad_s = rocking->p;
+    }
     for (long i = 0; i < per_object; ++i) {
       const long t = long(o) * per_object + i;
       const TaskResult& r = plan.results()[t];
@@ -114,7 +122,7 @@ void restore(const std::string& output, const scenario::Job& job, Plan& plan, bo
     if (old.job_hash != job.hash) {
       if (!force) {
         throw InputError(output, 0,
-                         "was written by a different job file (hash " + old.job_hash + ", now " + job.hash +
+                         "was written by a different job file or accuracy preset (hash " + old.job_hash + ", now " + job.hash +
                              "); use --force to start a new campaign over it, or another --out");
       }
       fs::remove(output);
@@ -482,6 +490,23 @@ int run_campaign(int& argc, char**& argv, const CampaignOptions& options) {
       job.text += "\n# command line: --model " + options.model + "\n";
       job.hash = io::text_hash(job.text);
     }
+    if (!options.effects.empty() && options.effects != "auto" && options.effects != "all") {
+      throw InputError("", 0, "--effects must be auto or all");
+    }
+    if (!options.effects.empty() && (options.effects == "auto") != job.run.select_effects) {
+      // like --model: part of the job text, so of its hash, and a resume with the other choice is refused
+      job.run.select_effects = options.effects == "auto";
+      job.text += "\n# command line: --effects " + options.effects + "\n";
+      job.hash = io::text_hash(job.text);
+    }
+    if (!options.accuracy.empty()) {
+      const scenario::AccuracyPreset* preset = scenario::find_accuracy_preset(options.accuracy);
+      if (!preset) throw InputError("", 0, "--accuracy must be " + scenario::accuracy_preset_list());
+      // the preset enters the job hash (io::job_hash), so a resume with another preset is refused
+      job.accuracy = preset->name;
+      scenario::apply_accuracy(*preset, job.accuracy_overrides, job.run);
+    }
+    job.hash = io::job_hash(job);
     runner = std::make_unique<TaskRunner>(job);
   } catch (const InputError& e) {
     ok = 0;

@@ -62,11 +62,15 @@ TaskResult TaskRunner::run(long task, const Cell& cell, bool noop) const {
   }
   try {
     const double angle = rotation_angle_deg(job_.seed, cell) * kPi / 180.0;
-    const motion::GroundMotion m = motion::rotated(
-        motion::scaled(windowed_[cell.record], unit_factor_[cell.record] * job_.scales_g[cell.scale]), angle);
+    const motion::GroundMotion scaled =
+        motion::scaled(windowed_[cell.record], unit_factor_[cell.record] * job_.scales_g[cell.scale]);
+    // The 2D reference takes the record's x component as scaled, whatever the rotation: a 2D
+    // fragility (Purvance et al. 2008, the study's reference, physics.md §11) is a function of the
+    // record's PGA and PGV alone. Projecting the rotated motion on x instead would weaken the
+    // shaking by |cos| of a random angle that the 2D block cannot feel.
     const scenario::RunOutcome r = job_.model == "rocking2d"
-        ? scenario::run_rocking2d(rocking_[cell.object], m.x, m.dt, job_.run)
-        : scenario::run(scenes_[cell.object], scenario::ground_drive(m), job_.run);
+        ? scenario::run_rocking2d(rocking_[cell.object], scaled.x, scaled.dt, job_.run)
+        : scenario::run(scenes_[cell.object], scenario::ground_drive(motion::rotated(scaled, angle)), job_.run);
     if (!r.finite) {
       out.outcome = static_cast<std::int32_t>(io::CellOutcome::failed);
       out.reason = static_cast<std::int32_t>(FailureReason::non_finite);

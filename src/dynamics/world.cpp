@@ -40,6 +40,7 @@ World::World(std::vector<BodyDef> bodies, const contact::ContactLaw& law,
   torques_.assign(n, Vec3::Zero());
   contact_force_.assign(n, Vec3::Zero());
   slip_.assign(n, 0.0);
+  travel_.assign(n, 0.0);
   for (std::size_t i = 0; i < n; ++i) {
     const auto& d = defs_[i];
     auto& s = states_[i];
@@ -53,7 +54,10 @@ World::World(std::vector<BodyDef> bodies, const contact::ContactLaw& law,
   // every pair that can ever touch: two fixed blocks never interact
   for (std::size_t a = 0; a < n; ++a) {
     for (std::size_t b = a + 1; b < n; ++b) {
-      if (defs_[a].fixed && defs_[b].fixed) continue;
+      if (defs_[a].fixed && defs_[b].fixed) {
+        ++fixed_fixed_pairs_;
+        continue;
+      }
       PairContact p;
       p.a = static_cast<int>(a);
       p.b = static_cast<int>(b);
@@ -146,13 +150,25 @@ void World::step(double dt, const Vec3& ground_velocity_start, const Vec3& groun
     if (defs_[i].fixed) {
       // pedestals follow the ground: trapezoid of the linearly interpolated velocity
       s.velocity = ground_velocity;
-      s.position += dt * ground_velocity;
-      for (auto& v : world_vertices_[i]) v += dt * ground_velocity;
+      if (effects_.vertical_ground) {
+        s.position += dt * ground_velocity;
+        for (auto& v : world_vertices_[i]) v += dt * ground_velocity;
+      } else {
+        // no vertical component: the same sums in x and y, z left alone (it would add 0 exactly)
+        const double dx = dt * ground_velocity.x(), dy = dt * ground_velocity.y();
+        s.position.x() += dx;
+        s.position.y() += dy;
+        for (auto& v : world_vertices_[i]) {
+          v.x() += dx;
+          v.y() += dy;
+        }
+      }
       continue;
     }
     s.velocity += (0.5 * dt / defs_[i].shape.mass) * forces_[i];
     s.angular_momentum += 0.5 * dt * torques_[i];
     s.position += dt * s.velocity;
+    if (effects_.distance_skin) travel_[i] += dt * (s.velocity - ground_velocity).norm();
     drift_rotation(static_cast<int>(i), dt);
     rotations_[i] = s.orientation.toRotationMatrix();
     update_world_vertices(static_cast<int>(i));
@@ -194,16 +210,29 @@ void World::compute_forces(double dt) {
     const auto& db = defs_[p.b];
     const auto& sa = states_[p.a];
     const auto& sb = states_[p.b];
+    // skin: the spheres were further apart than the bodies have travelled since
+    const double travel = effects_.distance_skin ? travel_[p.a] + travel_[p.b] : 0.0;
+    if (p.skin_gap > 0 && travel - p.skin_travel < p.skin_gap) {
+      ++stats_.pairs_culled;
+      continue;
+    }
     // bounding spheres apart: no contact possible this step
-    const double gap = (sb.position - sa.position).norm() - da.shape.bounding_radius -
-                       db.shape.bounding_radius;
+    const double radii = da.shape.bounding_radius + db.shape.bounding_radius;
+    const double gap = (sb.position - sa.position).norm() - radii;
     if (gap > 0) {
       p.subs.clear();
       p.overlap = -gap;
       ++stats_.pairs_skipped;
+      if (effects_.distance_skin) {
+        // the margin covers the rounding of positions summed over millions of steps
+        p.skin_gap = gap - 1e-6 * radii;
+        p.skin_travel = travel;
+      }
       continue;
     }
+    p.skin_gap = -1;
     ++stats_.pair_tests;
+    ++p.tests;
     contact::PlacedHull ha{&da.shape, world_vertices_[p.a].data(), Vec3::Zero(), rotations_[p.a],
                            sa.position};
     contact::PlacedHull hb{&db.shape, world_vertices_[p.b].data(), Vec3::Zero(), rotations_[p.b],
@@ -251,8 +280,13 @@ void World::compute_forces(double dt) {
     std::swap(p.subs, p.next_subs);
     contact_force_[p.b] += total;
     contact_force_[p.a] -= total;
-    if (!da.fixed) slip_[p.a] += pair_slip;
-    if (!db.fixed) slip_[p.b] += pair_slip;
+    ++stats_.contact_steps;
+    // slip bookkeeping only where some subcontact reached the Coulomb cap (adding 0 is exact)
+    if (pair_slip > 0) {
+      ++stats_.sliding_steps;
+      if (!da.fixed) slip_[p.a] += pair_slip;
+      if (!db.fixed) slip_[p.b] += pair_slip;
+    }
   }
   if (settings_.local_damping > 0) {
     // Itasca local damping: oppose the unbalanced force where it drives motion (physics.md §9)
@@ -268,6 +302,27 @@ void World::compute_forces(double dt) {
       }
     }
   }
+}
+
+void World::carry_with_ground(double t_end, const Vec3& displacement, const Vec3& v_start,
+                              const Vec3& v_end) {
+  const Vec3 dv = v_end - v_start;
+  for (std::size_t i = 0; i < defs_.size(); ++i) {
+    auto& s = states_[i];
+    s.position += displacement;
+    for (auto& v : world_vertices_[i]) v += displacement;
+    if (defs_[i].fixed) {
+      s.velocity = v_end;
+      continue;
+    }
+    s.velocity += dv;
+    // the contact force carrying the block is m (a_ground + g z), whose work along the ground's
+    // path is the change of m |v_ground|^2 / 2 plus m g dz
+    const double m = defs_[i].shape.mass;
+    pedestal_work_ += 0.5 * m * (v_end.squaredNorm() - v_start.squaredNorm()) +
+                      m * settings_.gravity * displacement.z();
+  }
+  time_ = t_end;
 }
 
 double World::kinetic_energy() const {

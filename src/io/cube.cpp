@@ -16,7 +16,8 @@
 //   /records/{name, source, earthquake}                               [R] string
 //   /records/{start_s, end_s, gmroti_pga_g, gmroti_pgv_cm_s, pgv_pga_s,
 //             listed_pga_g, listed_pgv_cm_s}                          [R] float64
-//   /objects/<name>/       attributes: scene (string), index (int32, position in the job)
+//   /objects/<name>/       attributes: scene (string), index (int32, position in the job),
+//                          alpha_rad, p_rad_s (float64, only for single-block objects)
 //       outcome            [R,S,A] int8   attribute legend = "0 not run, 1 survived, ..."
 //       rotation_deg, failure_time_s, max_tilt_deg, max_slip_m, wall_s   [R,S,A] float64
 //       failure_reason     [R,S,A] int32  0 = none, else the campaign's FailureReason code
@@ -512,6 +513,8 @@ void write_contents(const H5& h, hid_t file, const Cube& c) {
     w.group(g);
     w.attribute(g, "scene", o.scene);
     w.attribute(g, "index", static_cast<std::int32_t>(i));
+    if (std::isfinite(o.alpha_rad)) w.attribute(g, "alpha_rad", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &o.alpha_rad);
+    if (std::isfinite(o.p_rad_s)) w.attribute(g, "p_rad_s", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &o.p_rad_s);
     const auto cells = [&](Hid d, const std::string& path) {
       w.attach(d, path, 0, record, "record");
       w.attach(d, path, 1, scale, "scale_g");
@@ -626,6 +629,14 @@ class Reader {
     Hid a = open_attribute(path, name, H5T_INTEGER, what);
     T v{};
     h_.check(H5Aread(a, mem_type, &v), what);
+    return v;
+  }
+
+  double double_attribute(const std::string& path, const char* name) const {
+    const std::string what = "reading attribute " + std::string(name) + " of " + path;
+    Hid a = open_attribute(path, name, H5T_FLOAT, what);
+    double v = 0;
+    h_.check(H5Aread(a, H5T_NATIVE_DOUBLE, &v), what);
     return v;
   }
 
@@ -778,6 +789,8 @@ Cube read_contents(const H5& h, hid_t file) {
     ObjectCube& o = c.objects[static_cast<std::size_t>(index)];
     o.name = name;
     o.scene = rd.string_attribute(g, "scene");
+    if (rd.has_attribute(g, "alpha_rad")) o.alpha_rad = rd.double_attribute(g, "alpha_rad");
+    if (rd.has_attribute(g, "p_rad_s")) o.p_rad_s = rd.double_attribute(g, "p_rad_s");
     o.outcome = rd.numbers<std::int8_t>(g + "/outcome", H5T_INTEGER, H5T_NATIVE_INT8, rsa);
     o.rotation_deg = rd.doubles(g + "/rotation_deg", rsa);
     o.failure_time_s = rd.doubles(g + "/failure_time_s", rsa);

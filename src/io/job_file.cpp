@@ -250,7 +250,7 @@ scenario::Job load_job(const std::string& path) {
 
   // simulation settings
   if (const auto* run = root["run"].as_table()) {
-    reject_unknown(*run, {"model", "duration_s", "free_time_s", "dt_s", "safety", "integrator"}, path, "[run]");
+    reject_unknown(*run, {"model", "duration_s", "free_time_s", "dt_s", "safety", "integrator", "accuracy", "effects"}, path, "[run]");
     job.model = (*run)["model"].value_or(std::string("dem3d"));
     if (job.model != "dem3d" && job.model != "rocking2d") {
       throw InputError(path, line_of(*run), "model must be \"dem3d\" or \"rocking2d\", not \"" + job.model + "\"");
@@ -268,8 +268,37 @@ scenario::Job load_job(const std::string& path) {
     } else if (integrator != "splitting") {
       throw InputError(path, line_of(*run), "integrator must be \"splitting\" or \"rk4\"");
     }
+    // the accuracy preset; the explicit keys dt_s, safety and integrator override its values
+    if (const auto* a = run->get("accuracy")) {
+      const auto name = a->value<std::string>();
+      if (!name || !scenario::find_accuracy_preset(*name)) {
+        throw InputError(path, line_of(*a), "accuracy must be " + scenario::accuracy_preset_list() + ", not " +
+                                                (name ? "\"" + *name + "\"" : std::string("a non-string")));
+      }
+      job.accuracy = *name;
+    }
+    // effect selection (issue 6): "auto" simulates only what the scene and motion call for
+    if (const auto* e = run->get("effects")) {
+      const auto name = e->value<std::string>();
+      if (!name || (*name != "auto" && *name != "all")) {
+        throw InputError(path, line_of(*e), "effects must be \"auto\" or \"all\", not " +
+                                                (name ? "\"" + *name + "\"" : std::string("a non-string")));
+      }
+      job.run.select_effects = *name == "auto";
+    }
+    if (run->contains("dt_s")) job.accuracy_overrides.dt = job.run.step.dt;
+    if (run->contains("safety")) job.accuracy_overrides.safety = job.run.step.safety;
+    if (run->contains("integrator")) job.accuracy_overrides.rotation = job.run.step.rotation;
   }
+  scenario::apply_accuracy(*scenario::find_accuracy_preset(job.accuracy), job.accuracy_overrides, job.run);
+  job.hash = job_hash(job);
   return job;
+}
+
+std::string job_hash(const scenario::Job& job) {
+  // cubes from before the presets were computed with balanced's settings and hash the text alone
+  if (job.accuracy == "balanced") return text_hash(job.text);
+  return text_hash(job.text + "\n# accuracy: " + job.accuracy + "\n");
 }
 
 }  // namespace rigid::io

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace rigid::scenario {
 
@@ -13,6 +14,35 @@ Vec3 GroundDrive::at(double t) const {
   if (k + 1 >= velocity.size()) return velocity.back();
   const double f = x - double(k);
   return (1 - f) * velocity[k] + f * velocity[k + 1];
+}
+
+Vec3 GroundDrive::displacement(double t0, double t1) const {
+  Vec3 sum = Vec3::Zero();
+  if (velocity.empty() || !(t1 > t0)) return sum;
+  // constant velocity before the first sample and after the last
+  if (t0 < 0) {
+    const double b = std::min(t1, 0.0);
+    sum += (b - t0) * velocity.front();
+    t0 = b;
+  }
+  const double end = duration();
+  if (t1 > end) {
+    const double a = std::max(t0, end);
+    sum += (t1 - a) * velocity.back();
+    t1 = a;
+  }
+  if (!(t1 > t0)) return sum;
+  // linear between samples: trapezoids are exact
+  double a = t0;
+  Vec3 va = at(t0);
+  for (std::size_t j = static_cast<std::size_t>(t0 / dt) + 1; j < velocity.size() && double(j) * dt < t1; ++j) {
+    const double b = double(j) * dt;
+    sum += 0.5 * (b - a) * (va + velocity[j]);
+    a = b;
+    va = velocity[j];
+  }
+  sum += 0.5 * (t1 - a) * (va + at(t1));
+  return sum;
 }
 
 GroundDrive ground_drive(const motion::GroundMotion& m) {
@@ -42,6 +72,176 @@ bool at_rest(const dynamics::World& world, const RunSettings& s) {
   return true;
 }
 
+// At rest relative to the ground: the pedestals move with ground_velocity and do not rotate, so
+// a block riding a coasting (or slowly moving) pedestal is at rest although its speed is not 0.
+bool at_rest_relative(const dynamics::World& world, const Vec3& ground_velocity, double speed,
+                      double angular_speed) {
+  const auto& defs = world.bodies();
+  for (std::size_t i = 0; i < defs.size(); ++i) {
+    if (defs[i].fixed) continue;
+    if ((world.states()[i].velocity - ground_velocity).norm() > speed) return false;
+    if (world.angular_velocity(static_cast<int>(i)).norm() > angular_speed) return false;
+  }
+  return true;
+}
+
+// Ground acceleration per interval of a drive (its velocity is linear between samples, so the
+// acceleration is constant on each interval), with suffix maxima; zero outside the record.
+class GroundAcceleration {
+ public:
+  GroundAcceleration() = default;
+  explicit GroundAcceleration(const GroundDrive& g) : dt_(g.dt) {
+    for (std::size_t j = 0; j + 1 < g.velocity.size(); ++j) {
+      const Vec3 a = (g.velocity[j + 1] - g.velocity[j]) / g.dt;
+      horizontal_.push_back(std::hypot(a.x(), a.y()));
+      vertical_.push_back(std::abs(a.z()));
+    }
+    suffix_h_ = horizontal_;
+    suffix_z_ = vertical_;
+    for (std::size_t j = suffix_h_.size(); j-- > 1;) {
+      suffix_h_[j - 1] = std::max(suffix_h_[j - 1], suffix_h_[j]);
+      suffix_z_[j - 1] = std::max(suffix_z_[j - 1], suffix_z_[j]);
+    }
+  }
+  long count() const { return static_cast<long>(horizontal_.size()); }
+  long interval(double t) const { return t <= 0 ? 0 : static_cast<long>(t / dt_); }
+  double dt() const { return dt_; }
+  // Whether interval j stays within the levels: horizontal at most level_h and at most `fraction`
+  // of the quasi-static threshold ratio (g - |a_z|) (a downward ground acceleration lightens the
+  // blocks, so the threshold falls with the effective gravity), vertical at most level_z and
+  // fraction g.
+  bool quiet(long j, double level_h, double level_z, double fraction, double ratio, double g) const {
+    if (j < 0 || j >= count()) return true;
+    return within(horizontal_[std::size_t(j)], vertical_[std::size_t(j)], level_h, level_z, fraction, ratio, g);
+  }
+  // The same for every interval from j to the end of the record (a sufficient test: the largest
+  // horizontal against the smallest effective gravity).
+  bool quiet_to_end(long j, double level_h, double level_z, double fraction, double ratio, double g) const {
+    if (j < 0) j = 0;
+    if (j >= count()) return true;
+    return within(suffix_h_[std::size_t(j)], suffix_z_[std::size_t(j)], level_h, level_z, fraction, ratio, g);
+  }
+
+ private:
+  static bool within(double ah, double az, double level_h, double level_z, double fraction, double ratio, double g) {
+    return az <= level_z && az <= fraction * g && ah <= level_h && ah <= fraction * ratio * (g - az);
+  }
+  double dt_ = 1;
+  std::vector<double> horizontal_, vertical_;  // |a_h|, |a_z| per interval (unit: m/s^2)
+  std::vector<double> suffix_h_, suffix_z_;        // their maxima from each interval to the end
+};
+
+double cross2(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
+}
+
+// Smallest distance from c to an edge of the convex hull of `points` (unit: m), 0 when c is
+// outside it or the hull is degenerate. Sorts `points` and uses `hull` as scratch.
+double inner_distance(std::vector<Eigen::Vector2d>& points, std::vector<Eigen::Vector2d>& hull,
+                      const Eigen::Vector2d& c) {
+  std::sort(points.begin(), points.end(), [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
+  });
+  // Andrew's monotone chain, counter-clockwise, collinear points dropped
+  hull.clear();
+  for (int pass = 0; pass < 2; ++pass) {
+    const std::size_t base = hull.size();
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      const auto& p = pass == 0 ? points[k] : points[points.size() - 1 - k];
+      while (hull.size() >= base + 2 && cross2(hull[hull.size() - 2], hull.back(), p) <= 0) hull.pop_back();
+      hull.push_back(p);
+    }
+    hull.pop_back();
+  }
+  if (hull.size() < 3) return 0;
+  double d = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < hull.size(); ++k) {
+    const auto& a = hull[k];
+    const auto& b = hull[(k + 1) % hull.size()];
+    const double len = (b - a).norm();
+    if (!(len > 0)) return 0;
+    d = std::min(d, cross2(a, b, c) / len);  // > 0 inside a counter-clockwise hull
+  }
+  return std::max(d, 0.0);
+}
+
+// The smallest quasi-static acceleration, as a fraction of the (effective) gravity, at which a
+// free block could start to move: for each free block, rocking needs a/g > d/h (d: horizontal
+// distance from its centroid to the nearest edge of the support polygon of its current
+// subcontacts, h: centroid height above the lowest of them; physics.md §2, g tan(alpha) for a
+// rectangular block), sliding needs a/g > tan(atan(mu) - theta) on contacts tilted by theta.
+// Returns 0 when some free block does not rest on fixed blocks only (a stack: its threshold is
+// not this simple), with `supported` false.
+double quasi_static_ratio(const dynamics::World& world, double friction,
+                          std::vector<Eigen::Vector2d>& points, std::vector<Eigen::Vector2d>& hull,
+                          bool& supported) {
+  const auto& defs = world.bodies();
+  supported = true;
+  double ratio = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < defs.size(); ++i) {
+    if (defs[i].fixed) continue;
+    points.clear();
+    double lowest = std::numeric_limits<double>::infinity();
+    double min_up = 1;  // smallest vertical component of the contact normals
+    for (const auto& p : world.pairs()) {
+      if (p.a != int(i) && p.b != int(i)) continue;
+      if (p.overlap <= 0 || p.subs.empty()) continue;
+      const int other = p.a == int(i) ? p.b : p.a;
+      if (!defs[other].fixed) {
+        supported = false;
+        return 0;
+      }
+      const double up = p.a == int(i) ? -p.normal.z() : p.normal.z();  // normal points a -> b
+      min_up = std::min(min_up, up);
+      for (const auto& pt : p.points) {
+        points.emplace_back(pt.point.x(), pt.point.y());
+        lowest = std::min(lowest, pt.point.z());
+      }
+    }
+    const Vec3& c = world.states()[i].position;
+    if (points.size() < 3 || !(min_up > 0)) return 0;
+    const double h = c.z() - lowest;
+    if (!(h > 0)) return 0;
+    const double d = inner_distance(points, hull, Eigen::Vector2d(c.x(), c.y()));
+    const double slope = std::atan(friction) - std::acos(std::min(min_up, 1.0));
+    if (!(d > 0) || !(slope > 0)) return 0;
+    ratio = std::min({ratio, d / h, std::tan(slope)});
+  }
+  return std::isfinite(ratio) ? ratio : 0.0;
+}
+
+// Contact signature of the free blocks: their subcontact count in each pair. Unchanged from step
+// to step while no block lifts a corner or gains a contact.
+void contact_counts(const dynamics::World& world, std::vector<std::size_t>& out) {
+  out.clear();
+  for (const auto& p : world.pairs()) out.push_back(p.subs.size());
+}
+
+// Whether every subcontact of every free block carries at least `fraction` of its block's mean
+// subcontact load (elastic part K_N d^1.5, physics.md §3). A rocking block unloads its heel
+// corners to zero before they lift; an elastic vibration of the block on its contact springs, or a
+// horizontal push, unloads them in proportion to its amplitude, the whole way at uplift.
+bool corners_loaded(const dynamics::World& world, double fraction) {
+  const auto& defs = world.bodies();
+  const double k = world.law().normal_stiffness;
+  for (std::size_t i = 0; i < defs.size(); ++i) {
+    if (defs[i].fixed) continue;
+    double least = std::numeric_limits<double>::infinity(), sum = 0;
+    long count = 0;
+    for (const auto& p : world.pairs()) {
+      if ((p.a != int(i) && p.b != int(i)) || p.subs.empty() || p.overlap <= 0) continue;
+      for (const auto& pt : p.points) {
+        const double f = k * pt.overlap * std::sqrt(pt.overlap);
+        least = std::min(least, f);
+        sum += f;
+        ++count;
+      }
+    }
+    if (count == 0 || !(least >= fraction * sum / double(count))) return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 RunOutcome run(const Scene& scene, const GroundDrive& ground, const RunSettings& settings) {
@@ -53,30 +253,133 @@ RunOutcome run(const Scene& scene, const GroundDrive& ground, const RunSettings&
   const double duration = settings.duration > 0 ? settings.duration : motion_end + settings.free_time;
   const long steps = static_cast<long>(std::ceil(duration / dt - 1e-9));
   const auto& defs = scene.bodies;
-  double rest_since = -1;
   const long observe_every = std::max(1L, std::lround(settings.observe_interval / dt));
-  if (settings.observer) settings.observer(world);
-  for (long k = 0; k < steps; ++k) {
-    const double t0 = double(k) * dt;
-    const double t1 = double(k + 1) * dt;
-    world.step(dt, ground.at(t0), ground.at(t1));
-    out.steps = k + 1;
-    out.simulated = t1;
-    if (settings.observer && (k + 1) % observe_every == 0) settings.observer(world);
-    out.max_overlap = std::max(out.max_overlap, world.max_overlap());
+  // the first step boundary at or after the end of the motion
+  long motion_end_step = std::max(0L, static_cast<long>(std::ceil(motion_end / dt)));
+  while (double(motion_end_step) * dt < motion_end) ++motion_end_step;
+  while (motion_end_step > 0 && double(motion_end_step - 1) * dt >= motion_end) --motion_end_step;
 
-    // the lowest point of the pedestals, for the study's failure rule
-    double lowest_fixed = std::numeric_limits<double>::infinity();
+  // which effects this scene and motion call for (issue 6)
+  const bool select = settings.select_effects;
+  ActiveEffects& fx = out.effects;
+  fx.selected = select;
+  fx.vertical_motion = std::any_of(ground.velocity.begin(), ground.velocity.end(),
+                                   [](const Vec3& v) { return v.z() != 0; });
+  const long n = static_cast<long>(defs.size());
+  fx.pairs_total = n * (n - 1) / 2;
+  fx.pairs_fixed_fixed = world.fixed_fixed_pairs();
+  dynamics::WorldEffects world_effects;
+  world_effects.vertical_ground = !select || fx.vertical_motion;
+  world_effects.distance_skin = select;
+  world.set_effects(world_effects);
+  const GroundAcceleration acceleration = select ? GroundAcceleration(ground) : GroundAcceleration();
+  std::vector<Eigen::Vector2d> points, hull;
+  std::vector<std::size_t> counts, last_counts;
+  const double g = settings.step.gravity;
+
+  // the lowest point of the pedestals, for the study's failure rule; without vertical motion
+  // their z never changes, so it is found once
+  auto lowest_fixed_point = [&] {
+    double lowest = std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < defs.size(); ++i) {
       if (!defs[i].fixed) continue;
-      for (const auto& v : world.world_vertices(static_cast<int>(i))) lowest_fixed = std::min(lowest_fixed, v.z());
+      for (const auto& v : world.world_vertices(static_cast<int>(i))) lowest = std::min(lowest, v.z());
     }
+    return lowest;
+  };
+  const bool fixed_z_constant = select && !fx.vertical_motion;
+  double lowest_fixed = lowest_fixed_point();
+
+  double rest_since = -1;           // at rest (absolute speeds: the rule without effect selection)
+  double relative_rest_since = -1;  // at rest relative to the ground, since
+  double still_since = -1;          // still (see below), since
+  double seen_h = 0, seen_z = 0;    // largest ground acceleration met so far (unit: m/s^2)
+  long last_sliding = 0;
+  long declined_interval = -1;      // drive interval where falling asleep was last declined
+  bool done = false;
+  long k = 0;
+  if (settings.observer) settings.observer(world);
+  while (k < steps && !done) {
+    // Sleeping (with select_effects). While every free block rests on fixed blocks, the ground can
+    // start a block rocking or sliding only beyond the quasi-static threshold `ratio` g
+    // (physics.md §2; quasi_static_ratio). Free blocks then ride the ground rigidly over samples
+    // the stepper jumps (World::carry_with_ground: relative state frozen, restored at the wake):
+    //  - to the end of the motion, once they have been still for rest_time (no corner lifted or
+    //    gained, none slipping, every corner keeping still_load_fraction of its mean load: not
+    //    rocking, at most vibrating elastically well below uplift) and the rest of the record stays
+    //    below sleep_wake_fraction (1/2) of the threshold and of the largest acceleration already
+    //    met. A load applied suddenly overshoots a spring's static deflection at most twice, so no
+    //    corner unloads and no larger elastic tilt comes (resonance of the block's rocking mode on
+    //    its springs aside: README, Effect selection). The outcome is then decided, and the
+    //    trajectory until then is the all-effects one.
+    //  - while the ground is exactly still (zero acceleration), once they have been at rest by the
+    //    run's own rule for rest_time. Not on a ground that moves at all: freezing a block at rest
+    //    under weak shaking discards an elastic response that, measured on the validation subset,
+    //    changed 2 of 960 outcomes when the strong part came.
+    const double t = double(k) * dt;
+    const bool at_rest_long = relative_rest_since >= 0 && t - relative_rest_since >= settings.rest_time;
+    const bool still_long = still_since >= 0 && t - still_since >= settings.rest_time;
+    if (select && (at_rest_long || still_long) && acceleration.interval(t) != declined_interval) {
+      const long j0 = acceleration.interval(t);
+      bool supported = false;
+      const double ratio = quasi_static_ratio(world, scene.law.friction, points, hull, supported);
+      if (supported) fx.sleep_possible = true;
+      const double f = settings.sleep_wake_fraction;
+      long wake = -1;
+      if (ratio > 0 && still_long && acceleration.quiet_to_end(j0, f * seen_h, f * seen_z, f, ratio, g)) {
+        wake = steps;
+      } else if (ratio > 0 && at_rest_long) {
+        long j = j0;
+        while (j < acceleration.count() && acceleration.quiet(j, 0, 0, f, ratio, g)) ++j;
+        wake = j >= acceleration.count() ? steps : static_cast<long>(std::floor(double(j) * acceleration.dt() / dt));
+      }
+      if (wake <= k + 1) {
+        declined_interval = j0;
+      } else {
+        ++fx.sleep_intervals;
+        const long asleep_from = k;
+        while (k < wake) {
+          long target = std::min(wake, steps);
+          if (k < motion_end_step) target = std::min(target, motion_end_step);
+          if (settings.observer) target = std::min(target, (k / observe_every + 1) * observe_every);
+          const double t0 = double(k) * dt, t1 = double(target) * dt;
+          world.carry_with_ground(t1, ground.displacement(t0, t1), ground.at(t0), ground.at(t1));
+          k = target;
+          if (settings.observer && k % observe_every == 0) settings.observer(world);
+          if (k >= motion_end_step) {
+            // asleep, the motion over: nothing more can happen
+            out.ended_at_rest = true;
+            done = true;
+            break;
+          }
+          if (k >= steps) break;
+        }
+        fx.steps_skipped += k - asleep_from;
+        fx.asleep_s += double(k - asleep_from) * dt;
+        out.simulated = double(k) * dt;
+        if (!fixed_z_constant) lowest_fixed = lowest_fixed_point();
+        continue;
+      }
+    }
+
+    const double t0 = double(k) * dt;
+    const double t1 = double(k + 1) * dt;
+    const Vec3 ground_start = ground.at(t0);
+    const Vec3 ground_end = ground.at(t1);
+    world.step(dt, ground_start, ground_end);
+    ++k;
+    out.simulated = t1;
+    if (settings.observer && k % observe_every == 0) settings.observer(world);
+    out.max_overlap = std::max(out.max_overlap, world.max_overlap());
+
+    if (!fixed_z_constant) lowest_fixed = lowest_fixed_point();
     for (std::size_t i = 0; i < defs.size(); ++i) {
       if (defs[i].fixed) continue;
       const auto& s = world.states()[i];
       if (!s.position.allFinite() || !s.orientation.coeffs().allFinite() ||
           !s.velocity.allFinite() || !s.angular_momentum.allFinite()) {
         out.finite = false;
+        out.steps = world.stats().steps;
         return out;
       }
       const double a = tilt(defs[i].orientation, s.orientation);
@@ -91,8 +394,35 @@ RunOutcome run(const Scene& scene, const GroundDrive& ground, const RunSettings&
       }
     }
     if (out.overturned) break;
-    // after the motion, a scene at rest stays at rest: nothing more can happen
-    if (t1 >= motion_end && at_rest(world, settings)) {
+    if (select) {
+      // the ground acceleration this step applied (unit: m/s^2)
+      const Vec3 a = (ground_end - ground_start) / dt;
+      const double ah = std::hypot(a.x(), a.y()), az = std::abs(a.z());
+      seen_h = std::max(seen_h, ah);
+      seen_z = std::max(seen_z, az);
+      // still: no subcontact gained, lost or slipping, every one well loaded
+      contact_counts(world, counts);
+      const long sliding = world.stats().sliding_steps;
+      if (counts == last_counts && sliding == last_sliding && corners_loaded(world, settings.still_load_fraction)) {
+        if (still_since < 0) still_since = t1;
+      } else {
+        still_since = -1;
+      }
+      std::swap(counts, last_counts);
+      last_sliding = sliding;
+      // at rest relative to the (possibly coasting) pedestals; once the motion is over and the
+      // blocks have rested for rest_time, nothing more can happen
+      if (at_rest_relative(world, ground_end, settings.rest_speed, settings.rest_angular_speed)) {
+        if (relative_rest_since < 0) relative_rest_since = t1;
+        if (k >= motion_end_step && t1 - relative_rest_since >= settings.rest_time) {
+          out.ended_at_rest = true;
+          break;
+        }
+      } else {
+        relative_rest_since = -1;
+      }
+    } else if (t1 >= motion_end && at_rest(world, settings)) {
+      // after the motion, a scene at rest stays at rest: nothing more can happen
       if (rest_since < 0) rest_since = t1;
       if (t1 - rest_since >= settings.rest_time) {
         out.ended_at_rest = true;
@@ -102,10 +432,20 @@ RunOutcome run(const Scene& scene, const GroundDrive& ground, const RunSettings&
       rest_since = -1;
     }
   }
+  out.steps = world.stats().steps;
   for (std::size_t i = 0; i < defs.size(); ++i) {
     if (!defs[i].fixed) out.max_slip = std::max(out.max_slip, world.slip()[i]);
   }
-  if (settings.observer && out.steps % observe_every != 0) settings.observer(world);
+  const auto& stats = world.stats();
+  for (const auto& p : world.pairs()) fx.pairs_never_tested += p.tests == 0 ? 1 : 0;
+  fx.pair_steps_culled = stats.pairs_skipped + stats.pairs_culled;
+  fx.contact_steps = stats.contact_steps;
+  fx.sliding_steps = stats.sliding_steps;
+  fx.sliding = stats.sliding_steps > 0;
+  fx.end = out.overturned ? ActiveEffects::End::failure
+                          : out.ended_at_rest ? ActiveEffects::End::at_rest : ActiveEffects::End::full_duration;
+  fx.time_saved_s = std::max(0.0, double(steps) * dt - out.simulated);
+  if (settings.observer && k % observe_every != 0) settings.observer(world);
   return out;
 }
 

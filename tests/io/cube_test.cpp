@@ -80,6 +80,8 @@ Cube synthetic() {
   ObjectCube a;
   a.name = "rock a";
   a.scene = "models/rock a/rock.toml";
+  a.alpha_rad = 0.2;  // a single block; object b below is a stack without them
+  a.p_rad_s = 2.3;
   // [record][scale][rotation]
   const O pattern[3][4][2] = {
       {{O::survived, O::survived},
@@ -151,6 +153,9 @@ void expect_same(const Cube& a, const Cube& b) {
     const ObjectCube &x = a.objects[i], &y = b.objects[i];
     EXPECT_EQ(x.name, y.name);
     EXPECT_EQ(x.scene, y.scene);
+    // NaN (no rocking parameters) must come back NaN: compare the bits
+    EXPECT_EQ(std::memcmp(&x.alpha_rad, &y.alpha_rad, sizeof(double)), 0);
+    EXPECT_EQ(std::memcmp(&x.p_rad_s, &y.p_rad_s, sizeof(double)), 0);
     EXPECT_EQ(x.outcome, y.outcome);
     expect_same_doubles(x.rotation_deg, y.rotation_deg, x.name + " rotation_deg");
     expect_same_doubles(x.failure_time_s, y.failure_time_s, x.name + " failure_time_s");

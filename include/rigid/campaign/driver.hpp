@@ -15,6 +15,8 @@ struct CampaignOptions {
   bool dry_run = false;         ///< print the task count and an estimate, run nothing
   bool noop = false;            ///< tasks return at once (measures dispatch throughput)
   std::string model;            ///< overrides the job's [run] model when not empty
+  std::string accuracy;         ///< overrides the job's [run] accuracy preset when not empty
+  std::string effects;          ///< "auto" or "all": overrides the job's [run] effects when not empty
   std::string progress = "auto";  ///< auto | bar | log | none
   double log_interval = 10;     ///< seconds between plain progress lines (unit: s)
   double checkpoint_interval = 0;  ///< overrides the job's when > 0 (unit: s)

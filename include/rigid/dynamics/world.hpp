@@ -74,6 +74,11 @@ struct PairContact {
   };
   std::vector<Sub> subs, next_subs;      ///< persistent subcontacts (double-buffered)
   std::vector<contact::SubcontactPoint> points;  ///< scratch
+  long tests = 0;                        ///< narrow-phase tests of this pair so far
+  /// Distance skin (WorldEffects::distance_skin): the bounding spheres were skin_gap + margin
+  /// apart when the bodies' relative travels summed to skin_travel; < 0 = no skin.
+  double skin_gap = -1;
+  double skin_travel = 0;
 };
 
 /// Counters that tell what the stepper did (for reports and tests).
@@ -81,6 +86,23 @@ struct StepStats {
   long steps = 0;
   long pair_tests = 0;       ///< narrow-phase tests run
   long pairs_skipped = 0;    ///< pairs skipped by the bounding-sphere test
+  long pairs_culled = 0;     ///< pairs skipped by the distance skin, without the sphere test
+  long contact_steps = 0;    ///< pair evaluations with the blocks in contact
+  long sliding_steps = 0;    ///< of those, evaluations where a subcontact reached mu F_n
+};
+
+/// Optional work of the stepper (issue 6: simulate only the effects a scene calls for). The
+/// defaults do all of it; each switch skips only work whose result is known in advance, so
+/// results do not change (see each).
+struct WorldEffects {
+  /// The ground moves vertically. false: the pedestals' z is not updated, which is exact when the
+  /// caller guarantees that every z velocity it passes to step() is exactly 0 (z + dt * 0 = z).
+  bool vertical_ground = true;
+  /// Verlet-style skin on the bounding-sphere test: a pair found apart by a gap is not looked at
+  /// again until the two bodies' travel relative to the ground (the pedestals have none) adds up
+  /// to that gap. The sphere distance cannot shrink by more than that travel, so no pair the
+  /// sphere test would have tested is skipped.
+  bool distance_skin = false;
 };
 
 class World {
@@ -125,6 +147,20 @@ class World {
   /// Recomputes the cached world data after states were edited from outside.
   void refresh();
 
+  void set_effects(const WorldEffects& effects) { effects_ = effects; }
+  const WorldEffects& effects() const { return effects_; }
+  /// Pairs of two fixed blocks: never tested, since pedestals cannot interact.
+  long fixed_fixed_pairs() const { return fixed_fixed_pairs_; }
+
+  /// Carries the whole scene rigidly with the ground from time() to t_end, without stepping: every
+  /// body is translated by `displacement` (the integral of the ground velocity over the interval),
+  /// the pedestals take v_end, the free blocks' velocity changes by v_end - v_start (so their
+  /// velocity relative to the ground is kept), orientations, angular momenta, contact springs and
+  /// forces stay as they are: nothing changes relative to the pedestals. For free blocks asleep
+  /// on a quiet pedestal (scenario::run decides when that is sound). The pedestals' work on the
+  /// blocks is that of carrying them: sum of m (|v_end|^2 - |v_start|^2) / 2 + m g displacement_z.
+  void carry_with_ground(double t_end, const Vec3& displacement, const Vec3& v_start, const Vec3& v_end);
+
  private:
   void update_world_vertices(int i);
   void compute_forces(double dt);
@@ -140,6 +176,9 @@ class World {
   contact::ContactLaw law_;
   StepSettings settings_;
   StepStats stats_;
+  WorldEffects effects_;
+  std::vector<double> travel_;  ///< path length of each body relative to the ground (unit: m)
+  long fixed_fixed_pairs_ = 0;
   double time_ = 0;
   double dt_ = 0;
   double pedestal_work_ = 0;

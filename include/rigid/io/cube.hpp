@@ -4,6 +4,7 @@
 /// so a kill at any instant leaves either the previous or the new complete file.
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -37,6 +38,10 @@ struct RecordMeta {
 struct ObjectCube {
   std::string name;                     ///< object name (HDF5 group name)
   std::string scene;                    ///< scene file as given in the job
+  /// Rocking parameters of a single-block object (scenario::rocking_parameters), NaN when the
+  /// object has none (stacks): written as attributes alpha_rad, p_rad_s only when finite.
+  double alpha_rad = std::numeric_limits<double>::quiet_NaN();
+  double p_rad_s = std::numeric_limits<double>::quiet_NaN();
   std::vector<std::int8_t> outcome;     ///< CellOutcome values
   std::vector<double> rotation_deg;     ///< rotation of the horizontals about z (unit: deg)
   std::vector<double> failure_time_s;   ///< NaN when none (unit: s)

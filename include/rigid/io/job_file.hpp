@@ -15,4 +15,9 @@ scenario::Job load_job(const std::string& path);
 /// Stable 64-bit FNV-1a hash of a text, as 16 hex digits.
 std::string text_hash(const std::string& text);
 
+/// The hash that identifies a job's results (Job::hash): text_hash of its text, with the accuracy
+/// preset appended unless it is "balanced" (the settings of every cube written before the presets
+/// existed, whose hashes therefore stay valid). A resume with another preset is refused.
+std::string job_hash(const scenario::Job& job);
+
 }  // namespace rigid::io

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "rigid/scenario/accuracy.hpp"
 #include "rigid/scenario/scene.hpp"
 
 namespace rigid::scenario {
@@ -42,6 +43,10 @@ struct Job {
   /// rotation (the study's rule); 0 disables it.
   int stop_after = 10;
   RunSettings run;                ///< physics and accuracy settings of every simulation
+  /// Accuracy preset of `run` (scenario/accuracy.hpp): [run] accuracy, or --accuracy.
+  std::string accuracy = kDefaultAccuracy;
+  /// The [run] keys dt_s, safety and integrator, which override the preset's values.
+  AccuracyOverrides accuracy_overrides;
   /// Which model simulates: "dem3d" (the engine) or "rocking2d" (the 2D Housner reference,
   /// driven by the x component of the rotated motion; scenes must admit it).
   std::string model = "dem3d";

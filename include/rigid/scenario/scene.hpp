@@ -42,6 +42,8 @@ struct GroundDrive {
   std::vector<Vec3> velocity;
   Vec3 at(double t) const;
   double duration() const { return velocity.empty() ? 0.0 : dt * double(velocity.size() - 1); }
+  /// Exact integral of at(t) from t0 to t1 (unit: m): the ground's displacement.
+  Vec3 displacement(double t0, double t1) const;
 };
 
 /// The trapezoid-integrated ground velocity of a motion (absent components are zero).
@@ -63,6 +65,37 @@ struct RunSettings {
   /// observe_interval of simulated time, and once more when the run ends.
   std::function<void(const dynamics::World&)> observer;
   double observe_interval = 0.02;  ///< unit: s
+  /// Simulate only the effects the scene and motion call for (issue 6: no vertical work without a
+  /// vertical component, pair culling, sleeping, sliding bookkeeping only where friction can be
+  /// exceeded). false = every effect simulated, the reference the selection is checked against.
+  bool select_effects = true;
+  /// Sleeping (with select_effects; scenario::run says when): free blocks resting on fixed blocks
+  /// sleep only while the ground acceleration stays below sleep_wake_fraction of the smallest
+  /// quasi-static acceleration that could start them rocking or sliding, and (to the end of the
+  /// record) of the largest acceleration already met (unit: 1); "still" blocks
+  /// keep at least still_load_fraction of their mean subcontact load on every subcontact (unit: 1).
+  double sleep_wake_fraction = 0.5;
+  double still_load_fraction = 0.5;
+};
+
+/// Which effects a run simulated and what skipping the others saved (RunSettings::select_effects).
+struct ActiveEffects {
+  bool selected = false;        ///< select_effects was on
+  bool vertical_motion = true;  ///< the ground moves vertically (else no z work for the pedestals)
+  long pairs_total = 0;         ///< block pairs, n (n - 1) / 2
+  long pairs_fixed_fixed = 0;   ///< pairs of two fixed blocks: never tested
+  long pairs_never_tested = 0;  ///< other pairs never narrow-phase tested: always far apart
+  long pair_steps_culled = 0;   ///< pair evaluations skipped by distance (sphere test or skin)
+  bool sleep_possible = false;  ///< at some time every free block rested on fixed blocks only
+  long sleep_intervals = 0;     ///< times the free blocks fell asleep
+  double asleep_s = 0;          ///< simulated time spent asleep (unit: s)
+  long steps_skipped = 0;       ///< steps not computed because the blocks were asleep
+  bool sliding = false;         ///< some subcontact reached the Coulomb cap (slip bookkeeping ran)
+  long contact_steps = 0;       ///< pair evaluations in contact
+  long sliding_steps = 0;       ///< of those, evaluations that needed slip bookkeeping
+  enum class End { full_duration, failure, at_rest };
+  End end = End::full_duration;  ///< why the run stopped
+  double time_saved_s = 0;      ///< requested duration minus simulated time (unit: s)
 };
 
 /// What one run produced.
@@ -70,7 +103,7 @@ struct RunOutcome {
   bool overturned = false;
   std::optional<double> failure_time;  ///< unit: s
   std::string failed_block;            ///< name of the first block that failed
-  long steps = 0;
+  long steps = 0;             ///< steps computed (steps skipped asleep not counted)
   double dt = 0;              ///< unit: s
   double simulated = 0;       ///< unit: s
   double max_tilt = 0;        ///< largest tilt of any free block (unit: rad)
@@ -78,6 +111,7 @@ struct RunOutcome {
   double max_overlap = 0;     ///< deepest subcontact indentation seen (unit: m)
   bool ended_at_rest = false; ///< stopped early because all blocks were at rest after the motion
   bool finite = true;         ///< false if a NaN or Inf appeared (the run stops there)
+  ActiveEffects effects;      ///< filled by run() (not by the 2D model)
 };
 
 /// Tilt of body i (unit: rad): the angle between its initial vertical axis, carried with the

@@ -1,0 +1,27 @@
+#pragma once
+/// Rocking parameters of a scene with one free block (physics.md §2): the slenderness alpha and
+/// frequency parameter p that normalise its fragility (the probit of the plots is in
+/// ln(PGA / (g tan alpha)) and ln((PGV/PGA) p / alpha)). Rigid statics of the block as it rests.
+#include <optional>
+
+#include "rigid/scenario/scene.hpp"
+
+namespace rigid::scenario {
+
+struct RockingParameters {
+  double alpha = 0;    ///< smallest tipping angle over the edges of the support polygon (unit: rad)
+  double radius = 0;   ///< R: distance from the centroid to that edge (unit: m)
+  double p = 0;        ///< sqrt(m g R / I_edge), I_edge the inertia about that edge (unit: rad/s)
+  double azimuth = 0;  ///< horizontal direction from the centroid to the edge (unit: rad, from +x)
+};
+
+/// The rocking parameters of the scene's single free block, resting on fixed blocks: its support
+/// polygon is the horizontal convex hull of its vertices within `contact_tolerance` of a fixed
+/// block and of the fixed blocks' vertices that close to it (a block on a narrower pedestal top);
+/// for each polygon edge the block tips when its centroid passes over the edge, at
+/// tan(alpha_e) = d / h (d the horizontal distance from the centroid to the edge, h the centroid's
+/// height above it). Empty when the scene has not exactly one free block, or the block is not
+/// resting (fewer than three support points, or the centroid outside the polygon).
+std::optional<RockingParameters> rocking_parameters(const Scene& scene, double contact_tolerance = 1e-3);
+
+}  // namespace rigid::scenario
