@@ -3,9 +3,11 @@
 # on two real records, run by the 3D engine (mpirun -np 2) and by the 2D Housner reference, then
 # `rigid plot diff`. Checks properties both models must share (not numbers of this code):
 #  - more slender blocks are more fragile (overturn fraction falls from alpha 0.1 to 0.4), in both;
-#  - a block that topples in the 2D (rigid, no-sliding) model also fails in 3D: the 3D adds
-#    failure modes (sliding off the pedestal, compliant contacts; README "Validation against the
-#    2D model") but must not miss rocking overturns (>= 90 % of the 2D overturned cells);
+#  - where the rotated motion is aligned with the block's weak axis (|cos| >= 0.9), a block that
+#    topples in the 2D (rigid, no-sliding) model also fails in 3D: the 3D adds failure modes
+#    (sliding off the pedestal, compliant contacts; README "Validation against the 2D model") but
+#    must not miss rocking overturns (>= 90 % of those cells; across the weak axis the 3D block is
+#    rightly stabler);
 #  - the difference maps and the mismatch table are written, and the cubes carry alpha_rad.
 # Usage: validation_test.sh RIGID_EXECUTABLE SOURCE_DIR; exit 77 (skip) without ../shared.
 set -u
@@ -47,14 +49,15 @@ for cube, label in ((a, "3D"), (b, "2D")):
 both_over = only2d = 0
 for n in names:
     oa, ob = a["objects"][n]["outcome"][...], b["objects"][n]["outcome"][...]
-    known = np.isin(oa, [1, 2, 3]) & np.isin(ob, [1, 2, 3])
+    aligned = np.abs(np.cos(np.radians(a["objects"][n]["rotation_deg"][...]))) >= 0.9
+    known = np.isin(oa, [1, 2, 3]) & np.isin(ob, [1, 2, 3]) & aligned
     over_a, over_b = np.isin(oa, [2, 3]), np.isin(ob, [2, 3])
     both_over += (known & over_a & over_b).sum()
     only2d += (known & over_b & ~over_a).sum()
     check(f"{n}: alpha_rad stored", abs(a["objects"][n].attrs.get("alpha_rad", float("nan")) - float(n[-2:]) / 10) < 1e-9)
 share = both_over / max(both_over + only2d, 1)
-print(f"3D also failed in {share:.3f} of the {both_over + only2d} cells the 2D model overturned")
-check("3D fails where 2D overturns (>= 0.90)", both_over + only2d > 20 and share >= 0.90)
+print(f"3D also failed in {share:.3f} of the {both_over + only2d} aligned cells the 2D model overturned")
+check("3D fails where 2D overturns, motion along the weak axis (>= 0.90)", both_over + only2d >= 10 and share >= 0.90)
 for n in names:
     check(f"{n}: difference map written", os.path.getsize(f"diff/{n}_diff.png") > 10000)
 check("mismatch table written", os.path.getsize("diff/mismatch.md") > 0)

@@ -4,7 +4,7 @@ expected columns and one row per (case, setting); every case's converged referen
 zero; for at least one case the error against the converged reference falls as the time-step
 safety factor falls (a property of the integrator, not a stored number); the Pareto PNG and the
 markdown table are written. Also: an unknown --accuracy is refused by `run` and `campaign` with
-exit status 2 and one error line.
+exit status 2 and one error line, and a campaign cube is resumed with its own preset only.
 
     test_accuracy_study.py RIGID_EXE SOURCE_DIR
 """
@@ -100,6 +100,20 @@ def main():
     check_refused(exe, ["run", scene, "--accuracy", "precise"], "--accuracy must be fast, balanced or reference")
     check_refused(exe, ["campaign", os.path.join(source, "jobs", "ci_small.toml"), "--dry-run", "--accuracy", "precise"],
                   "--accuracy must be fast, balanced or reference")
+    # the preset is part of the cube's identity: a resume with another preset is refused
+    job = os.path.join(source, "jobs", "ci_small.toml")
+    with tempfile.TemporaryDirectory() as tmp:
+        cube = os.path.join(tmp, "ci_small.h5")
+        p = subprocess.run([exe, "campaign", job, "--out", cube, "--accuracy", "fast", "--progress", "none"],
+                           capture_output=True, text=True, timeout=600)
+        if p.returncode != 0:
+            fail(f"campaign --accuracy fast: exit {p.returncode}\n{p.stderr}")
+        check_refused(exe, ["campaign", job, "--out", cube, "--accuracy", "reference", "--progress", "none"],
+                      "accuracy preset")
+        p = subprocess.run([exe, "campaign", job, "--out", cube, "--accuracy", "fast", "--progress", "none"],
+                           capture_output=True, text=True, timeout=600)
+        if p.returncode != 0:
+            fail(f"resume with the same preset: exit {p.returncode}\n{p.stderr}")
     print("ok")
 
 

@@ -43,7 +43,8 @@ struct Job {
   /// rotation (the study's rule); 0 disables it.
   int stop_after = 10;
   RunSettings run;                ///< physics and accuracy settings of every simulation
-  /// Accuracy preset of `run` (scenario/accuracy.hpp): [run] accuracy, or --accuracy.
+  /// Accuracy preset of `run` (scenario/accuracy.hpp): [run] accuracy, or --accuracy; load_job and
+  /// the campaign driver apply it (with accuracy_overrides) to `run`.
   std::string accuracy = kDefaultAccuracy;
   /// The [run] keys dt_s, safety and integrator, which override the preset's values.
   AccuracyOverrides accuracy_overrides;
