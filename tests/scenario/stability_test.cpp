@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "rigid/scenario/builders.hpp"
+#include "support/rng.hpp"
 
 namespace rigid {
 namespace {
@@ -125,17 +126,6 @@ Vec3 sine(double t, double amplitude, double frequency, const Vec3& direction, d
   return envelope * amplitude / w * std::sin(w * (t - t0) + phase) * direction;
 }
 
-// SplitMix64: a portable, fixed random stream for the random-phase motion
-struct SplitMix64 {
-  std::uint64_t state;
-  double uniform() {
-    std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    z ^= z >> 31;
-    return double(z >> 11) * 0x1.0p-53;
-  }
-};
 
 // ---------------------------------------------------------------------------------------------
 // the checker
@@ -506,7 +496,7 @@ TEST(Stability, ThreeHundredSecondRun) {
     Vec3 amplitude;  // velocity amplitude (unit: m/s)
   };
   std::vector<Harmonic> harmonics;
-  SplitMix64 random{20261122};
+  test::Rng random{20261122};  // the random-phase motion
   for (int k = 0; k < 24; ++k) {
     const double f = 0.5 + 11.5 * random.uniform();
     const double w = 2 * kPi * f;
