@@ -126,7 +126,6 @@ Vec3 sine(double t, double amplitude, double frequency, const Vec3& direction, d
   return envelope * amplitude / w * std::sin(w * (t - t0) + phase) * direction;
 }
 
-
 // ---------------------------------------------------------------------------------------------
 // the checker
 
