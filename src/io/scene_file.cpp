@@ -198,8 +198,18 @@ scenario::Scene load_toml_scene(const std::string& path) {
   scenario::Scene physics_only;
   physics_only.source = path;
   if (const auto* p = root["physics"].as_table()) {
-    reject_unknown(*p, {"density", "normal_stiffness", "shear_stiffness", "friction", "damping"}, path,
-                   "[physics]");
+    reject_unknown(*p, {"contact", "density", "normal_stiffness", "shear_stiffness", "friction", "damping", "restitution"},
+                   path, "[physics]");
+    if (const auto* c = p->get("contact")) {
+      const auto name = c->value<std::string>();
+      if (!name || !contact::parse_contact_model(*name, physics_only.law.model)) {
+        throw InputError(path, line_of(*c), "contact must be \"rigid\" or \"penalty\"");
+      }
+    }
+    physics_only.law.restitution = get_number(*p, "restitution", physics_only.law.restitution, path);
+    if (!(physics_only.law.restitution >= 0 && physics_only.law.restitution <= 1)) {
+      throw InputError(path, line_of(*p->get("restitution")), "restitution must be in [0, 1]");
+    }
     physics_only.density = get_number(*p, "density", physics_only.density, path);
     physics_only.law.normal_stiffness = get_number(*p, "normal_stiffness", physics_only.law.normal_stiffness, path);
     physics_only.law.shear_stiffness = get_number(*p, "shear_stiffness", physics_only.law.shear_stiffness, path);
