@@ -30,6 +30,9 @@ void register_campaign_command(CLI::App& app) {
   cmd->add_flag("--dry-run", o->dry_run, "Print the task count and an estimate of the work, run nothing");
   cmd->add_flag("--noop", o->noop, "Tasks return at once without simulating; with several ranks only the workers take tasks, so this measures the master's dispatch rate");
   cmd->add_option("--model", o->model, "dem3d or rocking2d: overrides the job's [run] model (recorded in the cube)");
+  cmd->add_option("--contact", o->contact,
+                  "Contact model rigid or penalty for every object: overrides the scenes' [physics] contact and "
+                  "the job's [run] contact (recorded in the cube)");
   cmd->add_option("--accuracy", o->accuracy,
                   "Accuracy preset fast, balanced or reference: overrides the job's [run] accuracy; the job's explicit "
                   "safety, integrator and dt_s still apply (recorded in the cube; docs/accuracy.md)");

@@ -75,12 +75,13 @@ io::Cube make_cube(const scenario::Job& job, const TaskRunner& runner, const Pla
   char physics[1024];
   const auto& law = runner.scene(0).law;
   std::snprintf(physics, sizeof physics,
-                "{\"normal_stiffness\": %.17g, \"shear_stiffness\": %.17g, \"friction\": %.17g, "
+                "{\"contact\": \"%s\", \"restitution\": %.17g, \"normal_stiffness\": %.17g, \"shear_stiffness\": %.17g, \"friction\": %.17g, "
                 "\"damping\": %.17g, \"dt_s\": %.17g, \"safety\": %.17g, \"integrator\": \"%s\", "
                 "\"duration_s\": %.17g, \"free_time_s\": %.17g, \"stop_after\": %d, \"accuracy\": \"%s\", "
                 "\"rest_speed_m_s\": %.17g, \"rest_angular_speed_rad_s\": %.17g, \"rest_time_s\": %.17g, "
                 "\"effects\": \"%s\"}",
-                law.normal_stiffness, law.shear_stiffness, law.friction, law.damping, job.run.step.dt,
+                contact::contact_model_name(law.model), law.restitution, law.normal_stiffness,
+                law.shear_stiffness, law.friction, law.damping, job.run.step.dt,
                 job.run.step.safety,
                 job.run.step.rotation == dynamics::RotationIntegrator::rk4 ? "rk4" : "splitting",
                 job.run.duration, job.run.free_time, job.stop_after, job.accuracy.c_str(), job.run.rest_speed,
@@ -488,6 +489,16 @@ int run_campaign(int& argc, char**& argv, const CampaignOptions& options) {
       // the override is part of what the cube holds: a resume with another model is refused
       job.model = options.model;
       job.text += "\n# command line: --model " + options.model + "\n";
+      job.hash = io::text_hash(job.text);
+    }
+    if (!options.contact.empty()) {
+      contact::ContactModel model;
+      if (!contact::parse_contact_model(options.contact, model)) {
+        throw InputError("", 0, "--contact must be rigid or penalty");
+      }
+      // like --model: part of the job text, so of its hash, and a resume with the other model is refused
+      job.contact = options.contact;
+      job.text += "\n# command line: --contact " + options.contact + "\n";
       job.hash = io::text_hash(job.text);
     }
     if (!options.effects.empty() && options.effects != "auto" && options.effects != "all") {

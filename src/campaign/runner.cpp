@@ -14,6 +14,7 @@ TaskRunner::TaskRunner(const scenario::Job& job) : job_(job) {
   for (const auto& o : job.objects) {
     scenario::Scene s = io::load_scene(o.scene);
     if (!o.state.empty()) io::apply_state(o.state, s);
+    if (!job.contact.empty()) contact::parse_contact_model(job.contact, s.law.model);
     if (job.model == "rocking2d") rocking_.push_back(scenario::rocking_block_of(s));
     scenes_.push_back(std::move(s));
   }

@@ -250,7 +250,15 @@ scenario::Job load_job(const std::string& path) {
 
   // simulation settings
   if (const auto* run = root["run"].as_table()) {
-    reject_unknown(*run, {"model", "duration_s", "free_time_s", "dt_s", "safety", "integrator", "accuracy", "effects"}, path, "[run]");
+    reject_unknown(*run, {"model", "duration_s", "free_time_s", "dt_s", "safety", "integrator", "accuracy", "effects", "contact"}, path, "[run]");
+    if (const auto* c = run->get("contact")) {
+      const auto name = c->value<std::string>();
+      contact::ContactModel model;
+      if (!name || !contact::parse_contact_model(*name, model)) {
+        throw InputError(path, line_of(*c), "contact must be \"rigid\" or \"penalty\"");
+      }
+      job.contact = *name;
+    }
     job.model = (*run)["model"].value_or(std::string("dem3d"));
     if (job.model != "dem3d" && job.model != "rocking2d") {
       throw InputError(path, line_of(*run), "model must be \"dem3d\" or \"rocking2d\", not \"" + job.model + "\"");

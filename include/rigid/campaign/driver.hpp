@@ -16,6 +16,7 @@ struct CampaignOptions {
   bool noop = false;            ///< tasks return at once (measures dispatch throughput)
   std::string model;            ///< overrides the job's [run] model when not empty
   std::string accuracy;         ///< overrides the job's [run] accuracy preset when not empty
+  std::string contact;          ///< overrides the job's contact model when not empty
   std::string effects;          ///< "auto" or "all": overrides the job's [run] effects when not empty
   std::string progress = "auto";  ///< auto | bar | log | none
   double log_interval = 10;     ///< seconds between plain progress lines (unit: s)

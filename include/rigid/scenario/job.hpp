@@ -51,6 +51,9 @@ struct Job {
   /// Which model simulates: "dem3d" (the engine) or "rocking2d" (the 2D Housner reference,
   /// driven by the x component of the rotated motion; scenes must admit it).
   std::string model = "dem3d";
+  /// Contact model for every object ("rigid" or "penalty"), from [run] contact or --contact;
+  /// empty: each scene's own [physics] contact.
+  std::string contact;
   double checkpoint_interval = 30;  ///< unit: s
   double grace = 30;              ///< time in-flight tasks get after a stop signal (unit: s)
 };
