@@ -4,6 +4,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
@@ -64,22 +66,58 @@ scenario::GroundDrive one_sine(double amplitude, double period) {
 
 struct Threshold {
   double g;
-  double wall_per_run;
+  double wall_per_run;  ///< median over the search's runs (unit: s)
   int runs;
 };
 
 // Overturning amplitude of the one-sine pulse by bisection between 0.2 g and 0.5 g, to 0.5 %.
 Threshold pulse_threshold(const scenario::Scene& scene, const scenario::RunSettings& settings) {
   double lo = 0.2, hi = 0.5;  // g
-  int runs = 0;
-  const auto start = Clock::now();
+  std::vector<double> walls;
   while (hi - lo > 0.005 * lo) {
     const double mid = 0.5 * (lo + hi);
-    (scenario::run(scene, one_sine(mid * kGravity, 0.5), settings).overturned ? hi : lo) = mid;
-    ++runs;
+    const auto start = Clock::now();
+    const bool overturned = scenario::run(scene, one_sine(mid * kGravity, 0.5), settings).overturned;
+    walls.push_back(std::chrono::duration<double>(Clock::now() - start).count());
+    (overturned ? hi : lo) = mid;
   }
-  const double wall = std::chrono::duration<double>(Clock::now() - start).count();
-  return {0.5 * (lo + hi), wall / runs, runs};
+  return {0.5 * (lo + hi), median(walls), int(walls.size())};
+}
+
+// The same scene in ODE (src/peer/ode_peer.cpp, built beside `rigid` when Debian's libode-dev is
+// installed), run in this session so the figures compare: its threshold (same 0.5 % bisection)
+// and median wall per run. Empty when the peer is not built.
+struct PeerEngine {
+  bool found = false;
+  std::string command;
+  double threshold_g = 0, wall_per_run = 0, dt = 0;
+  int runs = 0;
+};
+
+double json_number(const std::string& text, const std::string& key) {
+  const std::size_t at = text.find("\"" + key + "\":");
+  return at == std::string::npos ? std::nan("") : std::strtod(text.c_str() + at + key.size() + 3, nullptr);
+}
+
+PeerEngine ode_peer(int repeat) {
+  PeerEngine p;
+  std::error_code ec;
+  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
+  const std::filesystem::path exe = self.parent_path() / "rigid_ode_peer";
+  if (ec || !std::filesystem::exists(exe)) return p;
+  p.command = exe.string() + " --threshold --tolerance 0.0015 --dt 0.001 --repeat " + std::to_string(repeat) + " --json";
+  std::FILE* pipe = popen(p.command.c_str(), "r");
+  if (!pipe) return p;
+  std::string out;
+  char buf[512];
+  while (std::fgets(buf, sizeof buf, pipe)) out += buf;
+  if (pclose(pipe) != 0) return p;
+  p.threshold_g = json_number(out, "threshold_g");
+  p.wall_per_run = json_number(out, "wall_s_per_run_median");
+  p.dt = json_number(out, "dt_s");
+  p.runs = int(json_number(out, "runs"));
+  p.found = std::isfinite(p.threshold_g) && std::isfinite(p.wall_per_run);
+  return p;
 }
 
 // One contact model on the peer scene: a 15 s run at 0.29 g (median wall) and the threshold.
@@ -153,6 +191,7 @@ void bench(int repeat, bool json, const std::string& only) {
   const auto block2d = rocking::RockingBlock::rectangular(b, h);
   const double housner =
       rocking::min_overturning_amplitude(block2d, rocking::PulseShape::one_sine, 0.5) / kGravity;
+  const PeerEngine ode = ode_peer(repeat);
 
   if (json) {
     JsonObject j;
@@ -161,6 +200,12 @@ void bench(int repeat, bool json, const std::string& only) {
         .add("geode_steps", geode_steps)
         .add("geode_steps_per_s", double(geode_steps) / geode_median)
         .add("housner_threshold_g", housner);
+    if (ode.found) {
+      j.add("ode_threshold_g", ode.threshold_g)
+          .add("ode_threshold_ratio", ode.threshold_g / housner)
+          .add("ode_dt_s", ode.dt)
+          .add("ode_wall_s_per_search_run", ode.wall_per_run);
+    }
     for (const auto& f : peers) {
       std::string key = f.name == "penalty K=1e10" ? "stiff" : f.name;
       j.add(key + "_wall_s_median", f.wall_median)
@@ -186,17 +231,18 @@ void bench(int repeat, bool json, const std::string& only) {
     std::printf("    %-15s %12.4f %8.3f %10.3g %14.4f %12ld %10d\n", f.name.c_str(), f.threshold.g,
                 f.threshold.g / housner, f.dt, f.threshold.wall_per_run, f.steps, f.threshold.runs);
   }
-  std::printf("    (wall/run: mean over the bisection's 15 s runs; a 15 s run at 0.29 g: %s)\n", [&] {
-    static std::string s;
-    s.clear();
-    for (const auto& f : peers) {
-      char buf[96];
-      std::snprintf(buf, sizeof buf, "%s%s %.4f s (%s)", s.empty() ? "" : ", ", f.name.c_str(), f.wall_median,
-                    f.overturned ? "overturned" : "survived");
-      s += buf;
-    }
-    return s.c_str();
-  }());
+  if (ode.found) {
+    std::printf("    %-15s %12.4f %8.3f %10.3g %14.4f %12s %10d\n", "ODE (peer)", ode.threshold_g,
+                ode.threshold_g / housner, ode.dt, ode.wall_per_run, "-", ode.runs);
+  } else {
+    std::printf("    ODE (peer): not built (apt-get install libode-dev, then rebuild: build/bin/rigid_ode_peer)\n");
+  }
+  std::printf("    wall/run: median over the bisection's 15 s runs (a run ends early once the block has fallen or "
+              "rests)\n");
+  for (const auto& f : peers) {
+    std::printf("    %s, one 15 s run at 0.29 g: %.4f s (%s)\n", f.name.c_str(), f.wall_median,
+                f.overturned ? "overturned" : "survived");
+  }
 }
 
 }  // namespace

@@ -641,6 +641,8 @@ void study_accuracy(const StudyOptions& o) {
       if (it != settled.end()) return it->second;
       contact::ContactLaw law = c.law;
       law.model = s.contact;
+      // no damping in a conservative case: the rigid model's counterpart is an elastic impact
+      if (c.conservative && s.contact == contact::ContactModel::rigid) law.restitution = 1;
       law.normal_stiffness = law.shear_stiffness = s.stiffness;
       scenario::Scene scene = c.build(law);
       if (c.settle) scene = scenario::equilibrate(scene, dynamics::StepSettings{});
