@@ -49,6 +49,19 @@ double solve_normal(SolverBody& a, SolverBody& b, ContactRow& r) {
   return change;
 }
 
+// The largest change of any body's velocities since `before`, as a multiple of the tolerances.
+double largest_motion_change(const std::vector<SolverBody>& bodies, const std::vector<SolverBody>& before,
+                             const SolverSettings& settings) {
+  double change = 0;
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    if (bodies[i].inverse_mass == 0) continue;
+    change = std::max({change, (bodies[i].velocity - before[i].velocity).cwiseAbs().maxCoeff() / settings.velocity_tolerance,
+                       (bodies[i].angular_velocity - before[i].angular_velocity).cwiseAbs().maxCoeff() /
+                           settings.angular_tolerance});
+  }
+  return change;
+}
+
 }  // namespace
 
 void set_tangents(FrictionPatch& p) {
@@ -108,17 +121,17 @@ void warm_start(std::vector<SolverBody>& bodies, const std::vector<ContactRow>& 
 }
 
 SolverResult solve_velocities(std::vector<SolverBody>& bodies, std::vector<ContactRow>& rows,
-                              std::vector<FrictionPatch>& patches, const SolverSettings& settings) {
+                              std::vector<FrictionPatch>& patches, const SolverSettings& settings,
+                              std::vector<SolverBody>& scratch) {
   SolverResult result;
-  const double tolerance = settings.tolerance * settings.impulse_scale;
   for (int iteration = 0; iteration < settings.max_iterations; ++iteration) {
-    double largest_change = 0;
+    scratch = bodies;
     for (auto& p : patches) {
       SolverBody& a = bodies[p.a];
       SolverBody& b = bodies[p.b];
       double total = 0;
       for (int k = p.first_row; k < p.first_row + p.row_count; ++k) {
-        largest_change = std::max(largest_change, std::abs(solve_normal(a, b, rows[k])));
+        solve_normal(a, b, rows[k]);
         total += rows[k].normal_impulse;
       }
       // Coulomb on the patch: the impulse that stops sliding and twisting, projected radially
@@ -132,11 +145,9 @@ SolverResult solve_velocities(std::vector<SolverBody>& bodies, std::vector<Conta
         apply_patch(a, b, p, change);
         p.impulse = impulse;
       }
-      largest_change = std::max({largest_change, std::abs(change.x()), std::abs(change.y()),
-                                 p.radius > 0 ? std::abs(change.z()) / p.radius : 0.0});
     }
     result.iterations = iteration + 1;
-    if (largest_change <= tolerance) {
+    if (largest_motion_change(bodies, scratch, settings) <= 1.0) {
       result.converged = true;
       break;
     }
@@ -145,7 +156,8 @@ SolverResult solve_velocities(std::vector<SolverBody>& bodies, std::vector<Conta
 }
 
 void solve_correction(const std::vector<SolverBody>& bodies, std::vector<SolverBody>& pseudo,
-                      std::vector<ContactRow>& rows, const SolverSettings& settings) {
+                      std::vector<ContactRow>& rows, const SolverSettings& settings,
+                      std::vector<SolverBody>& scratch) {
   pseudo.resize(bodies.size());
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     pseudo[i] = bodies[i];
@@ -153,9 +165,8 @@ void solve_correction(const std::vector<SolverBody>& bodies, std::vector<SolverB
     pseudo[i].angular_velocity.setZero();
   }
   for (auto& r : rows) r.correction_impulse = 0;
-  const double tolerance = settings.tolerance * settings.impulse_scale;
   for (int iteration = 0; iteration < settings.max_iterations; ++iteration) {
-    double largest_change = 0;
+    scratch = pseudo;
     for (auto& r : rows) {
       SolverBody& a = pseudo[r.a];
       SolverBody& b = pseudo[r.b];
@@ -165,9 +176,8 @@ void solve_correction(const std::vector<SolverBody>& bodies, std::vector<SolverB
       if (dp == 0) continue;
       apply_normal(a, b, r, dp);
       r.correction_impulse = p;
-      largest_change = std::max(largest_change, std::abs(dp));
     }
-    if (largest_change <= tolerance) break;
+    if (largest_motion_change(pseudo, scratch, settings) <= 1.0) break;
   }
 }
 

@@ -166,7 +166,7 @@ void World::step_rigid(double dt, const Vec3& ground_velocity_start, const Vec3&
 
   // free velocities: gravity over the step; the angular momentum is unchanged without torque
   solver_bodies_.resize(n);
-  double heaviest = 0;
+  double smallest_radius = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < n; ++i) {
     SolverBody& b = solver_bodies_[i];
     if (defs_[i].fixed) {
@@ -177,7 +177,7 @@ void World::step_rigid(double dt, const Vec3& ground_velocity_start, const Vec3&
       continue;
     }
     const double m = defs_[i].shape.mass;
-    heaviest = std::max(heaviest, m);
+    smallest_radius = std::min(smallest_radius, defs_[i].shape.bounding_radius);
     b.velocity = states_[i].velocity + Vec3(0, 0, -settings_.gravity * dt);
     b.angular_velocity = angular_velocity(static_cast<int>(i));
     b.inverse_mass = 1.0 / m;
@@ -187,11 +187,15 @@ void World::step_rigid(double dt, const Vec3& ground_velocity_start, const Vec3&
   if (settings_.local_damping > 0) free_bodies_ = solver_bodies_;
   // warm start: last step's impulses of the same subcontacts
   warm_start(solver_bodies_, rows_, patches_);
+  // converged when a sweep changes velocities by less than 1e-7 of what gravity adds in a step
+  // (1e-6 let a block resting under a slow ramp creep 1e-6 rad before its uplift acceleration)
+  // (and angular velocities by that over the smallest block's radius)
   SolverSettings solver;
-  solver.impulse_scale = std::max(heaviest, 1e-300) * settings_.gravity * dt;
-  last_solve_ = solve_velocities(solver_bodies_, rows_, patches_, solver);
+  solver.velocity_tolerance = 1e-7 * settings_.gravity * dt;
+  solver.angular_tolerance = solver.velocity_tolerance / smallest_radius;
+  last_solve_ = solve_velocities(solver_bodies_, rows_, patches_, solver, solver_scratch_);
   const bool correct = std::any_of(rows_.begin(), rows_.end(), [](const ContactRow& r) { return r.correction_velocity > 0; });
-  if (correct) solve_correction(solver_bodies_, pseudo_bodies_, rows_, solver);
+  if (correct) solve_correction(solver_bodies_, pseudo_bodies_, rows_, solver, solver_scratch_);
 
   if (settings_.local_damping > 0) {
     // Itasca local damping (physics.md §9) on the step's velocity change, which is the unbalanced

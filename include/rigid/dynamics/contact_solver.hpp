@@ -67,10 +67,12 @@ struct FrictionPatch {
 };
 
 struct SolverSettings {
-  /// Sweeps stop once no impulse changed by more than tolerance x impulse_scale in a sweep.
-  double tolerance = 1e-9;
-  /// Impulse that the tolerance is relative to (unit: N s), e.g. the heaviest block's weight x h.
-  double impulse_scale = 1;
+  /// Sweeps stop once a sweep changed no body's velocity by more than velocity_tolerance and no
+  /// angular velocity by more than angular_tolerance. The motion, not the impulses: where rows are
+  /// redundant (four corners of a face) the impulses can still shift among them without moving
+  /// anything, and need not settle for the motion to be right.
+  double velocity_tolerance = 1e-9;  ///< unit: m/s (the world sets it from g and the step)
+  double angular_tolerance = 1e-9;   ///< unit: rad/s
   int max_iterations = 200;
 };
 
@@ -91,13 +93,16 @@ void warm_start(std::vector<SolverBody>& bodies, const std::vector<ContactRow>& 
 
 /// Solves for the impulses (starting from the current ones, already applied to the bodies by
 /// warm_start) and leaves the bodies at their end-of-step velocities.
+/// `scratch` holds a copy of the bodies between sweeps (no allocation once it has their size).
 SolverResult solve_velocities(std::vector<SolverBody>& bodies, std::vector<ContactRow>& rows,
-                              std::vector<FrictionPatch>& patches, const SolverSettings& settings);
+                              std::vector<FrictionPatch>& patches, const SolverSettings& settings,
+                              std::vector<SolverBody>& scratch);
 
 /// Split-impulse position correction: normal-only impulses that bring each penetrating row to its
 /// correction_velocity, applied to `pseudo` velocities (zeroed first) that move positions only,
 /// so no kinetic energy is added.
 void solve_correction(const std::vector<SolverBody>& bodies, std::vector<SolverBody>& pseudo,
-                      std::vector<ContactRow>& rows, const SolverSettings& settings);
+                      std::vector<ContactRow>& rows, const SolverSettings& settings,
+                      std::vector<SolverBody>& scratch);
 
 }  // namespace rigid::dynamics

@@ -215,7 +215,7 @@ class World {
   std::vector<int> patch_pairs_;  ///< the pair of each patch
   Vec3 pedestal_velocity_{0, 0, 0};  ///< the pedestals' mean velocity over the last step
   std::vector<SolverBody> solver_bodies_, pseudo_bodies_;
-  std::vector<SolverBody> free_bodies_;  ///< velocities before the solve (local damping)
+  std::vector<SolverBody> free_bodies_, solver_scratch_;  ///< velocities before the solve (local damping)
   SolverResult last_solve_;
 };
 
