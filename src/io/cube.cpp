@@ -6,7 +6,9 @@
 //
 //   /                      attributes: schema_version (int32), software_version, job_text,
 //                          job_hash, physics_json (strings), seed (uint64),
-//                          units = "SI unless the name says otherwise"
+//                          units = "SI unless the name says otherwise",
+//                          job_inputs_sha256 (sha256sum lines: settings, job file, record list),
+//                          inputs_sha256 (one SHA-256 over every input of every cell)
 //   /axes/record           [R] string     dimension scale "record" (names, job order)
 //   /axes/scale_g          [S] float64 g  dimension scale "scale_g" (target GMRotI50 PGA)
 //   /axes/rotation         [A] int32      dimension scale "rotation" (0..A-1)
@@ -16,7 +18,9 @@
 //   /records/{name, source, earthquake}                               [R] string
 //   /records/{start_s, end_s, gmroti_pga_g, gmroti_pgv_cm_s, pgv_pga_s,
 //             listed_pga_g, listed_pgv_cm_s}                          [R] float64
+//   /records/inputs_sha256                                            [R] string (sha256sum lines)
 //   /objects/<name>/       attributes: scene (string), index (int32, position in the job),
+//                          inputs_sha256 (string, sha256sum lines: scene, model, STLs, state),
 //                          alpha_rad, p_rad_s (float64, only for single-block objects)
 //       outcome            [R,S,A] int8   attribute legend = "0 not run, 1 survived, ..."
 //       rotation_deg, failure_time_s, max_tilt_deg, max_slip_m, wall_s   [R,S,A] float64
@@ -450,6 +454,8 @@ void write_contents(const H5& h, hid_t file, const Cube& c) {
   w.attribute("/", "physics_json", c.physics_json);
   w.attribute("/", "seed", std::uint64_t{c.seed});
   w.attribute("/", "units", std::string("SI unless the name says otherwise"));
+  w.attribute("/", "job_inputs_sha256", c.job_inputs);
+  w.attribute("/", "inputs_sha256", c.inputs_sha256);
 
   w.group("/axes");
   Hid record =
@@ -486,6 +492,9 @@ void write_contents(const H5& h, hid_t file, const Cube& c) {
   text(
       "earthquake", [](const RecordMeta& m) { return m.earthquake; },
       "earthquake, from the record list (may be empty)");
+  text(
+      "inputs_sha256", [](const RecordMeta& m) { return m.inputs; },
+      "SHA-256 of the record's motion files, sha256sum lines (HEX  PATH)");
   number(
       "start_s", [](const RecordMeta& m) { return m.start_s; }, "s", "start of the time window");
   number(
@@ -513,6 +522,7 @@ void write_contents(const H5& h, hid_t file, const Cube& c) {
     w.group(g);
     w.attribute(g, "scene", o.scene);
     w.attribute(g, "index", static_cast<std::int32_t>(i));
+    w.attribute(g, "inputs_sha256", o.inputs);
     if (std::isfinite(o.alpha_rad)) w.attribute(g, "alpha_rad", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &o.alpha_rad);
     if (std::isfinite(o.p_rad_s)) w.attribute(g, "p_rad_s", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &o.p_rad_s);
     const auto cells = [&](Hid d, const std::string& path) {
@@ -599,6 +609,10 @@ class Reader {
   bool has_attribute(const std::string& path, const char* name) const {
     return h_.check(H5Aexists_by_name(file_, path.c_str(), name, H5P_DEFAULT),
                     "looking for attribute " + std::string(name) + " of " + path) > 0;
+  }
+
+  bool has_link(const std::string& path) const {
+    return h_.check(H5Lexists(file_, path.c_str(), H5P_DEFAULT), "looking for " + path) > 0;
   }
 
   Hid open_attribute(const std::string& path, const char* name, H5T_class_t cls,
@@ -742,6 +756,9 @@ Cube read_contents(const H5& h, hid_t file) {
   c.job_hash = rd.string_attribute("/", "job_hash");
   c.physics_json = rd.string_attribute("/", "physics_json");
   c.seed = rd.integer_attribute<std::uint64_t>("/", "seed", H5T_NATIVE_UINT64);
+  // provenance hashes: absent from cubes written before them
+  if (rd.has_attribute("/", "job_inputs_sha256")) c.job_inputs = rd.string_attribute("/", "job_inputs_sha256");
+  if (rd.has_attribute("/", "inputs_sha256")) c.inputs_sha256 = rd.string_attribute("/", "inputs_sha256");
 
   const hsize_t R = rd.length("/axes/record"), S = rd.length("/axes/scale_g"),
                 A = rd.length("/axes/rotation");
@@ -761,6 +778,10 @@ Cube read_contents(const H5& h, hid_t file) {
     c.records[r].name = names[r];
     c.records[r].source = sources[r];
     c.records[r].earthquake = quakes[r];
+  }
+  if (rd.has_link("/records/inputs_sha256")) {
+    const std::vector<std::string> inputs = rd.strings("/records/inputs_sha256", R);
+    for (hsize_t r = 0; r < R; ++r) c.records[r].inputs = inputs[r];
   }
   const auto number = [&](const char* name, double RecordMeta::*field) {
     const std::vector<double> v = rd.doubles(std::string("/records/") + name, {R});
@@ -789,6 +810,7 @@ Cube read_contents(const H5& h, hid_t file) {
     ObjectCube& o = c.objects[static_cast<std::size_t>(index)];
     o.name = name;
     o.scene = rd.string_attribute(g, "scene");
+    if (rd.has_attribute(g, "inputs_sha256")) o.inputs = rd.string_attribute(g, "inputs_sha256");
     if (rd.has_attribute(g, "alpha_rad")) o.alpha_rad = rd.double_attribute(g, "alpha_rad");
     if (rd.has_attribute(g, "p_rad_s")) o.p_rad_s = rd.double_attribute(g, "p_rad_s");
     o.outcome = rd.numbers<std::int8_t>(g + "/outcome", H5T_INTEGER, H5T_NATIVE_INT8, rsa);
@@ -833,6 +855,8 @@ void write_cube(const std::string& path, const Cube& cube) {
     throw;
   }
 }
+
+void silence_hdf5_errors() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
 
 Cube read_cube(const std::string& path) {
   const QuietErrors quiet;
