@@ -521,7 +521,6 @@ struct Master {
         std::fprintf(stderr, "\nrigid campaign: signal %d: no new tasks; waiting up to %g s for %ld in flight\n",
                      int(g_stop_signal), grace, plan->in_flight());
       }
-      if (stopping && !stop_since) stop_since = Clock::now();  // after a failed write
       // hand out work, or stop workers that will get none
       for (auto it = waiting.begin(); it != waiting.end();) {
         std::vector<std::int64_t> ids;
@@ -559,6 +558,7 @@ struct Master {
         all_done = active_workers == 0 && local_done && (stopping || plan->finished());
       }
       if (all_done) break;
+      if (stopping && !stop_since) stop_since = Clock::now();  // stopped by a failed write
       if (stopping && seconds_since(*stop_since) > grace) {
         abandoned = true;
         break;

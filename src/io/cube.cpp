@@ -39,8 +39,10 @@
 // (H5Pset_obj_track_times false). No creation time is stored anywhere. wall_s is the only
 // run-dependent dataset (tests/python/compare_cubes.py skips it).
 //
-// Atomicity: write_cube writes PATH.tmp, flushes and closes it, fsyncs it, renames it over PATH
-// and fsyncs the directory, so a kill at any instant leaves the previous or the new complete file.
+// Atomicity: write_cube builds the file in memory (HDF5's core driver), writes it to PATH.tmp,
+// fsyncs it, renames it over PATH and fsyncs the directory, so a kill at any instant leaves the
+// previous or the new complete file, and a failed write (disk full) leaves the previous one and
+// removes PATH.tmp.
 #include "rigid/io/cube.hpp"
 
 #include <fcntl.h>
@@ -295,6 +297,9 @@ std::string hdf5_explanation() {
   if (d.empty()) return {};
   std::string s = " (HDF5: " + d.front();
   if (d.size() > 1 && d.back() != d.front()) s += ": " + d.back();
+  for (char& c : s) {
+    if (c == '\n') c = ' ';  // some descriptions span lines; ours is one
+  }
   return s + ")";
 }
 
@@ -586,6 +591,31 @@ void write_contents(const H5& h, hid_t file, const Cube& c) {
   }
 }
 
+// Writes bytes to a new file and fsyncs it; errors name the file and errno.
+void write_file(const H5& h, const std::string& p, const std::vector<unsigned char>& bytes) {
+  const int fd = ::open(p.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) h.fail_errno("creating " + p);
+  std::size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const int err = n < 0 ? errno : ENOSPC;
+      ::close(fd);
+      errno = err;
+      h.fail_errno("writing " + p);
+    }
+    done += static_cast<std::size_t>(n);
+  }
+  if (::fsync(fd) != 0) {
+    const int err = errno;
+    ::close(fd);
+    errno = err;
+    h.fail_errno("syncing " + p);
+  }
+  if (::close(fd) != 0) h.fail_errno("closing " + p);
+}
+
 void fsync_path(const H5& h, const std::string& p, bool directory) {
   const int fd = ::open(p.c_str(), O_RDONLY | (directory ? O_DIRECTORY : 0));
   if (fd < 0) h.fail_errno("opening " + p + " to sync it");
@@ -833,19 +863,27 @@ void write_cube(const std::string& path, const Cube& cube) {
   const QuietErrors quiet;
   const H5 h(path);
   const std::string tmp = path + ".tmp";
+  // Built in memory (HDF5's core driver, no backing store) and written out here: HDF5 never
+  // meets a disk error, which it reports as a multi-line stack and, in 1.10, follows with a crash
+  // at exit while closing the file it could not write (issue 12); ours is one errno line.
+  std::vector<unsigned char> image;
+  {
+    Hid fcpl = h.own(H5Pcreate(H5P_FILE_CREATE), H5Pclose, "creating a file creation property list");
+    h.check(H5Pset_obj_track_times(fcpl, false), "switching off root group time stamps");
+    Hid fapl = file_access(h);
+    h.check(H5Pset_fapl_core(fapl, 1 << 20, false), "selecting the in-memory file driver");
+    // SEMI: closing the file fails rather than lingers if a handle were still open
+    h.check(H5Pset_fclose_degree(fapl, H5F_CLOSE_SEMI), "setting the file close degree");
+    Hid file = h.own(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, fcpl, fapl), H5Fclose, "creating the cube in memory");
+    write_contents(h, file, cube);
+    h.check(H5Fflush(file, H5F_SCOPE_GLOBAL), "flushing the cube in memory");
+    const ssize_t size = h.check(H5Fget_file_image(file, nullptr, 0), "sizing the cube's file image");
+    image.resize(static_cast<std::size_t>(size));
+    h.check(H5Fget_file_image(file, image.data(), image.size()), "copying the cube's file image");
+    h.check(file.close(), "closing the cube in memory");
+  }
   try {
-    {
-      Hid fcpl = h.own(H5Pcreate(H5P_FILE_CREATE), H5Pclose, "creating a file creation property list");
-      h.check(H5Pset_obj_track_times(fcpl, false), "switching off root group time stamps");
-      Hid fapl = file_access(h);
-      // SEMI: closing the file fails rather than lingers if a handle were still open
-      h.check(H5Pset_fclose_degree(fapl, H5F_CLOSE_SEMI), "setting the file close degree");
-      Hid file = h.own(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, fcpl, fapl), H5Fclose, "creating " + tmp);
-      write_contents(h, file, cube);
-      h.check(H5Fflush(file, H5F_SCOPE_GLOBAL), "flushing " + tmp);
-      h.check(file.close(), "closing " + tmp);
-    }
-    fsync_path(h, tmp, false);
+    write_file(h, tmp, image);
     if (std::rename(tmp.c_str(), path.c_str()) != 0) h.fail_errno("renaming " + tmp + " over " + path);
     const fs::path dir = fs::path(path).parent_path();
     fsync_path(h, dir.empty() ? std::string(".") : dir.string(), true);
