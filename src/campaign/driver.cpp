@@ -570,7 +570,10 @@ struct Master {
       stopping = true;
       const bool written = checkpoint();
       std::fprintf(stderr, "rigid campaign: grace period over; %ld tasks abandoned (redone on resume)\n", plan->in_flight());
-      if (!written) std::fprintf(stderr, "rigid: error: %s\n", failure.c_str());
+      if (!written) {
+        std::lock_guard<std::mutex> lock(mutex);  // the local thread may still be recording
+        std::fprintf(stderr, "rigid: error: %s\n", failure.c_str());
+      }
       std::fflush(stderr);
       MPI_Abort(MPI_COMM_WORLD, written ? kExitInterrupted : kExitIoFailure);
     }

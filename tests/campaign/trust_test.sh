@@ -22,13 +22,8 @@ cleanup() {
   rm -rf "$work"
 }
 trap cleanup EXIT
-passed=0
-failed=0
-check() {  # name, command...
-  local name=$1
-  shift
-  if "$@"; then passed=$((passed + 1)); echo "PASS $name"; else failed=$((failed + 1)); echo "FAIL $name"; fi
-}
+# shellcheck source=checks.sh
+source "$src/tests/campaign/checks.sh"
 finish() {
   echo "$passed passed, $failed failed"
   [ "$failed" -eq 0 ]
@@ -215,6 +210,16 @@ checkpoint)
   failure_line='^rigid: error: .*c\.h5: checkpoint failed: .* \(results kept in the journal; run again to resume\)$'
   any_failure='^rigid: error: .*c\.h5(\.journal)?: (checkpoint failed|journal write failed): .*run again to resume\)$'
   errors() { grep '^rigid: error:' "$1" > "$1.err"; echo "$1.err"; }
+  failed_cleanly() {  # NAME STATUS LOG LINE-REGEX
+    if grep -q "^fragility cube" "$3"; then
+      echo "note: $1: the campaign finished before the disk filled; case not exercised"
+      return
+    fi
+    check "$1: exit 1" test "$2" -eq 1
+    check "$1: one line" one_line "$(errors "$3")" "$4"
+    check "$1: no abort, crash or HDF5 trace" clean_exit "$3"
+    check "$1: no temporary cube left" test ! -e "$mnt/c.h5.tmp"
+  }
 
   # 1. full at a resume: the journal (one page) fits, the cube does not
   interrupted "$mnt/c.h5" 2
@@ -249,14 +254,7 @@ checkpoint)
   wait "$pid"
   status=$?
   cat "$work/c2.log"
-  if grep -q "^fragility cube" "$work/c2.log"; then
-    echo "note: the campaign finished before the disk filled; mid-run case not exercised"
-  else
-    check "full disk mid-run (2 ranks): exit 1" test "$status" -eq 1
-    check "full disk mid-run (2 ranks): one line" one_line "$(errors "$work/c2.log")" "$any_failure"
-    check "full disk mid-run (2 ranks): no abort, crash or HDF5 trace" clean_exit "$work/c2.log"
-    check "full disk mid-run (2 ranks): no temporary cube left" test ! -e "$mnt/c.h5.tmp"
-  fi
+  failed_cleanly "full disk mid-run (2 ranks)" "$status" "$work/c2.log" "$any_failure"
   rm -f "$mnt/fill"
   timeout 120 mpirun --oversubscribe -np 2 "$rigid" campaign job.toml --out "$mnt/c.h5" --progress none > "$work/c2r.log" 2>&1
   check "space back (2 ranks): resume completes" test $? -eq 0
@@ -272,13 +270,7 @@ checkpoint)
   wait "$pid"
   status=$?
   cat "$work/c3.log"
-  if grep -q "^fragility cube" "$work/c3.log"; then
-    echo "note: the campaign finished before SIGUSR1; case not exercised"
-  else
-    check "full disk after SIGUSR1: exit 1" test "$status" -eq 1
-    check "full disk after SIGUSR1: one line" one_line "$(errors "$work/c3.log")" "$failure_line"
-    check "full disk after SIGUSR1: no abort, crash or HDF5 trace" clean_exit "$work/c3.log"
-  fi
+  failed_cleanly "full disk after SIGUSR1" "$status" "$work/c3.log" "$failure_line"
   rm -f "$mnt/fill"
   campaign --out "$mnt/c.h5" > "$work/c3r.log" 2>&1
   check "space back after SIGUSR1: resume completes" test $? -eq 0
