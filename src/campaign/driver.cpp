@@ -172,7 +172,7 @@ std::optional<InputError> input_change(const io::Cube& old, const scenario::Job&
       return changed_file(job.path);
     }
     return InputError(job.output, 0,
-                      "was written by a different job file or settings (hash " + old.job_hash + ", now " + job.hash +
+                      "was written by a different job file, accuracy preset or command-line settings (hash " + old.job_hash + ", now " + job.hash +
                           "); use --force to start a new campaign over it, or another --out");
   }
   if (old.inputs_sha256.empty()) {

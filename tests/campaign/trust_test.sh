@@ -183,11 +183,16 @@ lock)
   "$rigid" campaign job.toml --progress none --out "$work/l.h5" > "$work/first.log" 2>&1 &
   pid=$!
   wait_size "$work/l.h5.journal" $((header + record)) "$pid"
+  # held still while the second one tries, so the first cannot finish in between however slow
+  # this machine is
+  kill -STOP "$pid"
   check "first campaign holds the lock" test -e "$work/l.h5.lock"
   campaign --out "$work/l.h5" > "$work/second.log" 2>&1
   check "second campaign refused with exit 2" test $? -eq 2
   check "one line naming the lock and the running campaign" one_line "$work/second.log" \
     "^rigid: error: .*l\.h5\.lock: another campaign is running on .*l\.h5"
+  check "cube and journal left to the first campaign" test -e "$work/l.h5.journal"
+  kill -CONT "$pid"
   wait "$pid"
   check "first campaign completes undisturbed" test $? -eq 0
   check "first campaign's cube equals uninterrupted" $compare "$work/ref.h5" "$work/l.h5"
@@ -265,8 +270,10 @@ checkpoint)
   "$rigid" campaign job.toml --progress none --out "$mnt/c.h5" > "$work/c3.log" 2>&1 &
   pid=$!
   wait_size "$mnt/c.h5.journal" $((header + 2 * record)) "$pid"
+  kill -STOP "$pid"  # so it cannot finish before the disk is full
   fill 0
   kill -USR1 "$pid"
+  kill -CONT "$pid"
   wait "$pid"
   status=$?
   cat "$work/c3.log"

@@ -452,7 +452,9 @@ TEST_F(CubeFile, AKillAtAnyInstantLeavesAValidFile) {
   const std::string p = path("cube.h5");
   const Cube small = synthetic();
   Cube big = synthetic();
-  for (int k = 0; k < 60; ++k) {
+  // large enough (a few MB) that writing and syncing PATH.tmp, after the in-memory build, takes a
+  // good part of each rewrite
+  for (int k = 0; k < 3000; ++k) {
     RecordMeta m = small.records[k % 3];
     m.name += " " + std::to_string(k);
     big.records.push_back(m);
@@ -466,7 +468,8 @@ TEST_F(CubeFile, AKillAtAnyInstantLeavesAValidFile) {
   }
   write_cube(p, small);
   int mid_write = 0;  // kills that caught the child with PATH.tmp on disk
-  for (int round = 0; round < 12; ++round) {
+  for (int round = 0; round < 16; ++round) {
+    fs::remove(p + ".tmp");  // left by the last kill: a PATH.tmp seen below is this child's
     const pid_t pid = ::fork();
     ASSERT_GE(pid, 0);
     if (pid == 0) {
@@ -478,7 +481,12 @@ TEST_F(CubeFile, AKillAtAnyInstantLeavesAValidFile) {
         }
       }
     }
-    ::usleep(static_cast<useconds_t>(2000 + 1700 * round));
+    if (round % 2 == 0) {
+      ::usleep(static_cast<useconds_t>(20000 + 7000 * round));  // any instant
+    } else {
+      // the instant that matters: PATH.tmp being written (the cube is built in memory before)
+      for (int k = 0; k < 40000 && !fs::exists(p + ".tmp"); ++k) ::usleep(50);
+    }
     ::kill(pid, SIGKILL);
     int status = 0;
     ::waitpid(pid, &status, 0);
@@ -488,8 +496,8 @@ TEST_F(CubeFile, AKillAtAnyInstantLeavesAValidFile) {
     ASSERT_NO_THROW(got = read_cube(p)) << "round " << round;
     EXPECT_TRUE(got.records.size() == small.records.size() || got.records.size() == big.records.size());
   }
-  // the child spends nearly all its time between creating PATH.tmp and renaming it, so some
-  // kills must have landed there, or the test proved nothing
+  // some kills must have landed between creating PATH.tmp and renaming it, or the test proved
+  // nothing
   EXPECT_GT(mid_write, 0);
   write_cube(p, small);
   EXPECT_FALSE(fs::exists(p + ".tmp"));
