@@ -202,6 +202,7 @@ scenario::Job load_job(const std::string& path) {
     const fs::path list_path = base / *name;
     if (!fs::exists(list_path)) throw InputError(path, line_of(*list), "record list not found: " + list_path.string());
     const RecordList rl = read_record_list(list_path.string());
+    job.record_list = list_path.lexically_normal().string();
     for (const auto& e : rl.records) {
       scenario::JobRecord r;
       r.spec = resolve_spec(e.file, fs::path(rl.base_dir));
@@ -303,10 +304,12 @@ scenario::Job load_job(const std::string& path) {
   return job;
 }
 
-std::string job_hash(const scenario::Job& job) {
+std::string job_settings_text(const scenario::Job& job) {
   // cubes from before the presets were computed with balanced's settings and hash the text alone
-  if (job.accuracy == "balanced") return text_hash(job.text);
-  return text_hash(job.text + "\n# accuracy: " + job.accuracy + "\n");
+  if (job.accuracy == "balanced") return job.text;
+  return job.text + "\n# accuracy: " + job.accuracy + "\n";
 }
+
+std::string job_hash(const scenario::Job& job) { return text_hash(job_settings_text(job)); }
 
 }  // namespace rigid::io

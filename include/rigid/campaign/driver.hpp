@@ -7,6 +7,9 @@ namespace rigid::campaign {
 
 /// Exit status of an interrupted (resumable) campaign: EX_TEMPFAIL.
 inline constexpr int kExitInterrupted = 75;
+/// Exit status when writing a checkpoint or the journal failed (disk full, unwritable output):
+/// every rank ended cleanly, the last good cube and the journal are kept; run again to resume.
+inline constexpr int kExitIoFailure = 1;
 
 struct CampaignOptions {
   std::string job;              ///< job file
@@ -25,8 +28,10 @@ struct CampaignOptions {
 };
 
 /// Runs (or resumes) a campaign under MPI (a single process works without mpirun). Returns the
-/// process exit status: 0 complete, kExitInterrupted after a stop signal (checkpoint written).
-/// Bad input throws rigid::InputError on rank 0; other ranks return 2 quietly.
+/// process exit status: 0 complete, kExitInterrupted after a stop signal (checkpoint written),
+/// kExitIoFailure after a failed write (one line `rigid: error: ...` printed). Bad input, changed
+/// inputs on resume and a second campaign on the same output throw rigid::InputError on rank 0;
+/// other ranks return 2 quietly.
 int run_campaign(int& argc, char**& argv, const CampaignOptions& options);
 
 }  // namespace rigid::campaign

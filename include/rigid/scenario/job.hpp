@@ -37,6 +37,7 @@ struct Job {
   std::uint64_t seed = 1;  ///< keys the rotation angles
   std::vector<JobObject> objects;
   std::vector<JobRecord> records;
+  std::string record_list;        ///< the record-list file (resolved path), empty for [[record]] tables
   std::vector<double> scales_g;   ///< target GMRotI50 PGA of each scale, increasing (unit: g)
   int rotations = 2;              ///< random rotations per (record, scale)
   /// Stop raising the scale for a record once this many consecutive scales overturned at every
