@@ -148,7 +148,7 @@ io::Cube make_cube(const scenario::Job& job, const TaskRunner& runner, const Inp
       const long t = long(o) * per_object + i;
       const TaskResult& r = plan.results()[t];
       oc.outcome.push_back(outcome[t]);
-      oc.rotation_deg.push_back(rotation_angle_deg(job.seed, plan.cell(t)));
+      oc.rotation_deg.push_back(cell_rotation_deg(job, plan.cell(t)));
       oc.failure_time_s.push_back(kept[t] ? r.failure_time_s : nan);
       oc.max_tilt_deg.push_back(kept[t] ? r.max_tilt_deg : nan);
       oc.max_slip_m.push_back(kept[t] ? r.max_slip_m : nan);

@@ -135,7 +135,7 @@ scenario::Job load_job(const std::string& path) {
 
   const auto* c = root["campaign"].as_table();
   if (!c) throw InputError(path, 0, "missing [campaign] table");
-  reject_unknown(*c, {"name", "seed", "output", "scales", "rotations", "stop_after", "checkpoint_interval_s", "grace_s"},
+  reject_unknown(*c, {"name", "seed", "output", "scales", "rotations", "rotation_angles_deg", "stop_after", "checkpoint_interval_s", "grace_s"},
                  path, "[campaign]");
   if (const auto* o = c->get("output")) {
     const auto s = o->value<std::string>();
@@ -156,6 +156,21 @@ scenario::Job load_job(const std::string& path) {
     const auto v = r->value<std::int64_t>();
     if (!v || *v < 1 || *v > 1000) throw InputError(path, line_of(*r), "rotations must be an integer from 1 to 1000");
     job.rotations = static_cast<int>(*v);
+  }
+  if (const auto* r = c->get("rotation_angles_deg")) {
+    const auto* list = r->as_array();
+    if (!list || list->empty() || list->size() > 1000) {
+      throw InputError(path, line_of(*r), "rotation_angles_deg must be a list of 1 to 1000 angles (deg)");
+    }
+    for (const auto& node : *list) {
+      const auto v = node.value<double>();
+      if (!v || !std::isfinite(*v)) throw InputError(path, line_of(node), "rotation_angles_deg: angles must be finite numbers (deg)");
+      job.rotation_angles_deg.push_back(*v);
+    }
+    if (c->contains("rotations") && job.rotations != int(list->size())) {
+      throw InputError(path, line_of(*r), "rotations and rotation_angles_deg disagree: give one of them");
+    }
+    job.rotations = int(list->size());
   }
   if (const auto* s = c->get("stop_after")) {
     const auto v = s->value<std::int64_t>();

@@ -261,38 +261,6 @@ TEST(RigidSliding, NewmarkDisplacementWithinTwoPercent) {
   }
 }
 
-// A box as 12 triangles and as a 6 x 2 x 10^2 = 1,200-triangle mesh with vertices inside its
-// faces: the same rigid body, so the same one-sine threshold (bisected to 0.25 %).
-geometry::TriangleSoup subdivided_box(const Vec3& lo, const Vec3& hi, int n) {
-  geometry::TriangleSoup soup;
-  for (int axis = 0; axis < 3; ++axis) {
-    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-    for (int side = 0; side < 2; ++side) {
-      auto corner = [&](int i, int j) {
-        Vec3 p;
-        p[axis] = side ? hi[axis] : lo[axis];
-        p[u] = lo[u] + (hi[u] - lo[u]) * i / n;
-        p[v] = lo[v] + (hi[v] - lo[v]) * j / n;
-        return p;
-      };
-      for (int i = 0; i < n; ++i) {
-        for (int j = 0; j < n; ++j) {
-          const Vec3 a = corner(i, j), b = corner(i + 1, j), c = corner(i + 1, j + 1), d = corner(i, j + 1);
-          // outward: (u x v) = +axis, so counter-clockwise in (u, v) on the high side
-          if (side) {
-            soup.push_back({a, b, c});
-            soup.push_back({a, c, d});
-          } else {
-            soup.push_back({a, c, b});
-            soup.push_back({a, d, c});
-          }
-        }
-      }
-    }
-  }
-  return soup;
-}
-
 double bisect_threshold(const scenario::Scene& scene, double lo, double hi, double period) {
   while (hi - lo > 0.0025 * lo) {
     const double mid = 0.5 * (lo + hi);
@@ -305,11 +273,13 @@ double mesh_threshold(const contact::ContactLaw& law, int subdivisions) {
   const double alpha = 0.2, h = 0.5, b = h * std::tan(alpha), depth = 0.5;
   scenario::Scene scene = scenario::block_on_pedestal(b, h, depth, law);
   const Vec3 lo(-b, -0.5 * depth, 0), hi(b, 0.5 * depth, 2 * h);
-  scene.bodies[1] = scenario::body_from_soup("block", subdivided_box(lo, hi, subdivisions), 2600, false);
+  scene.bodies[1] = scenario::body_from_soup("block", scenario::subdivided_box_soup(lo, hi, subdivisions), 2600, false);
   scene = scenario::equilibrate(scene, dynamics::StepSettings{});
   return bisect_threshold(scene, 0.2 * kGravity, 0.5 * kGravity, 0.5);
 }
 
+// A box as 12 triangles and as a 6 x 2 x 10^2 = 1,200-triangle mesh with vertices inside its
+// faces: the same rigid body, so the same one-sine threshold (bisected to 0.25 %).
 TEST(RigidMeshIndependence, SubdividedBoxHasTheSameThreshold) {
   const double coarse = mesh_threshold(rigid_law(), 1);
   const double fine = mesh_threshold(rigid_law(), 10);

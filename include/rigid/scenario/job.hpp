@@ -40,6 +40,10 @@ struct Job {
   std::string record_list;        ///< the record-list file (resolved path), empty for [[record]] tables
   std::vector<double> scales_g;   ///< target GMRotI50 PGA of each scale, increasing (unit: g)
   int rotations = 2;              ///< random rotations per (record, scale)
+  /// Fixed rotation angles instead of random ones ([campaign] rotation_angles_deg; unit: deg):
+  /// one per rotation index, e.g. [0.0] drives every block with the x component along x, as the
+  /// study's 2D comparison did. Empty: random angles keyed by the seed.
+  std::vector<double> rotation_angles_deg;
   /// Stop raising the scale for a record once this many consecutive scales overturned at every
   /// rotation (the study's rule); 0 disables it.
   int stop_after = 10;
