@@ -54,16 +54,7 @@ GeodeResult run_geode() {
 
 // The peer scene: a 1 m tall block, alpha = 0.2 rad, 0.5 m deep, on a pedestal, one-sine pulse
 // of period 0.5 s, then free rocking until 15 s.
-scenario::GroundDrive one_sine(double amplitude, double period) {
-  scenario::GroundDrive drive;
-  drive.dt = 1e-3;
-  const long n = std::lround(period / drive.dt);
-  for (long i = 0; i <= n; ++i) {
-    const double t = double(i) * drive.dt;
-    drive.velocity.emplace_back(amplitude * period / (2 * kPi) * (1 - std::cos(2 * kPi * t / period)), 0, 0);
-  }
-  return drive;
-}
+scenario::GroundDrive one_sine(double amplitude, double period) { return scenario::one_sine_drive(amplitude, period); }
 
 struct Threshold {
   double g;

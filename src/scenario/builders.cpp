@@ -35,6 +35,17 @@ Scene block_on_pedestal(double b, double h, double depth, const contact::Contact
   return s;
 }
 
+GroundDrive one_sine_drive(double amplitude, double period, double dt) {
+  GroundDrive drive;
+  drive.dt = dt;
+  const long n = std::lround(period / dt);
+  for (long i = 0; i <= n; ++i) {
+    const double t = double(i) * dt;
+    drive.velocity.emplace_back(amplitude * period / (2 * kPi) * (1 - std::cos(2 * kPi * t / period)), 0, 0);
+  }
+  return drive;
+}
+
 geometry::TriangleSoup subdivided_box_soup(const Vec3& lo, const Vec3& hi, int n) {
   geometry::TriangleSoup soup;
   for (int axis = 0; axis < 3; ++axis) {

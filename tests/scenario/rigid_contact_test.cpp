@@ -32,16 +32,7 @@ scenario::Scene rigid_block(double alpha, double height, double depth, double fr
   return scenario::block_on_pedestal(h * std::tan(alpha), h, depth, rigid_law(friction), 2600, margin);
 }
 
-scenario::GroundDrive one_sine(double amplitude, double period) {
-  scenario::GroundDrive drive;
-  drive.dt = 1e-3;
-  const long n = std::lround(period / drive.dt);
-  for (long i = 0; i <= n; ++i) {
-    const double t = double(i) * drive.dt;
-    drive.velocity.emplace_back(amplitude * period / (2 * kPi) * (1 - std::cos(2 * kPi * t / period)), 0, 0);
-  }
-  return drive;
-}
+scenario::GroundDrive one_sine(double amplitude, double period) { return scenario::one_sine_drive(amplitude, period); }
 
 bool overturns(const scenario::Scene& scene, double amplitude, double period) {
   scenario::RunSettings settings;

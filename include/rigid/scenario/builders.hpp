@@ -23,6 +23,11 @@ Scene block_on_pedestal(double b, double h, double depth, const contact::Contact
                         double density = 2600, double pedestal_margin = 0.02,
                         double pedestal_height = 0.2);
 
+/// The ground drive of a one-sine acceleration pulse along x, a(t) = A sin(2 pi t / T) for
+/// 0 <= t <= T (unit: m/s^2, s): velocity A T / (2 pi) (1 - cos(2 pi t / T)) sampled every dt,
+/// constant afterwards (Zhang & Makris 2001, physics.md §2).
+GroundDrive one_sine_drive(double amplitude, double period, double dt = 1e-3);
+
 /// The box [lo, hi] with each face cut into n x n squares of two triangles (12 n^2 triangles,
 /// vertices inside its faces and edges): the same solid as box_soup, meshed finely, for checking
 /// that answers do not depend on the tessellation.
