@@ -86,8 +86,10 @@ case "$action" in
     echo "setup: long: ctest took $((SECONDS - start)) s"
     ;;
   sanitize)
-    # the tests of the subset (label `sanitize`; the long runs never carry it)
-    ctest --test-dir "$build_dir" --output-on-failure -j "$jobs" -L sanitize
+    # the tests of the subset (label `sanitize`; the long runs never carry it), but the 300 s run
+    # of the stability suite: it repeats the 10 g case's code paths for 400,000 steps per contact
+    # model and took 445 s here under the sanitizers (it runs in the Release suite)
+    ctest --test-dir "$build_dir" --output-on-failure -j "$jobs" -L sanitize -E '^Stability\.ThreeHundredSecondRun$'
     echo "setup: sanitize: ctest took $((SECONDS - start)) s"
     ;;
   demo)
