@@ -8,7 +8,7 @@
 #   bash setup.sh sanitize  install, build the engine libraries and a representative subset of
 #                         the test executables with AddressSanitizer + UndefinedBehaviorSanitizer
 #                         (in build-sanitize) and run their tests (ctest -L sanitize; CI runs it
-#                         after `test`; the `stability` cases are all in it)
+#                         after `test`; the `stability` cases but the 300 s run are in it)
 # Environment: BUILD_DIR (default build), JOBS (default nproc), RIGID_CMAKE_ARGS (extra cmake args).
 set -euo pipefail
 cd "$(dirname "$0")"
