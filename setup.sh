@@ -18,7 +18,8 @@ jobs=${JOBS:-$(nproc)}
 
 packages=(build-essential cmake git pkg-config
   openmpi-bin libopenmpi-dev libeigen3-dev libhdf5-dev hdf5-tools libcli11-dev
-  googletest libgtest-dev libtomlplusplus-dev libbenchmark-dev
+  nettle-dev zlib1g-dev
+  googletest libgtest-dev libtomlplusplus-dev libbenchmark-dev libode-dev
   python3 python3-numpy python3-h5py python3-matplotlib
   slurm-wlm munge)
 
@@ -85,7 +86,9 @@ case "$action" in
     echo "setup: long: ctest took $((SECONDS - start)) s"
     ;;
   sanitize)
-    # the tests of the subset (label `sanitize`; the long runs never carry it)
+    # the tests of the subset (label `sanitize`; the long runs never carry it, nor the 300 s and
+    # 10,000-facet stability runs and the hull wall-time bound: tests/labels.cmake says why; they
+    # run in the Release suite)
     ctest --test-dir "$build_dir" --output-on-failure -j "$jobs" -L sanitize
     echo "setup: sanitize: ctest took $((SECONDS - start)) s"
     ;;

@@ -23,13 +23,19 @@ void register_campaign_command(CLI::App& app) {
       "campaign",
       "Run a fragility campaign from a job file, or resume it when its output exists. Run under "
       "`mpirun -np N` or as one process. Exit status: 0 complete, 75 stopped by SIGTERM/SIGINT/SIGUSR1 "
-      "(checkpoint written; run the same command to resume), 2 bad input, 1 internal error");
+      "(checkpoint written; run the same command to resume), 2 bad input, inputs changed since the campaign "
+      "started, or another campaign on the same output, 1 a failed checkpoint or journal write (results kept; "
+      "run again to resume) or an internal error");
   cmd->add_option("job", o->job, "Job file (TOML)")->required();
   cmd->add_option("--out", o->output, "Output HDF5 cube; overrides the job's output path");
-  cmd->add_flag("--force", o->force, "Start anew over an output written by a different job file");
+  cmd->add_flag("--force", o->force, "Start anew over an output written by a different job file, other settings or inputs (scenes, meshes, "
+                  "states, records) that changed since");
   cmd->add_flag("--dry-run", o->dry_run, "Print the task count and an estimate of the work, run nothing");
   cmd->add_flag("--noop", o->noop, "Tasks return at once without simulating; with several ranks only the workers take tasks, so this measures the master's dispatch rate");
   cmd->add_option("--model", o->model, "dem3d or rocking2d: overrides the job's [run] model (recorded in the cube)");
+  cmd->add_option("--contact", o->contact,
+                  "Contact model rigid or penalty for every object: overrides the scenes' [physics] contact and "
+                  "the job's [run] contact (recorded in the cube)");
   cmd->add_option("--accuracy", o->accuracy,
                   "Accuracy preset fast, balanced or reference: overrides the job's [run] accuracy; the job's explicit "
                   "safety, integrator and dt_s still apply (recorded in the cube; docs/accuracy.md)");

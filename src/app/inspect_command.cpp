@@ -43,6 +43,8 @@ void inspect(const std::string& path, bool json) {
     }
   }
   if (!json) {
+    std::printf("contact model: %s (restitution %.3g, rigid model only)\n", contact::contact_model_name(scene.law.model),
+                scene.law.restitution);
     std::printf("contact: K_N %.3g N/m^1.5, K_S %.3g N/m, friction %.3g, damping %.3g s/m; density %.6g kg/m^3\n",
                 scene.law.normal_stiffness, scene.law.shear_stiffness, scene.law.friction,
                 scene.law.damping, scene.density);

@@ -29,6 +29,7 @@ struct RunOptions {
   std::string integrator;  // empty: the preset's
   std::string accuracy = scenario::kDefaultAccuracy;
   std::string model = "dem3d";
+  std::string contact;  // empty: the scene's
   std::string effects = "auto";
   std::string trajectory;
   double trajectory_interval = 0.02;
@@ -83,6 +84,9 @@ std::string effects_line(const scenario::ActiveEffects& e) {
 void run(const RunOptions& o) {
   scenario::Scene scene = io::load_scene(o.scene);
   if (!o.state.empty()) io::apply_state(o.state, scene);
+  if (!o.contact.empty() && !contact::parse_contact_model(o.contact, scene.law.model)) {
+    throw InputError("", 0, "--contact must be rigid or penalty");
+  }
   scenario::RunSettings settings;
   // the accuracy preset, then the explicit --dt, --safety and --integrator over it
   const scenario::AccuracyPreset* preset = scenario::find_accuracy_preset(o.accuracy);
@@ -178,6 +182,9 @@ void register_run_command(CLI::App& app) {
                   "Accuracy preset: fast, balanced or reference (time-step safety, integrator, at-rest stop; "
                   "docs/accuracy.md); --dt, --safety and --integrator override its values")
       ->capture_default_str();
+  cmd->add_option("--contact", o->contact,
+                  "Contact model: rigid (non-penetrating, Moreau-Jean) or penalty (the study's springs); "
+                  "default: the scene's [physics] contact");
   cmd->add_option("--model", o->model,
                   "dem3d (the 3D engine) or rocking2d (the 2D Housner reference, for a box block on a box "
                   "pedestal, driven by the x component; overturned = on its side)")

@@ -52,12 +52,13 @@ double median(std::vector<double> v) {
 // Settings
 
 struct Setting {
-  std::string axis;    // converged | safety | tolerance | effects | stiffness | preset
+  std::string axis;    // converged | safety | tolerance | effects | stiffness | preset | rigid
   std::string label;   // unique within a case
   std::string preset;  // preset name (axis == preset)
   double safety = 0.2;
   RotationIntegrator rotation = RotationIntegrator::splitting;
   double stiffness = kStudyStiffness;
+  contact::ContactModel contact = contact::ContactModel::penalty;  // the model axis, with stiffness
   double rest_speed = 1e-3;          // unit: m/s
   double rest_angular_speed = 1e-3;  // unit: rad/s
   double rest_time = 0.5;            // unit: s
@@ -89,6 +90,7 @@ struct StudyOptions {
   std::string record;
   bool plot = true;
   std::vector<std::string> only;
+  std::string contact = "both";  // which contact models the model axis runs: rigid, penalty or both
 };
 
 std::vector<Setting> settings_to_study(const StudyOptions& o) {
@@ -141,11 +143,23 @@ std::vector<Setting> settings_to_study(const StudyOptions& o) {
     out.push_back(x);
   }
   // contact stiffness: the model axis, against the rigid-block oracles
-  for (const double k : o.quick ? std::vector<double>{} : std::vector<double>{1e9, 1e10}) {
+  const bool penalty_axis = o.contact != "rigid", rigid_axis = o.contact != "penalty";
+  for (const double k : o.quick || !penalty_axis ? std::vector<double>{} : std::vector<double>{1e9, 1e10}) {
     Setting x;
     x.axis = "stiffness";
     x.stiffness = k;
     x.label = format("stiffness %.0e", k);
+    out.push_back(x);
+  }
+  // the rigid contact model (physics.md §12) at the presets' safety factors and beyond: the other
+  // side of the model axis, against the same oracles
+  for (const double s : !rigid_axis ? std::vector<double>{} : o.quick ? std::vector<double>{0.4}
+                                                                       : std::vector<double>{0.05, 0.2, 0.4, 0.8}) {
+    Setting x;
+    x.axis = "rigid";
+    x.contact = contact::ContactModel::rigid;
+    x.safety = s;
+    x.label = format("rigid safety %g", s);
     out.push_back(x);
   }
   for (const auto& p : scenario::accuracy_presets()) {
@@ -437,15 +451,16 @@ void write_csv(const std::string& path, const std::vector<Row>& rows) {
   std::FILE* f = std::fopen(path.c_str(), "w");
   if (!f) throw InputError(path, 0, "cannot write");
   std::fprintf(f,
-               "scene,motion,axis,setting,preset,safety,integrator,stiffness_n_m,rest_speed,rest_time_s,effects,dt_s,steps,"
+               "scene,motion,axis,setting,contact,preset,safety,integrator,stiffness_n_m,rest_speed,rest_time_s,effects,dt_s,steps,"
                "simulated_s,overturned,failure_time_s,max_tilt_deg,outcome_match,failure_time_err_s,max_tilt_err_deg,"
                "traj_tilt_rms_deg,traj_pos_rms_mm,traj_rel_err,error,energy_err,model_quantity,model_value,"
                "model_ref_err,oracle,oracle_value,oracle_err,wall_s,search_wall_s,repeats\n");
   for (const Row& r : rows) {
     const Case& c = *r.c;
     const Setting& s = *r.s;
-    std::fprintf(f, "%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%ld,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%d\n",
-                 c.scene.c_str(), c.motion.c_str(), s.axis.c_str(), s.label.c_str(), s.preset.c_str(),
+    std::fprintf(f, "%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%ld,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%d\n",
+                 c.scene.c_str(), c.motion.c_str(), s.axis.c_str(), s.label.c_str(), contact::contact_model_name(s.contact),
+                 s.preset.c_str(),
                  csv_number(s.safety).c_str(), scenario::integrator_name(s.rotation), csv_number(s.stiffness).c_str(),
                  csv_number(s.rest_speed).c_str(), csv_number(s.rest_time).c_str(), s.select_effects ? "auto" : "all",
                  csv_number(r.dt).c_str(), r.steps,
@@ -603,6 +618,9 @@ std::vector<Case> build_cases(const StudyOptions& o, const std::string& record_p
 
 void study_accuracy(const StudyOptions& o) {
   if (o.repeat < 1) throw InputError("", 0, "--repeat must be at least 1");
+  if (o.contact != "rigid" && o.contact != "penalty" && o.contact != "both") {
+    throw InputError("", 0, "--contact must be rigid, penalty or both");
+  }
   if (!(o.reference_safety > 0)) throw InputError("", 0, "--reference-safety must be positive");
   const auto study_start = Clock::now();
   const std::string record_path = find_record(o.record);
@@ -619,15 +637,19 @@ void study_accuracy(const StudyOptions& o) {
 
   for (Case& c : cases) {
     const auto case_start = Clock::now();
-    std::map<double, scenario::Scene> settled;  // per stiffness
-    auto scene_for = [&](double stiffness) -> const scenario::Scene& {
-      auto it = settled.find(stiffness);
+    std::map<std::pair<int, double>, scenario::Scene> settled;  // per contact model and stiffness
+    auto scene_for = [&](const Setting& s) -> const scenario::Scene& {
+      const std::pair<int, double> key(int(s.contact), s.stiffness);
+      auto it = settled.find(key);
       if (it != settled.end()) return it->second;
       contact::ContactLaw law = c.law;
-      law.normal_stiffness = law.shear_stiffness = stiffness;
-      scenario::Scene s = c.build(law);
-      if (c.settle) s = scenario::equilibrate(s, dynamics::StepSettings{});
-      return settled.emplace(stiffness, std::move(s)).first->second;
+      law.model = s.contact;
+      // no damping in a conservative case: the rigid model's counterpart is an elastic impact
+      if (c.conservative && s.contact == contact::ContactModel::rigid) law.restitution = 1;
+      law.normal_stiffness = law.shear_stiffness = s.stiffness;
+      scenario::Scene scene = c.build(law);
+      if (c.settle) scene = scenario::equilibrate(scene, dynamics::StepSettings{});
+      return settled.emplace(key, std::move(scene)).first->second;
     };
     // the oracle value, from the scene at build time
     if (c.oracle == Oracle::housner_pulse) {
@@ -652,11 +674,12 @@ void study_accuracy(const StudyOptions& o) {
       Row row;
       row.c = &c;
       row.s = &s;
-      const scenario::Scene& scene = scene_for(s.stiffness);
+      const scenario::Scene& scene = scene_for(s);
       scenario::RunSettings rs = run_settings(s);
       rs.duration = c.duration;
       rs.free_time = c.free_time;
-      row.dt = s.safety * dynamics::critical_time_step(scene.bodies, scene.law);
+      row.dt = s.contact == contact::ContactModel::rigid ? dynamics::rigid_time_step(scene.bodies, s.safety)
+                                                          : s.safety * dynamics::critical_time_step(scene.bodies, scene.law);
       if (c.quasi_static) {
         scenario::TiltTestSettings tts;
         tts.step = rs.step;
@@ -779,6 +802,9 @@ void register_study_command(CLI::App& app) {
                   "beside the checkout, else waveforms/demo/stochastic_s1-X.AT2");
   acc->add_option("--only", o->only, "Only these scenes (slender, stocky, stack, sliding, geode) or SCENE/MOTION cases");
   acc->add_flag("!--no-plot", o->plot, "Write the CSV only");
+  acc->add_option("--contact", o->contact,
+                  "Contact models on the model axis: rigid (at safety 0.05-0.8), penalty (stiffness 1e8-1e10) or both")
+      ->capture_default_str();
   acc->callback([o] { study_accuracy(*o); });
 }
 

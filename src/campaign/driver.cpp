@@ -13,15 +13,20 @@
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 #include <mutex>
+#include <optional>
 #include <thread>
 #include <vector>
 
 #include "rigid/campaign/journal.hpp"
+#include "rigid/campaign/output_lock.hpp"
 #include "rigid/campaign/plan.hpp"
 #include "rigid/campaign/runner.hpp"
 #include "rigid/core/error.hpp"
+#include "rigid/io/at2.hpp"
 #include "rigid/io/job_file.hpp"
+#include "rigid/io/provenance.hpp"
 #include "rigid/scenario/rocking_parameters.hpp"
 
 #if !defined(RIGID_VERSION) || !defined(RIGID_GIT_HASH)
@@ -62,10 +67,49 @@ std::string format_duration(double s) {
   return buf;
 }
 
+// SHA-256 of everything a cell depends on besides the code: the settings (job text with the
+// command-line overrides, accuracy preset), the job file, the record list, every object's files
+// and every record's motion files. Rank 0 reads them once more after loading them.
+struct Inputs {
+  io::Digests job;                    // (settings), job file, record list
+  std::vector<io::Digests> objects;   // per object: scene, model, STLs, state
+  std::vector<io::Digests> records;   // per record: motion files
+  std::string combined;               // over the contents only: the same files elsewhere match
+};
+
+Inputs collect_inputs(const scenario::Job& job, const TaskRunner& runner) {
+  Inputs in;
+  in.job.push_back({"(settings)", io::sha256_hex(io::job_settings_text(job))});
+  in.job.push_back({job.path, io::file_sha256(job.path)});
+  if (!job.record_list.empty()) in.job.push_back({job.record_list, io::file_sha256(job.record_list)});
+  for (std::size_t o = 0; o < job.objects.size(); ++o) in.objects.push_back(io::digest_files(runner.scene(int(o)).files));
+  for (const auto& r : job.records) {
+    const io::SetFiles set = io::resolve_set(r.spec);
+    std::vector<std::string> files;
+    for (const std::string* f : {&set.x, &set.y, &set.z}) {
+      if (!f->empty()) files.push_back(*f);
+    }
+    in.records.push_back(io::digest_files(files));
+  }
+  std::string all;
+  const auto add = [&all](const char* what, const io::Digests& d) {
+    all += std::string(what) + " " + std::to_string(d.size()) + "\n";
+    for (const auto& f : d) all += f.sha256 + "\n";
+  };
+  add("job", in.job);
+  for (const auto& d : in.objects) add("object", d);
+  for (const auto& d : in.records) add("record", d);
+  in.combined = io::sha256_hex(all);
+  return in;
+}
+
 // Builds the cube from the plan's state (caller holds the plan lock).
-io::Cube make_cube(const scenario::Job& job, const TaskRunner& runner, const Plan& plan) {
+io::Cube make_cube(const scenario::Job& job, const TaskRunner& runner, const Inputs& inputs, const Plan& plan) {
   io::Cube cube;
   cube.records = runner.records();
+  for (std::size_t r = 0; r < cube.records.size(); ++r) cube.records[r].inputs = io::format_digests(inputs.records[r]);
+  cube.job_inputs = io::format_digests(inputs.job);
+  cube.inputs_sha256 = inputs.combined;
   cube.scales_g = job.scales_g;
   cube.rotations = job.rotations;
   cube.job_text = job.text;
@@ -75,12 +119,13 @@ io::Cube make_cube(const scenario::Job& job, const TaskRunner& runner, const Pla
   char physics[1024];
   const auto& law = runner.scene(0).law;
   std::snprintf(physics, sizeof physics,
-                "{\"normal_stiffness\": %.17g, \"shear_stiffness\": %.17g, \"friction\": %.17g, "
+                "{\"contact\": \"%s\", \"restitution\": %.17g, \"normal_stiffness\": %.17g, \"shear_stiffness\": %.17g, \"friction\": %.17g, "
                 "\"damping\": %.17g, \"dt_s\": %.17g, \"safety\": %.17g, \"integrator\": \"%s\", "
                 "\"duration_s\": %.17g, \"free_time_s\": %.17g, \"stop_after\": %d, \"accuracy\": \"%s\", "
                 "\"rest_speed_m_s\": %.17g, \"rest_angular_speed_rad_s\": %.17g, \"rest_time_s\": %.17g, "
                 "\"effects\": \"%s\"}",
-                law.normal_stiffness, law.shear_stiffness, law.friction, law.damping, job.run.step.dt,
+                contact::contact_model_name(law.model), law.restitution, law.normal_stiffness,
+                law.shear_stiffness, law.friction, law.damping, job.run.step.dt,
                 job.run.step.safety,
                 job.run.step.rotation == dynamics::RotationIntegrator::rk4 ? "rk4" : "splitting",
                 job.run.duration, job.run.free_time, job.stop_after, job.accuracy.c_str(), job.run.rest_speed,
@@ -94,6 +139,7 @@ io::Cube make_cube(const scenario::Job& job, const TaskRunner& runner, const Pla
     io::ObjectCube oc;
     oc.name = job.objects[o].name;
     oc.scene = job.objects[o].scene;
+    oc.inputs = io::format_digests(inputs.objects[o]);
     if (const auto rocking = scenario::rocking_parameters(runner.scene(int(o)))) {
       oc.alpha_rad = rocking->alpha;
       oc.p_rad_s = rocking->p;
@@ -102,7 +148,7 @@ io::Cube make_cube(const scenario::Job& job, const TaskRunner& runner, const Pla
       const long t = long(o) * per_object + i;
       const TaskResult& r = plan.results()[t];
       oc.outcome.push_back(outcome[t]);
-      oc.rotation_deg.push_back(rotation_angle_deg(job.seed, plan.cell(t)));
+      oc.rotation_deg.push_back(cell_rotation_deg(job, plan.cell(t)));
       oc.failure_time_s.push_back(kept[t] ? r.failure_time_s : nan);
       oc.max_tilt_deg.push_back(kept[t] ? r.max_tilt_deg : nan);
       oc.max_slip_m.push_back(kept[t] ? r.max_slip_m : nan);
@@ -114,20 +160,52 @@ io::Cube make_cube(const scenario::Job& job, const TaskRunner& runner, const Pla
   return cube;
 }
 
-// Results already on disk: the cube's simulated cells, then the journal.
-void restore(const std::string& output, const scenario::Job& job, Plan& plan, bool force) {
+InputError changed_file(const std::string& file) {
+  return InputError(file, 0, "changed since the campaign started (resume refused; --force starts anew)");
+}
+
+// Why the cube's results must not be resumed with these inputs, or nothing when they may.
+std::optional<InputError> input_change(const io::Cube& old, const scenario::Job& job, const Inputs& now) {
+  const io::Digests old_job = io::parse_digests(old.job_inputs);
+  if (old.job_hash != job.hash) {
+    // the same job file edited is named; another job file or other command-line settings name the output
+    if (old_job.size() >= 2 && old_job[1].path == now.job[1].path && old_job[1].sha256 != now.job[1].sha256) {
+      return changed_file(job.path);
+    }
+    return InputError(job.output, 0,
+                      "was written by a different job file, accuracy preset or command-line settings (hash " + old.job_hash + ", now " + job.hash +
+                          "); use --force to start a new campaign over it, or another --out");
+  }
+  if (old.inputs_sha256.empty()) {
+    std::fprintf(stderr, "rigid campaign: warning: %s was written before input hashes were stored; its scenes and "
+                 "records are not checked for changes\n", job.output.c_str());
+    return std::nullopt;
+  }
+  if (old.inputs_sha256 == now.combined) return std::nullopt;
+  if (auto f = io::first_changed(old_job, now.job)) return changed_file(*f);
+  for (std::size_t o = 0; o < now.objects.size() && o < old.objects.size(); ++o) {
+    if (auto f = io::first_changed(io::parse_digests(old.objects[o].inputs), now.objects[o])) return changed_file(*f);
+  }
+  for (std::size_t r = 0; r < now.records.size() && r < old.records.size(); ++r) {
+    if (auto f = io::first_changed(io::parse_digests(old.records[r].inputs), now.records[r])) return changed_file(*f);
+  }
+  return changed_file(job.output);  // a digest that matches no file list: the cube itself was altered
+}
+
+// Results already on disk: the cube's simulated cells, then the journal, whose results are
+// returned (the new journal carries them until the first checkpoint). With changed inputs it
+// refuses, touching neither the cube nor the journal, unless `force`, which starts anew.
+std::vector<TaskResult> restore(const std::string& output, const scenario::Job& job, const Inputs& inputs, Plan& plan,
+                                bool force) {
   const std::string journal = output + ".journal";
-  if (fs::exists(output)) {
+  const bool have_cube = fs::exists(output);
+  if (have_cube) {
     const io::Cube old = io::read_cube(output);
-    if (old.job_hash != job.hash) {
-      if (!force) {
-        throw InputError(output, 0,
-                         "was written by a different job file or accuracy preset (hash " + old.job_hash + ", now " + job.hash +
-                             "); use --force to start a new campaign over it, or another --out");
-      }
+    if (std::optional<InputError> change = input_change(old, job, inputs)) {
+      if (!force) throw *change;
       fs::remove(output);
       fs::remove(journal);
-      return;
+      return {};
     }
     const long per_object = long(job.records.size()) * long(job.scales_g.size()) * job.rotations;
     for (std::size_t o = 0; o < old.objects.size() && o < job.objects.size(); ++o) {
@@ -149,7 +227,15 @@ void restore(const std::string& output, const scenario::Job& job, Plan& plan, bo
   } else if (force) {
     fs::remove(journal);
   }
-  for (const TaskResult& r : read_journal(journal, job.hash)) plan.restore(r);
+  JournalContents kept = read_journal(journal, inputs.combined, plan.size());
+  if (kept.foreign) {
+    // without a cube to name the changed file, the journal itself is the evidence
+    if (!have_cube) throw changed_file(journal);
+    kept.problems.push_back(journal + ": written for other inputs; ignored");
+  }
+  for (const std::string& p : kept.problems) std::fprintf(stderr, "rigid campaign: warning: %s\n", p.c_str());
+  for (const TaskResult& r : kept.results) plan.restore(r);
+  return std::move(kept.results);
 }
 
 class Progress {
@@ -255,19 +341,32 @@ int dry_run(const scenario::Job& job, const TaskRunner& runner) {
   return 0;
 }
 
+// What follows an InputError's "FILE: " prefix, when FILE is `file`.
+std::string reason_of(const std::exception& e, const std::string& file) {
+  const std::string what = e.what();
+  const std::string prefix = file + ": ";
+  return what.rfind(prefix, 0) == 0 ? what.substr(prefix.size()) : what;
+}
+
 struct Master {
-  Master(const scenario::Job& j, const CampaignOptions& o, const TaskRunner& r, int n)
-      : job(j), options(o), runner(r), output(j.output), ranks(n) {}
+  Master(const scenario::Job& j, const CampaignOptions& o, const TaskRunner& r, const Inputs& in, int n)
+      : job(j), options(o), runner(r), inputs(in), output(j.output), ranks(n) {}
 
   const scenario::Job& job;
   const CampaignOptions& options;
   const TaskRunner& runner;
+  const Inputs& inputs;
   std::string output;
   int ranks = 1;
 
-  std::mutex mutex;  // guards plan and journal
+  std::mutex mutex;  // guards plan, journal and failure
   Plan* plan = nullptr;
-  Journal* journal = nullptr;
+  std::unique_ptr<Journal> journal;
+  bool journal_ok = false;
+  // The first failed write, as printed. A failure ends the campaign, not the process: dispatch
+  // stops, every rank is told to stop, the local thread is joined, and the last good cube and the
+  // journal stay as they were (both are only ever replaced by a rename).
+  std::string failure;
   std::atomic<bool> stopping{false};
   std::atomic<bool> local_done{false};
   double mean_wall = 0.05;  // running mean task wall time, for batch sizes (unit: s)
@@ -275,11 +374,35 @@ struct Master {
 
   std::vector<TaskResult> since_snapshot;  // results not in the cube being written
 
+  // caller holds the mutex
+  void fail(const std::string& message) {
+    if (failure.empty()) failure = message;
+    stopping = true;
+  }
+  void journal_failed(const std::exception& e) {
+    journal_ok = false;
+    fail(std::string(e.what()) + " (the cube and the journal keep what was written; run again to resume)");
+  }
+  void flush_journal() {
+    if (!journal_ok) return;
+    try {
+      journal->flush();
+    } catch (const std::exception& e) {
+      journal_failed(e);
+    }
+  }
+
   void record(const TaskResult& r) {
     plan->complete(r);
-    journal->append(r);
     since_snapshot.push_back(r);
     mean_wall = 0.9 * mean_wall + 0.1 * r.wall_s;
+    // after a failed cube write the journal still takes results: they are kept for the resume
+    if (!journal_ok) return;
+    try {
+      journal->append(r);
+    } catch (const std::exception& e) {
+      journal_failed(e);
+    }
   }
 
   // the master's own simulations, on a second thread that never calls MPI; with --noop on
@@ -319,26 +442,54 @@ struct Master {
     return ids;
   }
 
-  void checkpoint() {
+  // Writes the cube, then restarts the journal. False after a failure (recorded in `failure`);
+  // nothing is written once one has happened.
+  bool checkpoint() {
     io::Cube cube;
     {
       std::lock_guard<std::mutex> lock(mutex);
-      journal->flush();
-      cube = make_cube(job, runner, *plan);
+      flush_journal();
+      if (!failure.empty()) return false;
+      cube = make_cube(job, runner, inputs, *plan);
       since_snapshot.clear();
     }
-    io::write_cube(output, cube);
+    try {
+      io::write_cube(output, cube);  // to OUT.tmp, renamed over OUT: the previous cube stays on failure
+    } catch (const std::exception& e) {
+      std::lock_guard<std::mutex> lock(mutex);
+      fail(output + ": checkpoint failed: " + reason_of(e, output) +
+           " (results kept in the journal; run again to resume)");
+      return false;
+    }
     std::lock_guard<std::mutex> lock(mutex);
     // the cube now holds everything but what arrived while it was written: journal only that
-    journal->reset();
-    for (const TaskResult& r : since_snapshot) journal->append(r);
-    journal->flush();
+    try {
+      journal->reset(since_snapshot);
+    } catch (const std::exception& e) {
+      journal_failed(e);  // the old journal, a superset, is still in place
+      return false;
+    }
+    return true;
   }
 
-  int run() {
+  // carried: the old journal's results, kept in the new one until the first checkpoint
+  int run(const std::vector<TaskResult>& carried) {
     const long total = plan->size();
     const long done_at_start = plan->done();
     const auto started = Clock::now();
+    try {
+      journal = std::make_unique<Journal>(output + ".journal", inputs.combined, carried);
+      journal_ok = true;
+    } catch (const std::exception& e) {
+      std::lock_guard<std::mutex> lock(mutex);
+      journal_failed(e);
+    }
+    // the restored results go into the cube at once, which also proves the output writable; on a
+    // failure the loop below only tells the workers to stop
+    if (checkpoint()) {
+      std::fprintf(stderr, "rigid campaign: %ld tasks, %ld already done, %d ranks, output %s\n", plan->size(),
+                   plan->done(), ranks, job.output.c_str());
+    }
     Progress progress(options.progress, options.log_interval, total);
     std::thread local([this] { local_worker(); });
     std::vector<int> waiting;  // worker ranks whose request is unanswered
@@ -362,7 +513,7 @@ struct Master {
         MPI_Recv(inbox.data(), bytes, MPI_BYTE, status.MPI_SOURCE, kTagResults, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
         std::lock_guard<std::mutex> lock(mutex);
         for (const auto& r : inbox) record(r);
-        journal->flush();
+        flush_journal();
         waiting.push_back(status.MPI_SOURCE);
       }
       if (g_stop_signal && !stopping) {
@@ -395,7 +546,7 @@ struct Master {
       }
       {
         std::lock_guard<std::mutex> lock(mutex);
-        journal->flush();
+        flush_journal();
         if (progress.due()) progress.update(plan->done(), plan->remaining(), plan->failures(), done_at_start);
       }
       if (seconds_since(last_checkpoint) >= checkpoint_interval) {
@@ -408,6 +559,7 @@ struct Master {
         all_done = active_workers == 0 && local_done && (stopping || plan->finished());
       }
       if (all_done) break;
+      if (stopping && !stop_since) stop_since = Clock::now();  // stopped by a failed write
       if (stopping && seconds_since(*stop_since) > grace) {
         abandoned = true;
         break;
@@ -417,10 +569,14 @@ struct Master {
     if (abandoned) {
       // in-flight work is given up: checkpoint what is done, then end every rank
       stopping = true;
-      checkpoint();
+      const bool written = checkpoint();
       std::fprintf(stderr, "rigid campaign: grace period over; %ld tasks abandoned (redone on resume)\n", plan->in_flight());
+      if (!written) {
+        std::lock_guard<std::mutex> lock(mutex);  // the local thread may still be recording
+        std::fprintf(stderr, "rigid: error: %s\n", failure.c_str());
+      }
       std::fflush(stderr);
-      MPI_Abort(MPI_COMM_WORLD, kExitInterrupted);
+      MPI_Abort(MPI_COMM_WORLD, written ? kExitInterrupted : kExitIoFailure);
     }
     local.join();
     checkpoint();
@@ -428,7 +584,11 @@ struct Master {
     {
       std::lock_guard<std::mutex> lock(mutex);
       progress.update(plan->done(), plan->remaining(), plan->failures(), done_at_start, true);
-      cube = make_cube(job, runner, *plan);
+      if (!failure.empty()) {
+        std::fprintf(stderr, "rigid: error: %s\n", failure.c_str());
+        return kExitIoFailure;
+      }
+      cube = make_cube(job, runner, inputs, *plan);
     }
     if (ranks > 1) {
       std::fprintf(stderr, "rigid campaign: %ld tasks sent to %d worker ranks in %ld messages (%.0f tasks/s over %.2f s)\n",
@@ -490,6 +650,16 @@ int run_campaign(int& argc, char**& argv, const CampaignOptions& options) {
       job.text += "\n# command line: --model " + options.model + "\n";
       job.hash = io::text_hash(job.text);
     }
+    if (!options.contact.empty()) {
+      contact::ContactModel model;
+      if (!contact::parse_contact_model(options.contact, model)) {
+        throw InputError("", 0, "--contact must be rigid or penalty");
+      }
+      // like --model: part of the job text, so of its hash, and a resume with the other model is refused
+      job.contact = options.contact;
+      job.text += "\n# command line: --contact " + options.contact + "\n";
+      job.hash = io::text_hash(job.text);
+    }
     if (!options.effects.empty() && options.effects != "auto" && options.effects != "all") {
       throw InputError("", 0, "--effects must be auto or all");
     }
@@ -531,12 +701,22 @@ int run_campaign(int& argc, char**& argv, const CampaignOptions& options) {
               }());
     int go = 1;
     std::string problem;
+    std::unique_ptr<OutputLock> lock;  // held until this function returns or throws
+    Inputs inputs;
+    std::vector<TaskResult> carried;
     try {
       if (options.dry_run) {
         go = 0;
       } else {
-        restore(job.output, job, plan, options.force);
-        if (fs::path(job.output).has_parent_path()) fs::create_directories(fs::path(job.output).parent_path());
+        io::silence_hdf5_errors();  // our one-line messages say what failed
+        if (fs::path(job.output).has_parent_path()) {
+          std::error_code ec;
+          fs::create_directories(fs::path(job.output).parent_path(), ec);
+          if (ec) throw InputError(job.output, 0, "cannot create its directory: " + ec.message());
+        }
+        lock = std::make_unique<OutputLock>(job.output);
+        inputs = collect_inputs(job, *runner);
+        carried = restore(job.output, job, inputs, plan, options.force);
       }
     } catch (const InputError& e) {
       go = -1;
@@ -550,15 +730,9 @@ int run_campaign(int& argc, char**& argv, const CampaignOptions& options) {
     if (go == 0) {
       status = dry_run(job, *runner);
     } else {
-      Journal journal(job.output + ".journal", job.hash);
-      Master master(job, options, *runner, ranks);
+      Master master(job, options, *runner, inputs, ranks);
       master.plan = &plan;
-      master.journal = &journal;
-      // the restored results go into the cube at once, which also proves the output writable
-      master.checkpoint();
-      std::fprintf(stderr, "rigid campaign: %ld tasks, %ld already done, %d ranks, output %s\n", plan.size(),
-                   plan.done(), ranks, job.output.c_str());
-      status = master.run();
+      status = master.run(carried);
     }
   } else {
     int go = 0;

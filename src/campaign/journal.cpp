@@ -1,104 +1,157 @@
 #include "rigid/campaign/journal.hpp"
 
-#include <array>
-#include <cstring>
 #include <unistd.h>
+#include <zlib.h>
+
+#include <cerrno>
+#include <cstdint>
+#include <cstring>
+#include <memory>
 
 #include "rigid/core/error.hpp"
 
 namespace rigid::campaign {
 namespace {
 
-constexpr char kMagic[8] = {'R', 'I', 'G', 'I', 'D', 'J', '0', '1'};
-constexpr std::size_t kHashBytes = 32;
+constexpr char kMagic[8] = {'R', 'I', 'G', 'I', 'D', 'J', '0', '2'};
+constexpr char kOldMagic[8] = {'R', 'I', 'G', 'I', 'D', 'J', '0', '1'};
+constexpr std::size_t kKeyBytes = 64;
+constexpr std::size_t kHeaderBytes = sizeof kMagic + kKeyBytes + 4;
+constexpr std::size_t kRecordBytes = sizeof(TaskResult) + 8 + 4;
 
-std::uint32_t crc32(const unsigned char* data, std::size_t n) {
-  static const auto table = [] {
-    std::array<std::uint32_t, 256> t{};
-    for (std::uint32_t i = 0; i < 256; ++i) {
-      std::uint32_t c = i;
-      for (int k = 0; k < 8; ++k) c = (c & 1) ? 0xEDB88320u ^ (c >> 1) : c >> 1;
-      t[i] = c;
-    }
-    return t;
-  }();
-  std::uint32_t c = 0xFFFFFFFFu;
-  for (std::size_t i = 0; i < n; ++i) c = table[(c ^ data[i]) & 0xFF] ^ (c >> 8);
-  return c ^ 0xFFFFFFFFu;
+std::uint32_t crc(const unsigned char* data, std::size_t n) {
+  return static_cast<std::uint32_t>(crc32(crc32(0L, Z_NULL, 0), data, static_cast<uInt>(n)));
 }
 
-std::array<char, kHashBytes> padded(const std::string& hash) {
-  std::array<char, kHashBytes> h{};
-  std::memcpy(h.data(), hash.data(), std::min(hash.size(), kHashBytes));
-  return h;
+std::string padded_key(const std::string& key) {
+  std::string k = key.substr(0, kKeyBytes);
+  k.resize(kKeyBytes, '\0');
+  return k;
 }
 
-bool header_matches(std::FILE* f, const std::string& hash) {
-  char magic[8];
-  std::array<char, kHashBytes> h{};
-  if (std::fread(magic, 1, 8, f) != 8 || std::memcmp(magic, kMagic, 8) != 0) return false;
-  if (std::fread(h.data(), 1, kHashBytes, f) != kHashBytes) return false;
-  return h == padded(hash);
+// 8 bytes that tie a record to its key: a CRC-64-sized slice of the key's own digest
+std::uint64_t fingerprint(const std::string& key) {
+  const std::string k = padded_key(key);
+  const auto* p = reinterpret_cast<const unsigned char*>(k.data());
+  return (std::uint64_t{crc(p, 32)} << 32) | crc(p + 32, 32);
+}
+
+void encode_header(unsigned char* out, const std::string& key) {
+  std::memcpy(out, kMagic, sizeof kMagic);
+  std::memcpy(out + sizeof kMagic, padded_key(key).data(), kKeyBytes);
+  const std::uint32_t c = crc(out, kHeaderBytes - 4);
+  std::memcpy(out + kHeaderBytes - 4, &c, 4);
+}
+
+void encode_record(unsigned char* out, const TaskResult& r, std::uint64_t print) {
+  std::memcpy(out, &r, sizeof(TaskResult));
+  std::memcpy(out + sizeof(TaskResult), &print, 8);
+  const std::uint32_t c = crc(out, kRecordBytes - 4);
+  std::memcpy(out + kRecordBytes - 4, &c, 4);
+}
+
+[[noreturn]] void fail(const std::string& path, const std::string& what) {
+  throw InputError(path, 0, what + ": " + std::strerror(errno));
 }
 
 }  // namespace
 
-Journal::Journal(std::string path, std::string job_hash) : path_(std::move(path)), hash_(std::move(job_hash)) {
-  std::FILE* existing = std::fopen(path_.c_str(), "rb");
-  const bool reuse = existing && header_matches(existing, hash_);
-  if (existing) std::fclose(existing);
-  if (reuse) {
-    file_ = std::fopen(path_.c_str(), "ab");
-    if (!file_) throw InputError(path_, 0, "cannot append to the journal");
-  } else {
-    start_new();
-  }
+Journal::Journal(std::string path, std::string key, const std::vector<TaskResult>& carried)
+    : path_(std::move(path)), key_(std::move(key)) {
+  reset(carried);
 }
 
 Journal::~Journal() {
   if (file_) std::fclose(file_);
 }
 
-void Journal::start_new() {
+void Journal::reset(const std::vector<TaskResult>& kept) {
+  // written beside and renamed over, so the old journal stays whole until the new one is
+  const std::string tmp = path_ + ".tmp";
+  std::FILE* f = std::fopen(tmp.c_str(), "wb");
+  if (!f) fail(path_, "cannot create " + tmp);
+  unsigned char header[kHeaderBytes];
+  encode_header(header, key_);
+  bool ok = std::fwrite(header, 1, sizeof header, f) == sizeof header;
+  const std::uint64_t print = fingerprint(key_);
+  unsigned char buf[kRecordBytes];
+  for (const TaskResult& r : kept) {
+    if (!ok) break;
+    encode_record(buf, r, print);
+    ok = std::fwrite(buf, 1, sizeof buf, f) == sizeof buf;
+  }
+  ok = ok && std::fflush(f) == 0 && ::fsync(fileno(f)) == 0 && std::rename(tmp.c_str(), path_.c_str()) == 0;
+  if (!ok) {
+    const int e = errno;
+    std::fclose(f);
+    std::remove(tmp.c_str());
+    errno = e;
+    fail(path_, "journal write failed");
+  }
   if (file_) std::fclose(file_);
-  file_ = std::fopen(path_.c_str(), "wb");
-  if (!file_) throw InputError(path_, 0, "cannot create the journal");
-  const auto h = padded(hash_);
-  std::fwrite(kMagic, 1, 8, file_);
-  std::fwrite(h.data(), 1, kHashBytes, file_);
-  flush();
+  file_ = f;  // the renamed file, open for appending at its end
 }
 
 void Journal::append(const TaskResult& r) {
-  unsigned char buf[sizeof(TaskResult) + 4];
-  std::memcpy(buf, &r, sizeof(TaskResult));
-  const std::uint32_t c = crc32(buf, sizeof(TaskResult));
-  std::memcpy(buf + sizeof(TaskResult), &c, 4);
-  if (std::fwrite(buf, 1, sizeof buf, file_) != sizeof buf) throw InputError(path_, 0, "journal write failed");
+  unsigned char buf[kRecordBytes];
+  encode_record(buf, r, fingerprint(key_));
+  if (std::fwrite(buf, 1, sizeof buf, file_) != sizeof buf) fail(path_, "journal write failed");
 }
 
 void Journal::flush() {
-  if (std::fflush(file_) != 0) throw InputError(path_, 0, "journal flush failed");
+  if (std::fflush(file_) != 0) fail(path_, "journal write failed");
 }
 
-void Journal::reset() { start_new(); }
-
-std::vector<TaskResult> read_journal(const std::string& path, const std::string& job_hash) {
-  std::vector<TaskResult> out;
-  std::FILE* f = std::fopen(path.c_str(), "rb");
+JournalContents read_journal(const std::string& path, const std::string& key, long tasks) {
+  JournalContents out;
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(path.c_str(), "rb"), std::fclose);
   if (!f) return out;
-  if (header_matches(f, job_hash)) {
-    unsigned char buf[sizeof(TaskResult) + 4];
-    while (std::fread(buf, 1, sizeof buf, f) == sizeof buf) {
-      std::uint32_t c;
-      std::memcpy(&c, buf + sizeof(TaskResult), 4);
-      if (c != crc32(buf, sizeof(TaskResult))) break;  // torn or corrupt: stop here
-      TaskResult r;
-      std::memcpy(&r, buf, sizeof(TaskResult));
-      out.push_back(r);
+  unsigned char header[kHeaderBytes];
+  const std::size_t got = std::fread(header, 1, sizeof header, f.get());
+  if (got >= sizeof kOldMagic && std::memcmp(header, kOldMagic, sizeof kOldMagic) == 0) {
+    out.problems.push_back(path + ": written by an earlier Rigid (format RIGIDJ01); its cells are simulated again");
+    return out;
+  }
+  if (got < sizeof header) return out;  // killed while the header was written: nothing in it
+  unsigned char expected[kHeaderBytes];
+  encode_header(expected, key);
+  std::uint32_t stored;
+  std::memcpy(&stored, header + kHeaderBytes - 4, 4);
+  if (stored != crc(header, kHeaderBytes - 4)) {
+    out.problems.push_back(path + ": damaged header (bad checksum); its records are checked one by one");
+  } else if (std::memcmp(header, expected, kHeaderBytes) != 0) {
+    out.foreign = true;
+    return out;
+  }
+  const std::uint64_t print = fingerprint(key);
+  unsigned char buf[kRecordBytes];
+  long index = 0, skipped = 0;
+  for (; std::fread(buf, 1, sizeof buf, f.get()) == sizeof buf; ++index) {
+    std::uint32_t c;
+    std::uint64_t p;
+    TaskResult r;
+    std::memcpy(&c, buf + kRecordBytes - 4, 4);
+    std::memcpy(&p, buf + sizeof(TaskResult), 8);
+    std::memcpy(&r, buf, sizeof(TaskResult));
+    std::string why;
+    if (c != crc(buf, kRecordBytes - 4)) {
+      why = "bad checksum";
+    } else if (p != print) {
+      why = "written for other inputs";
+    } else if (r.task < 0 || r.task >= tasks) {
+      why = "task " + std::to_string(r.task) + " out of range";
+    } else {
+      out.results.push_back(r);
+      continue;
+    }
+    // one line per bad record, up to a few; a summary beyond
+    if (++skipped <= 5) {
+      out.problems.push_back(path + ": record " + std::to_string(index) + " (byte " +
+                             std::to_string(kHeaderBytes + std::size_t(index) * kRecordBytes) + "): " + why +
+                             ", skipped (its cell is simulated again)");
     }
   }
-  std::fclose(f);
+  if (skipped > 5) out.problems.push_back(path + ": " + std::to_string(skipped - 5) + " more bad records skipped");
   return out;
 }
 

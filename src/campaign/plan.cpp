@@ -31,6 +31,11 @@ double rotation_angle_deg(std::uint64_t seed, const Cell& c) {
   return 360.0 * static_cast<double>(h >> 11) * 0x1.0p-53;
 }
 
+double cell_rotation_deg(const scenario::Job& job, const Cell& c) {
+  if (!job.rotation_angles_deg.empty()) return job.rotation_angles_deg[std::size_t(c.rotation)];
+  return rotation_angle_deg(job.seed, c);
+}
+
 Plan::Plan(int objects, int records, int scales, int rotations, int stop_after,
            std::vector<double> record_cost)
     : objects_(objects), records_(records), scales_(scales), rotations_(rotations),

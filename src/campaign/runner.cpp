@@ -14,6 +14,7 @@ TaskRunner::TaskRunner(const scenario::Job& job) : job_(job) {
   for (const auto& o : job.objects) {
     scenario::Scene s = io::load_scene(o.scene);
     if (!o.state.empty()) io::apply_state(o.state, s);
+    if (!job.contact.empty()) contact::parse_contact_model(job.contact, s.law.model);
     if (job.model == "rocking2d") rocking_.push_back(scenario::rocking_block_of(s));
     scenes_.push_back(std::move(s));
   }
@@ -61,7 +62,7 @@ TaskResult TaskRunner::run(long task, const Cell& cell, bool noop) const {
     return out;
   }
   try {
-    const double angle = rotation_angle_deg(job_.seed, cell) * kPi / 180.0;
+    const double angle = cell_rotation_deg(job_, cell) * kPi / 180.0;
     const motion::GroundMotion scaled =
         motion::scaled(windowed_[cell.record], unit_factor_[cell.record] * job_.scales_g[cell.scale]);
     // The 2D reference takes the record's x component as scaled, whatever the rotation: a 2D

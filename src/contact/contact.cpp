@@ -5,6 +5,22 @@
 #include <limits>
 
 namespace rigid::contact {
+
+const char* contact_model_name(ContactModel model) {
+  return model == ContactModel::rigid ? "rigid" : "penalty";
+}
+
+bool parse_contact_model(std::string_view name, ContactModel& model) {
+  if (name == "rigid") {
+    model = ContactModel::rigid;
+  } else if (name == "penalty") {
+    model = ContactModel::penalty;
+  } else {
+    return false;
+  }
+  return true;
+}
+
 namespace {
 
 constexpr int kMaxOverlapSteps = 8;

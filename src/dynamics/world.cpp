@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace rigid::dynamics {
@@ -27,6 +28,15 @@ double critical_time_step(const std::vector<BodyDef>& bodies, const contact::Con
     dt = std::min(dt, 2.0 / omega);
   }
   return std::isfinite(dt) ? dt : 1e-3;
+}
+
+double rigid_time_step(const std::vector<BodyDef>& bodies, double safety) {
+  double radius = std::numeric_limits<double>::infinity();
+  for (const auto& body : bodies) {
+    if (!body.fixed) radius = std::min(radius, body.shape.bounding_radius);
+  }
+  if (!std::isfinite(radius)) return 1e-3;
+  return safety / 50.0 * std::sqrt(radius / kGravity);
 }
 
 World::World(std::vector<BodyDef> bodies, const contact::ContactLaw& law,
@@ -70,7 +80,13 @@ World::World(std::vector<BodyDef> bodies, const contact::ContactLaw& law,
       pairs_.push_back(std::move(p));
     }
   }
-  dt_ = settings_.dt > 0 ? settings_.dt : settings_.safety * critical_time_step(defs_, law_);
+  if (settings_.dt > 0) {
+    dt_ = settings_.dt;
+  } else if (law_.model == contact::ContactModel::rigid) {
+    dt_ = rigid_time_step(defs_, settings_.safety);
+  } else {
+    dt_ = settings_.safety * critical_time_step(defs_, law_);
+  }
   refresh();
 }
 
@@ -79,7 +95,9 @@ void World::refresh() {
     rotations_[i] = states_[i].orientation.toRotationMatrix();
     update_world_vertices(static_cast<int>(i));
   }
-  compute_forces(0.0);
+  // the rigid model finds its contacts at the start of each step; the penalty model needs the
+  // forces of the current state for its first half kick
+  if (law_.model == contact::ContactModel::penalty) compute_forces(0.0);
 }
 
 void World::update_world_vertices(int i) {
@@ -139,32 +157,74 @@ void World::drift_rotation(int i, double dt) {
 }
 
 void World::step(double dt, const Vec3& ground_velocity_start, const Vec3& ground_velocity_end) {
+  if (law_.model == contact::ContactModel::rigid) {
+    step_rigid(dt, ground_velocity_start, ground_velocity_end);
+  } else {
+    step_penalty(dt, ground_velocity_start, ground_velocity_end);
+  }
+}
+
+void World::move_pedestals(double dt, const Vec3& ground_velocity) {
+  for (std::size_t i = 0; i < defs_.size(); ++i) {
+    if (!defs_[i].fixed) continue;
+    auto& s = states_[i];
+    // pedestals follow the ground: trapezoid of the linearly interpolated velocity
+    s.velocity = ground_velocity;
+    if (effects_.vertical_ground) {
+      s.position += dt * ground_velocity;
+      for (auto& v : world_vertices_[i]) v += dt * ground_velocity;
+    } else {
+      // no vertical component: the same sums in x and y, z left alone (it would add 0 exactly)
+      const double dx = dt * ground_velocity.x(), dy = dt * ground_velocity.y();
+      s.position.x() += dx;
+      s.position.y() += dy;
+      for (auto& v : world_vertices_[i]) {
+        v.x() += dx;
+        v.y() += dy;
+      }
+    }
+  }
+}
+
+bool World::pair_apart(PairContact& p, double margin) {
+  const auto& da = defs_[p.a];
+  const auto& db = defs_[p.b];
+  // skin: the spheres were further apart than the bodies have travelled since
+  const double travel = effects_.distance_skin ? travel_[p.a] + travel_[p.b] : 0.0;
+  if (p.skin_gap > 0 && travel - p.skin_travel < p.skin_gap) {
+    ++stats_.pairs_culled;
+    return true;
+  }
+  // bounding spheres apart: no contact possible this step
+  const double radii = da.shape.bounding_radius + db.shape.bounding_radius;
+  const double gap = (states_[p.b].position - states_[p.a].position).norm() - radii;
+  if (gap > margin) {
+    p.subs.clear();
+    p.points.clear();
+    p.overlap = -gap;
+    ++stats_.pairs_skipped;
+    if (effects_.distance_skin) {
+      // the margin covers the rounding of positions summed over millions of steps
+      p.skin_gap = gap - margin - 1e-6 * radii;
+      p.skin_travel = travel;
+    }
+    return true;
+  }
+  p.skin_gap = -1;
+  return false;
+}
+
+void World::step_penalty(double dt, const Vec3& ground_velocity_start, const Vec3& ground_velocity_end) {
   const Vec3 ground_velocity = 0.5 * (ground_velocity_start + ground_velocity_end);
   // contact force on the pedestals at the start of the step (all move with the same velocity)
   Vec3 pedestal_force_start = Vec3::Zero();
   for (std::size_t i = 0; i < defs_.size(); ++i) {
     if (defs_[i].fixed) pedestal_force_start += contact_force_[i];
   }
+  move_pedestals(dt, ground_velocity);
   for (std::size_t i = 0; i < defs_.size(); ++i) {
     auto& s = states_[i];
-    if (defs_[i].fixed) {
-      // pedestals follow the ground: trapezoid of the linearly interpolated velocity
-      s.velocity = ground_velocity;
-      if (effects_.vertical_ground) {
-        s.position += dt * ground_velocity;
-        for (auto& v : world_vertices_[i]) v += dt * ground_velocity;
-      } else {
-        // no vertical component: the same sums in x and y, z left alone (it would add 0 exactly)
-        const double dx = dt * ground_velocity.x(), dy = dt * ground_velocity.y();
-        s.position.x() += dx;
-        s.position.y() += dy;
-        for (auto& v : world_vertices_[i]) {
-          v.x() += dx;
-          v.y() += dy;
-        }
-      }
-      continue;
-    }
+    if (defs_[i].fixed) continue;
     s.velocity += (0.5 * dt / defs_[i].shape.mass) * forces_[i];
     s.angular_momentum += 0.5 * dt * torques_[i];
     s.position += dt * s.velocity;
@@ -210,27 +270,7 @@ void World::compute_forces(double dt) {
     const auto& db = defs_[p.b];
     const auto& sa = states_[p.a];
     const auto& sb = states_[p.b];
-    // skin: the spheres were further apart than the bodies have travelled since
-    const double travel = effects_.distance_skin ? travel_[p.a] + travel_[p.b] : 0.0;
-    if (p.skin_gap > 0 && travel - p.skin_travel < p.skin_gap) {
-      ++stats_.pairs_culled;
-      continue;
-    }
-    // bounding spheres apart: no contact possible this step
-    const double radii = da.shape.bounding_radius + db.shape.bounding_radius;
-    const double gap = (sb.position - sa.position).norm() - radii;
-    if (gap > 0) {
-      p.subs.clear();
-      p.overlap = -gap;
-      ++stats_.pairs_skipped;
-      if (effects_.distance_skin) {
-        // the margin covers the rounding of positions summed over millions of steps
-        p.skin_gap = gap - 1e-6 * radii;
-        p.skin_travel = travel;
-      }
-      continue;
-    }
-    p.skin_gap = -1;
+    if (pair_apart(p, 0.0)) continue;
     ++stats_.pair_tests;
     ++p.tests;
     contact::PlacedHull ha{&da.shape, world_vertices_[p.a].data(), Vec3::Zero(), rotations_[p.a],
@@ -242,6 +282,7 @@ void World::compute_forces(double dt) {
     p.overlap = cp.overlap;
     if (cp.overlap <= 0) {
       p.subs.clear();
+      p.points.clear();
       continue;
     }
     p.points.clear();
@@ -307,6 +348,7 @@ void World::compute_forces(double dt) {
 void World::carry_with_ground(double t_end, const Vec3& displacement, const Vec3& v_start,
                               const Vec3& v_end) {
   const Vec3 dv = v_end - v_start;
+  pedestal_velocity_ = v_end;
   for (std::size_t i = 0; i < defs_.size(); ++i) {
     auto& s = states_[i];
     s.position += displacement;
@@ -345,7 +387,14 @@ double World::potential_energy() const {
   return e;
 }
 
+double World::subcontact_load(const PairContact& pair, std::size_t k) const {
+  if (law_.model == contact::ContactModel::rigid) return pair.subs[k].normal_impulse / dt_;
+  const double d = pair.points[k].overlap;
+  return law_.normal_stiffness * d * std::sqrt(d);
+}
+
 double World::elastic_energy() const {
+  if (law_.model == contact::ContactModel::rigid) return 0;  // rigid contacts store no energy
   double e = 0;
   for (const auto& p : pairs_) {
     if (p.overlap <= 0) continue;

@@ -6,7 +6,9 @@
 //
 //   /                      attributes: schema_version (int32), software_version, job_text,
 //                          job_hash, physics_json (strings), seed (uint64),
-//                          units = "SI unless the name says otherwise"
+//                          units = "SI unless the name says otherwise",
+//                          job_inputs_sha256 (sha256sum lines: settings, job file, record list),
+//                          inputs_sha256 (one SHA-256 over every input of every cell)
 //   /axes/record           [R] string     dimension scale "record" (names, job order)
 //   /axes/scale_g          [S] float64 g  dimension scale "scale_g" (target GMRotI50 PGA)
 //   /axes/rotation         [A] int32      dimension scale "rotation" (0..A-1)
@@ -16,7 +18,9 @@
 //   /records/{name, source, earthquake}                               [R] string
 //   /records/{start_s, end_s, gmroti_pga_g, gmroti_pgv_cm_s, pgv_pga_s,
 //             listed_pga_g, listed_pgv_cm_s}                          [R] float64
+//   /records/inputs_sha256                                            [R] string (sha256sum lines)
 //   /objects/<name>/       attributes: scene (string), index (int32, position in the job),
+//                          inputs_sha256 (string, sha256sum lines: scene, model, STLs, state),
 //                          alpha_rad, p_rad_s (float64, only for single-block objects)
 //       outcome            [R,S,A] int8   attribute legend = "0 not run, 1 survived, ..."
 //       rotation_deg, failure_time_s, max_tilt_deg, max_slip_m, wall_s   [R,S,A] float64
@@ -35,8 +39,10 @@
 // (H5Pset_obj_track_times false). No creation time is stored anywhere. wall_s is the only
 // run-dependent dataset (tests/python/compare_cubes.py skips it).
 //
-// Atomicity: write_cube writes PATH.tmp, flushes and closes it, fsyncs it, renames it over PATH
-// and fsyncs the directory, so a kill at any instant leaves the previous or the new complete file.
+// Atomicity: write_cube builds the file in memory (HDF5's core driver), writes it to PATH.tmp,
+// fsyncs it, renames it over PATH and fsyncs the directory, so a kill at any instant leaves the
+// previous or the new complete file, and a failed write (disk full) leaves the previous one and
+// removes PATH.tmp.
 #include "rigid/io/cube.hpp"
 
 #include <fcntl.h>
@@ -291,6 +297,9 @@ std::string hdf5_explanation() {
   if (d.empty()) return {};
   std::string s = " (HDF5: " + d.front();
   if (d.size() > 1 && d.back() != d.front()) s += ": " + d.back();
+  for (char& c : s) {
+    if (c == '\n') c = ' ';  // some descriptions span lines; ours is one
+  }
   return s + ")";
 }
 
@@ -450,6 +459,8 @@ void write_contents(const H5& h, hid_t file, const Cube& c) {
   w.attribute("/", "physics_json", c.physics_json);
   w.attribute("/", "seed", std::uint64_t{c.seed});
   w.attribute("/", "units", std::string("SI unless the name says otherwise"));
+  w.attribute("/", "job_inputs_sha256", c.job_inputs);
+  w.attribute("/", "inputs_sha256", c.inputs_sha256);
 
   w.group("/axes");
   Hid record =
@@ -486,6 +497,9 @@ void write_contents(const H5& h, hid_t file, const Cube& c) {
   text(
       "earthquake", [](const RecordMeta& m) { return m.earthquake; },
       "earthquake, from the record list (may be empty)");
+  text(
+      "inputs_sha256", [](const RecordMeta& m) { return m.inputs; },
+      "SHA-256 of the record's motion files, sha256sum lines (HEX  PATH)");
   number(
       "start_s", [](const RecordMeta& m) { return m.start_s; }, "s", "start of the time window");
   number(
@@ -513,6 +527,7 @@ void write_contents(const H5& h, hid_t file, const Cube& c) {
     w.group(g);
     w.attribute(g, "scene", o.scene);
     w.attribute(g, "index", static_cast<std::int32_t>(i));
+    w.attribute(g, "inputs_sha256", o.inputs);
     if (std::isfinite(o.alpha_rad)) w.attribute(g, "alpha_rad", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &o.alpha_rad);
     if (std::isfinite(o.p_rad_s)) w.attribute(g, "p_rad_s", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &o.p_rad_s);
     const auto cells = [&](Hid d, const std::string& path) {
@@ -576,6 +591,31 @@ void write_contents(const H5& h, hid_t file, const Cube& c) {
   }
 }
 
+// Writes bytes to a new file and fsyncs it; errors name the file and errno.
+void write_file(const H5& h, const std::string& p, const std::vector<unsigned char>& bytes) {
+  const int fd = ::open(p.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) h.fail_errno("creating " + p);
+  std::size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const int err = n < 0 ? errno : ENOSPC;
+      ::close(fd);
+      errno = err;
+      h.fail_errno("writing " + p);
+    }
+    done += static_cast<std::size_t>(n);
+  }
+  if (::fsync(fd) != 0) {
+    const int err = errno;
+    ::close(fd);
+    errno = err;
+    h.fail_errno("syncing " + p);
+  }
+  if (::close(fd) != 0) h.fail_errno("closing " + p);
+}
+
 void fsync_path(const H5& h, const std::string& p, bool directory) {
   const int fd = ::open(p.c_str(), O_RDONLY | (directory ? O_DIRECTORY : 0));
   if (fd < 0) h.fail_errno("opening " + p + " to sync it");
@@ -599,6 +639,10 @@ class Reader {
   bool has_attribute(const std::string& path, const char* name) const {
     return h_.check(H5Aexists_by_name(file_, path.c_str(), name, H5P_DEFAULT),
                     "looking for attribute " + std::string(name) + " of " + path) > 0;
+  }
+
+  bool has_link(const std::string& path) const {
+    return h_.check(H5Lexists(file_, path.c_str(), H5P_DEFAULT), "looking for " + path) > 0;
   }
 
   Hid open_attribute(const std::string& path, const char* name, H5T_class_t cls,
@@ -742,6 +786,9 @@ Cube read_contents(const H5& h, hid_t file) {
   c.job_hash = rd.string_attribute("/", "job_hash");
   c.physics_json = rd.string_attribute("/", "physics_json");
   c.seed = rd.integer_attribute<std::uint64_t>("/", "seed", H5T_NATIVE_UINT64);
+  // provenance hashes: absent from cubes written before them
+  if (rd.has_attribute("/", "job_inputs_sha256")) c.job_inputs = rd.string_attribute("/", "job_inputs_sha256");
+  if (rd.has_attribute("/", "inputs_sha256")) c.inputs_sha256 = rd.string_attribute("/", "inputs_sha256");
 
   const hsize_t R = rd.length("/axes/record"), S = rd.length("/axes/scale_g"),
                 A = rd.length("/axes/rotation");
@@ -761,6 +808,10 @@ Cube read_contents(const H5& h, hid_t file) {
     c.records[r].name = names[r];
     c.records[r].source = sources[r];
     c.records[r].earthquake = quakes[r];
+  }
+  if (rd.has_link("/records/inputs_sha256")) {
+    const std::vector<std::string> inputs = rd.strings("/records/inputs_sha256", R);
+    for (hsize_t r = 0; r < R; ++r) c.records[r].inputs = inputs[r];
   }
   const auto number = [&](const char* name, double RecordMeta::*field) {
     const std::vector<double> v = rd.doubles(std::string("/records/") + name, {R});
@@ -789,6 +840,7 @@ Cube read_contents(const H5& h, hid_t file) {
     ObjectCube& o = c.objects[static_cast<std::size_t>(index)];
     o.name = name;
     o.scene = rd.string_attribute(g, "scene");
+    if (rd.has_attribute(g, "inputs_sha256")) o.inputs = rd.string_attribute(g, "inputs_sha256");
     if (rd.has_attribute(g, "alpha_rad")) o.alpha_rad = rd.double_attribute(g, "alpha_rad");
     if (rd.has_attribute(g, "p_rad_s")) o.p_rad_s = rd.double_attribute(g, "p_rad_s");
     o.outcome = rd.numbers<std::int8_t>(g + "/outcome", H5T_INTEGER, H5T_NATIVE_INT8, rsa);
@@ -811,19 +863,27 @@ void write_cube(const std::string& path, const Cube& cube) {
   const QuietErrors quiet;
   const H5 h(path);
   const std::string tmp = path + ".tmp";
+  // Built in memory (HDF5's core driver, no backing store) and written out here: HDF5 never
+  // meets a disk error, which it reports as a multi-line stack and, in 1.10, follows with a crash
+  // at exit while closing the file it could not write (issue 12); ours is one errno line.
+  std::vector<unsigned char> image;
+  {
+    Hid fcpl = h.own(H5Pcreate(H5P_FILE_CREATE), H5Pclose, "creating a file creation property list");
+    h.check(H5Pset_obj_track_times(fcpl, false), "switching off root group time stamps");
+    Hid fapl = file_access(h);
+    h.check(H5Pset_fapl_core(fapl, 1 << 20, false), "selecting the in-memory file driver");
+    // SEMI: closing the file fails rather than lingers if a handle were still open
+    h.check(H5Pset_fclose_degree(fapl, H5F_CLOSE_SEMI), "setting the file close degree");
+    Hid file = h.own(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, fcpl, fapl), H5Fclose, "creating the cube in memory");
+    write_contents(h, file, cube);
+    h.check(H5Fflush(file, H5F_SCOPE_GLOBAL), "flushing the cube in memory");
+    const ssize_t size = h.check(H5Fget_file_image(file, nullptr, 0), "sizing the cube's file image");
+    image.resize(static_cast<std::size_t>(size));
+    h.check(H5Fget_file_image(file, image.data(), image.size()), "copying the cube's file image");
+    h.check(file.close(), "closing the cube in memory");
+  }
   try {
-    {
-      Hid fcpl = h.own(H5Pcreate(H5P_FILE_CREATE), H5Pclose, "creating a file creation property list");
-      h.check(H5Pset_obj_track_times(fcpl, false), "switching off root group time stamps");
-      Hid fapl = file_access(h);
-      // SEMI: closing the file fails rather than lingers if a handle were still open
-      h.check(H5Pset_fclose_degree(fapl, H5F_CLOSE_SEMI), "setting the file close degree");
-      Hid file = h.own(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, fcpl, fapl), H5Fclose, "creating " + tmp);
-      write_contents(h, file, cube);
-      h.check(H5Fflush(file, H5F_SCOPE_GLOBAL), "flushing " + tmp);
-      h.check(file.close(), "closing " + tmp);
-    }
-    fsync_path(h, tmp, false);
+    write_file(h, tmp, image);
     if (std::rename(tmp.c_str(), path.c_str()) != 0) h.fail_errno("renaming " + tmp + " over " + path);
     const fs::path dir = fs::path(path).parent_path();
     fsync_path(h, dir.empty() ? std::string(".") : dir.string(), true);
@@ -833,6 +893,8 @@ void write_cube(const std::string& path, const Cube& cube) {
     throw;
   }
 }
+
+void silence_hdf5_errors() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
 
 Cube read_cube(const std::string& path) {
   const QuietErrors quiet;

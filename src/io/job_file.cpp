@@ -135,7 +135,7 @@ scenario::Job load_job(const std::string& path) {
 
   const auto* c = root["campaign"].as_table();
   if (!c) throw InputError(path, 0, "missing [campaign] table");
-  reject_unknown(*c, {"name", "seed", "output", "scales", "rotations", "stop_after", "checkpoint_interval_s", "grace_s"},
+  reject_unknown(*c, {"name", "seed", "output", "scales", "rotations", "rotation_angles_deg", "stop_after", "checkpoint_interval_s", "grace_s"},
                  path, "[campaign]");
   if (const auto* o = c->get("output")) {
     const auto s = o->value<std::string>();
@@ -156,6 +156,21 @@ scenario::Job load_job(const std::string& path) {
     const auto v = r->value<std::int64_t>();
     if (!v || *v < 1 || *v > 1000) throw InputError(path, line_of(*r), "rotations must be an integer from 1 to 1000");
     job.rotations = static_cast<int>(*v);
+  }
+  if (const auto* r = c->get("rotation_angles_deg")) {
+    const auto* list = r->as_array();
+    if (!list || list->empty() || list->size() > 1000) {
+      throw InputError(path, line_of(*r), "rotation_angles_deg must be a list of 1 to 1000 angles (deg)");
+    }
+    for (const auto& node : *list) {
+      const auto v = node.value<double>();
+      if (!v || !std::isfinite(*v)) throw InputError(path, line_of(node), "rotation_angles_deg: angles must be finite numbers (deg)");
+      job.rotation_angles_deg.push_back(*v);
+    }
+    if (c->contains("rotations") && job.rotations != int(list->size())) {
+      throw InputError(path, line_of(*r), "rotations and rotation_angles_deg disagree: give one of them");
+    }
+    job.rotations = int(list->size());
   }
   if (const auto* s = c->get("stop_after")) {
     const auto v = s->value<std::int64_t>();
@@ -202,6 +217,7 @@ scenario::Job load_job(const std::string& path) {
     const fs::path list_path = base / *name;
     if (!fs::exists(list_path)) throw InputError(path, line_of(*list), "record list not found: " + list_path.string());
     const RecordList rl = read_record_list(list_path.string());
+    job.record_list = list_path.lexically_normal().string();
     for (const auto& e : rl.records) {
       scenario::JobRecord r;
       r.spec = resolve_spec(e.file, fs::path(rl.base_dir));
@@ -250,7 +266,15 @@ scenario::Job load_job(const std::string& path) {
 
   // simulation settings
   if (const auto* run = root["run"].as_table()) {
-    reject_unknown(*run, {"model", "duration_s", "free_time_s", "dt_s", "safety", "integrator", "accuracy", "effects"}, path, "[run]");
+    reject_unknown(*run, {"model", "duration_s", "free_time_s", "dt_s", "safety", "integrator", "accuracy", "effects", "contact"}, path, "[run]");
+    if (const auto* c = run->get("contact")) {
+      const auto name = c->value<std::string>();
+      contact::ContactModel model;
+      if (!name || !contact::parse_contact_model(*name, model)) {
+        throw InputError(path, line_of(*c), "contact must be \"rigid\" or \"penalty\"");
+      }
+      job.contact = *name;
+    }
     job.model = (*run)["model"].value_or(std::string("dem3d"));
     if (job.model != "dem3d" && job.model != "rocking2d") {
       throw InputError(path, line_of(*run), "model must be \"dem3d\" or \"rocking2d\", not \"" + job.model + "\"");
@@ -295,10 +319,12 @@ scenario::Job load_job(const std::string& path) {
   return job;
 }
 
-std::string job_hash(const scenario::Job& job) {
+std::string job_settings_text(const scenario::Job& job) {
   // cubes from before the presets were computed with balanced's settings and hash the text alone
-  if (job.accuracy == "balanced") return text_hash(job.text);
-  return text_hash(job.text + "\n# accuracy: " + job.accuracy + "\n");
+  if (job.accuracy == "balanced") return job.text;
+  return job.text + "\n# accuracy: " + job.accuracy + "\n";
 }
+
+std::string job_hash(const scenario::Job& job) { return text_hash(job_settings_text(job)); }
 
 }  // namespace rigid::io

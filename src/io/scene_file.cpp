@@ -88,6 +88,7 @@ void build_bodies(scenario::Scene& scene, const std::vector<BlockSpec>& blocks,
       throw InputError(scene.source, b.line, "STL file not found: " + path.string());
     }
     const geometry::TriangleSoup soup = read_stl(path.string());
+    scene.files.push_back(path.lexically_normal().string());
     dynamics::BodyDef body;
     body.name = fs::path(b.stl).stem().string();
     body.shape = geometry::build_block(soup, scene.density, geometry::MeshOptions{}, path.string());
@@ -198,8 +199,18 @@ scenario::Scene load_toml_scene(const std::string& path) {
   scenario::Scene physics_only;
   physics_only.source = path;
   if (const auto* p = root["physics"].as_table()) {
-    reject_unknown(*p, {"density", "normal_stiffness", "shear_stiffness", "friction", "damping"}, path,
-                   "[physics]");
+    reject_unknown(*p, {"contact", "density", "normal_stiffness", "shear_stiffness", "friction", "damping", "restitution"},
+                   path, "[physics]");
+    if (const auto* c = p->get("contact")) {
+      const auto name = c->value<std::string>();
+      if (!name || !contact::parse_contact_model(*name, physics_only.law.model)) {
+        throw InputError(path, line_of(*c), "contact must be \"rigid\" or \"penalty\"");
+      }
+    }
+    physics_only.law.restitution = get_number(*p, "restitution", physics_only.law.restitution, path);
+    if (!(physics_only.law.restitution >= 0 && physics_only.law.restitution <= 1)) {
+      throw InputError(path, line_of(*p->get("restitution")), "restitution must be in [0, 1]");
+    }
     physics_only.density = get_number(*p, "density", physics_only.density, path);
     physics_only.law.normal_stiffness = get_number(*p, "normal_stiffness", physics_only.law.normal_stiffness, path);
     physics_only.law.shear_stiffness = get_number(*p, "shear_stiffness", physics_only.law.shear_stiffness, path);
@@ -264,6 +275,11 @@ scenario::Scene load_toml_scene(const std::string& path) {
     build_bodies(scene, blocks, base);
   }
   scene.source = path;
+  // provenance order: this file, the model file, the STLs, then the state (apply_state adds it)
+  std::vector<std::string> files{path};
+  if (root.contains("model")) files.push_back(fs::path(model_source).lexically_normal().string());
+  files.insert(files.end(), scene.files.begin(), scene.files.end());
+  scene.files = std::move(files);
   if (root.contains("physics")) {
     // [physics] wins over parameters in a model file; masses and inertias follow the density
     const double ratio = physics_only.density / scene.density;
@@ -304,7 +320,9 @@ scenario::Scene load_toml_scene(const std::string& path) {
 scenario::Scene load_scene(const std::string& path) {
   if (!fs::exists(path)) throw InputError(path, 0, "file not found");
   if (fs::path(path).extension() == ".toml") return load_toml_scene(path);
-  return parse_model_text(read_file(path), fs::path(path).parent_path().string(), path);
+  scenario::Scene scene = parse_model_text(read_file(path), fs::path(path).parent_path().string(), path);
+  scene.files.insert(scene.files.begin(), path);
+  return scene;
 }
 
 void save_state(const std::string& path, const scenario::Scene& scene) {
@@ -362,6 +380,7 @@ void apply_state(const std::string& path, scenario::Scene& scene) {
     scene.bodies[i].position = Vec3(v[0], v[1], v[2]);
     scene.bodies[i].orientation = Quat(v[3], v[4], v[5], v[6]).normalized();
   }
+  scene.files.push_back(fs::path(path).lexically_normal().string());
 }
 
 }  // namespace rigid::io

@@ -35,6 +35,47 @@ Scene block_on_pedestal(double b, double h, double depth, const contact::Contact
   return s;
 }
 
+GroundDrive one_sine_drive(double amplitude, double period, double dt) {
+  GroundDrive drive;
+  drive.dt = dt;
+  const long n = std::lround(period / dt);
+  for (long i = 0; i <= n; ++i) {
+    const double t = double(i) * dt;
+    drive.velocity.emplace_back(amplitude * period / (2 * kPi) * (1 - std::cos(2 * kPi * t / period)), 0, 0);
+  }
+  return drive;
+}
+
+geometry::TriangleSoup subdivided_box_soup(const Vec3& lo, const Vec3& hi, int n) {
+  geometry::TriangleSoup soup;
+  for (int axis = 0; axis < 3; ++axis) {
+    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    for (int side = 0; side < 2; ++side) {
+      auto corner = [&](int i, int j) {
+        Vec3 p;
+        p[axis] = side ? hi[axis] : lo[axis];
+        p[u] = lo[u] + (hi[u] - lo[u]) * i / n;
+        p[v] = lo[v] + (hi[v] - lo[v]) * j / n;
+        return p;
+      };
+      for (int i = 0; i < n; ++i) {
+        for (int j = 0; j < n; ++j) {
+          const Vec3 a = corner(i, j), b = corner(i + 1, j), c = corner(i + 1, j + 1), d = corner(i, j + 1);
+          // u x v = +axis: counter-clockwise in (u, v) faces outward on the high side
+          if (side) {
+            soup.push_back({a, b, c});
+            soup.push_back({a, c, d});
+          } else {
+            soup.push_back({a, c, b});
+            soup.push_back({a, d, c});
+          }
+        }
+      }
+    }
+  }
+  return soup;
+}
+
 geometry::TriangleSoup geodesic_sphere(double radius, int frequency) {
   const double t = (1.0 + std::sqrt(5.0)) / 2.0;
   std::vector<Vec3> v = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},

@@ -185,7 +185,10 @@ double quasi_static_ratio(const dynamics::World& world, double friction,
     double min_up = 1;  // smallest vertical component of the contact normals
     for (const auto& p : world.pairs()) {
       if (p.a != int(i) && p.b != int(i)) continue;
-      if (p.overlap <= 0 || p.subs.empty()) continue;
+      // in contact: some subcontact loaded (the rigid model also keeps open ones near a contact)
+      bool loaded = false;
+      for (std::size_t k = 0; k < p.points.size() && !loaded; ++k) loaded = world.subcontact_load(p, k) > 0;
+      if (!loaded) continue;
       const int other = p.a == int(i) ? p.b : p.a;
       if (!defs[other].fixed) {
         supported = false;
@@ -193,7 +196,9 @@ double quasi_static_ratio(const dynamics::World& world, double friction,
       }
       const double up = p.a == int(i) ? -p.normal.z() : p.normal.z();  // normal points a -> b
       min_up = std::min(min_up, up);
-      for (const auto& pt : p.points) {
+      for (std::size_t k = 0; k < p.points.size(); ++k) {
+        if (!(world.subcontact_load(p, k) > 0)) continue;  // an open (rigid model) contact
+        const auto& pt = p.points[k];
         points.emplace_back(pt.point.x(), pt.point.y());
         lowest = std::min(lowest, pt.point.z());
       }
@@ -210,28 +215,34 @@ double quasi_static_ratio(const dynamics::World& world, double friction,
   return std::isfinite(ratio) ? ratio : 0.0;
 }
 
-// Contact signature of the free blocks: their subcontact count in each pair. Unchanged from step
+// Contact signature of the free blocks: their loaded subcontacts in each pair. Unchanged from step
 // to step while no block lifts a corner or gains a contact.
 void contact_counts(const dynamics::World& world, std::vector<std::size_t>& out) {
   out.clear();
-  for (const auto& p : world.pairs()) out.push_back(p.subs.size());
+  for (const auto& p : world.pairs()) {
+    std::size_t loaded = 0;
+    for (std::size_t k = 0; k < p.points.size(); ++k) loaded += world.subcontact_load(p, k) > 0 ? 1 : 0;
+    out.push_back(loaded);
+  }
 }
 
-// Whether every subcontact of every free block carries at least `fraction` of its block's mean
-// subcontact load (elastic part K_N d^1.5, physics.md §3). A rocking block unloads its heel
-// corners to zero before they lift; an elastic vibration of the block on its contact springs, or a
-// horizontal push, unloads them in proportion to its amplitude, the whole way at uplift.
+// Whether every loaded subcontact of every free block carries at least `fraction` of its block's
+// mean subcontact load (World::subcontact_load: the elastic part K_N d^1.5 of the penalty model,
+// physics.md §3, or the rigid model's normal impulse over the step). A rocking block unloads its
+// heel corners to zero before they lift; an elastic vibration of the block on its contact
+// springs, or a horizontal push, unloads them in proportion to its amplitude, the whole way at
+// uplift.
 bool corners_loaded(const dynamics::World& world, double fraction) {
   const auto& defs = world.bodies();
-  const double k = world.law().normal_stiffness;
   for (std::size_t i = 0; i < defs.size(); ++i) {
     if (defs[i].fixed) continue;
     double least = std::numeric_limits<double>::infinity(), sum = 0;
     long count = 0;
     for (const auto& p : world.pairs()) {
-      if ((p.a != int(i) && p.b != int(i)) || p.subs.empty() || p.overlap <= 0) continue;
-      for (const auto& pt : p.points) {
-        const double f = k * pt.overlap * std::sqrt(pt.overlap);
+      if ((p.a != int(i) && p.b != int(i)) || p.subs.empty()) continue;
+      for (std::size_t k = 0; k < p.points.size(); ++k) {
+        const double f = world.subcontact_load(p, k);
+        if (!(f > 0)) continue;  // an open (rigid model) contact
         least = std::min(least, f);
         sum += f;
         ++count;

@@ -11,13 +11,8 @@ export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cd "$work" || exit 1
-passed=0
-failed=0
-check() {  # name, command...
-  local name=$1
-  shift
-  if "$@"; then passed=$((passed + 1)); echo "PASS $name"; else failed=$((failed + 1)); echo "FAIL $name"; fi
-}
+# shellcheck source=checks.sh
+source "$src/tests/campaign/checks.sh"
 
 "$rigid" campaign "$job" --out ref.h5 --progress none > ref.log 2>&1
 check "single process completes" test -f ref.h5

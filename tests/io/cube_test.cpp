@@ -64,9 +64,9 @@ Cube synthetic() {
   Cube c;
   c.records = {
       {"rec one", "x=a b/one-X.AT2,y=a b/one-Y.AT2", "Duzce, Turkey", 1.5, 21.25, 0.3, 20.0, 0.068, 0.31,
-       21.5},
-      {"rec_two", "two-X.AT2", "", 0.0, kInf, 0.25, 17.0, 0.0693, 0.0, 0.0},
-      {"rec \"three\"", "three-X.AT2", "Chi-Chi, Taiwan", 2.0, 40.0, 0.1, 49.0, 0.5, 0.1, 49.0},
+       21.5, ""},
+      {"rec_two", "two-X.AT2", "", 0.0, kInf, 0.25, 17.0, 0.0693, 0.0, 0.0, ""},
+      {"rec \"three\"", "three-X.AT2", "Chi-Chi, Taiwan", 2.0, 40.0, 0.1, 49.0, 0.5, 0.1, 49.0, ""},
   };
   c.scales_g = {0.1, 0.2, 0.30000000000000004, 0.4};
   c.rotations = 2;
@@ -75,6 +75,11 @@ Cube synthetic() {
   c.software_version = "0.1.0 (abc1234)";
   c.physics_json = R"({"density": 2600, "friction": 0.6, "dt_s": null})";
   c.seed = 0xFEDCBA9876543210ULL;  // above INT64_MAX: must stay unsigned
+  // provenance: sha256sum lines (any 64 hex digits will do here) and a combined digest
+  c.job_inputs = std::string(64, 'a') + "  (settings)\n" + std::string(64, 'b') + "  jobs/demo run.toml\n";
+  c.inputs_sha256 = std::string(64, 'c');
+  c.records[0].inputs = std::string(64, 'd') + "  a b/one-X.AT2\n" + std::string(64, 'e') + "  a b/one-Y.AT2\n";
+  c.records[2].inputs = std::string(64, 'f') + "  three-X.AT2\n";
 
   const std::size_t n = 3 * 4 * 2;
   ObjectCube a;
@@ -82,6 +87,7 @@ Cube synthetic() {
   a.scene = "models/rock a/rock.toml";
   a.alpha_rad = 0.2;  // a single block; object b below is a stack without them
   a.p_rad_s = 2.3;
+  a.inputs = std::string(64, '0') + "  models/rock a/rock.toml\n" + std::string(64, '1') + "  models/rock a/rock.stl\n";
   // [record][scale][rotation]
   const O pattern[3][4][2] = {
       {{O::survived, O::survived},
@@ -133,6 +139,8 @@ void expect_same(const Cube& a, const Cube& b) {
   EXPECT_EQ(a.software_version, b.software_version);
   EXPECT_EQ(a.physics_json, b.physics_json);
   EXPECT_EQ(a.seed, b.seed);
+  EXPECT_EQ(a.job_inputs, b.job_inputs);
+  EXPECT_EQ(a.inputs_sha256, b.inputs_sha256);
   EXPECT_EQ(a.rotations, b.rotations);
   expect_same_doubles(a.scales_g, b.scales_g, "scales_g");
   expect_same_doubles(pgv_pga_edges(a), b.pgv_pga_edges_s, "pgv_pga_edges_s");
@@ -142,6 +150,7 @@ void expect_same(const Cube& a, const Cube& b) {
     EXPECT_EQ(x.name, y.name);
     EXPECT_EQ(x.source, y.source);
     EXPECT_EQ(x.earthquake, y.earthquake);
+    EXPECT_EQ(x.inputs, y.inputs);
     expect_same_doubles({x.start_s, x.end_s, x.gmroti_pga_g, x.gmroti_pgv_cm_s, x.pgv_pga_s, x.listed_pga_g,
                          x.listed_pgv_cm_s},
                         {y.start_s, y.end_s, y.gmroti_pga_g, y.gmroti_pgv_cm_s, y.pgv_pga_s, y.listed_pga_g,
@@ -153,6 +162,7 @@ void expect_same(const Cube& a, const Cube& b) {
     const ObjectCube &x = a.objects[i], &y = b.objects[i];
     EXPECT_EQ(x.name, y.name);
     EXPECT_EQ(x.scene, y.scene);
+    EXPECT_EQ(x.inputs, y.inputs);
     // NaN (no rocking parameters) must come back NaN: compare the bits
     EXPECT_EQ(std::memcmp(&x.alpha_rad, &y.alpha_rad, sizeof(double)), 0);
     EXPECT_EQ(std::memcmp(&x.p_rad_s, &y.p_rad_s, sizeof(double)), 0);
@@ -442,7 +452,9 @@ TEST_F(CubeFile, AKillAtAnyInstantLeavesAValidFile) {
   const std::string p = path("cube.h5");
   const Cube small = synthetic();
   Cube big = synthetic();
-  for (int k = 0; k < 60; ++k) {
+  // large enough (a few MB) that writing and syncing PATH.tmp, after the in-memory build, takes a
+  // good part of each rewrite
+  for (int k = 0; k < 3000; ++k) {
     RecordMeta m = small.records[k % 3];
     m.name += " " + std::to_string(k);
     big.records.push_back(m);
@@ -456,7 +468,8 @@ TEST_F(CubeFile, AKillAtAnyInstantLeavesAValidFile) {
   }
   write_cube(p, small);
   int mid_write = 0;  // kills that caught the child with PATH.tmp on disk
-  for (int round = 0; round < 12; ++round) {
+  for (int round = 0; round < 16; ++round) {
+    fs::remove(p + ".tmp");  // left by the last kill: a PATH.tmp seen below is this child's
     const pid_t pid = ::fork();
     ASSERT_GE(pid, 0);
     if (pid == 0) {
@@ -468,7 +481,12 @@ TEST_F(CubeFile, AKillAtAnyInstantLeavesAValidFile) {
         }
       }
     }
-    ::usleep(static_cast<useconds_t>(2000 + 1700 * round));
+    if (round % 2 == 0) {
+      ::usleep(static_cast<useconds_t>(20000 + 7000 * round));  // any instant
+    } else {
+      // the instant that matters: PATH.tmp being written (the cube is built in memory before)
+      for (int k = 0; k < 40000 && !fs::exists(p + ".tmp"); ++k) ::usleep(50);
+    }
     ::kill(pid, SIGKILL);
     int status = 0;
     ::waitpid(pid, &status, 0);
@@ -478,8 +496,8 @@ TEST_F(CubeFile, AKillAtAnyInstantLeavesAValidFile) {
     ASSERT_NO_THROW(got = read_cube(p)) << "round " << round;
     EXPECT_TRUE(got.records.size() == small.records.size() || got.records.size() == big.records.size());
   }
-  // the child spends nearly all its time between creating PATH.tmp and renaming it, so some
-  // kills must have landed there, or the test proved nothing
+  // some kills must have landed between creating PATH.tmp and renaming it, or the test proved
+  // nothing
   EXPECT_GT(mid_write, 0);
   write_cube(p, small);
   EXPECT_FALSE(fs::exists(p + ".tmp"));

@@ -15,7 +15,7 @@ import sys
 import tempfile
 
 EXPECTED_COLUMNS = [
-    "scene", "motion", "axis", "setting", "preset", "safety", "integrator", "stiffness_n_m", "rest_speed",
+    "scene", "motion", "axis", "setting", "contact", "preset", "safety", "integrator", "stiffness_n_m", "rest_speed",
     "rest_time_s", "effects", "dt_s", "steps", "simulated_s", "overturned", "failure_time_s", "max_tilt_deg", "outcome_match",
     "failure_time_err_s", "max_tilt_err_deg", "traj_tilt_rms_deg", "traj_pos_rms_mm", "traj_rel_err", "error",
     "energy_err", "model_quantity", "model_value", "model_ref_err", "oracle", "oracle_value", "oracle_err", "wall_s",

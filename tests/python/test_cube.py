@@ -57,7 +57,10 @@ class CubeFile(unittest.TestCase):
     def test_root_attributes(self):
         a = self.f.attrs
         self.assertEqual(set(a), {"schema_version", "software_version", "job_text", "job_hash",
-                                  "physics_json", "seed", "units"})  # in particular no time stamp
+                                  "physics_json", "seed", "units", "job_inputs_sha256",
+                                  "inputs_sha256"})  # in particular no time stamp
+        self.assertEqual(a["inputs_sha256"], "c" * 64)
+        self.assertTrue(a["job_inputs_sha256"].endswith("  jobs/demo run.toml\n"))
         self.assertEqual(int(a["schema_version"]), 1)
         self.assertEqual(a["software_version"], "0.1.0 (abc1234)")
         self.assertTrue(a["job_text"].startswith("# job\nname = \"demo run\""))
@@ -93,7 +96,7 @@ class CubeFile(unittest.TestCase):
         self.assertEqual(list(r["pgv_pga_s"][()]), [0.068, 0.0693, 0.5])
         units = {"start_s": "s", "end_s": "s", "gmroti_pga_g": "g", "gmroti_pgv_cm_s": "cm/s",
                  "pgv_pga_s": "s", "listed_pga_g": "g", "listed_pgv_cm_s": "cm/s",
-                 "name": "none", "source": "none", "earthquake": "none"}
+                 "name": "none", "source": "none", "earthquake": "none", "inputs_sha256": "none"}
         self.assertEqual(set(r), set(units))
         for name, unit in units.items():
             self.assertEqual(r[name].shape, (3,), name)

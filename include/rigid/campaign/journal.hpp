@@ -1,8 +1,13 @@
 #pragma once
-/// The campaign journal: every finished result is appended to OUTPUT.journal (fixed-size
-/// records, each with a CRC-32) and flushed, so a kill between two cube checkpoints loses
-/// nothing; on resume the cube is read and the journal's valid records are replayed (a torn
-/// last record is ignored). After each cube checkpoint the journal starts over.
+/// The campaign journal: every finished result is appended to OUTPUT.journal and flushed, so a
+/// kill between two cube checkpoints loses nothing; on resume the cube is read and the journal's
+/// valid records are replayed. After each cube checkpoint the journal starts over.
+///
+/// Format (host byte order): a header of magic "RIGIDJ02", the 64-character key (the campaign's
+/// combined input digest) and a CRC-32 of both; then fixed-size records of a TaskResult, an
+/// 8-byte fingerprint of the key and a CRC-32 (zlib) of both. Records are checked one by one: a
+/// bad one is reported and skipped, the others kept; the fingerprint lets records be trusted
+/// even when the header is damaged.
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -13,25 +18,37 @@ namespace rigid::campaign {
 
 class Journal {
  public:
-  /// Opens PATH for appending; a missing or foreign journal (other job hash) is started anew.
-  Journal(std::string path, std::string job_hash);
+  /// Starts PATH anew for `key`, holding the `carried` results (those read from the old journal,
+  /// not yet in a cube), written to PATH.tmp and renamed so a failure leaves the old one whole.
+  /// Throws rigid::InputError(path, ...) on an I/O failure.
+  Journal(std::string path, std::string key, const std::vector<TaskResult>& carried = {});
   ~Journal();
   Journal(const Journal&) = delete;
   Journal& operator=(const Journal&) = delete;
 
+  /// Appends a result (buffered); throws rigid::InputError on an I/O failure.
   void append(const TaskResult& r);
-  /// Hands the appended records to the kernel (survives a process kill).
+  /// Hands the appended records to the kernel (survives a process kill); throws on failure.
   void flush();
-  /// Empties the journal (after a cube checkpoint has been renamed into place).
-  void reset();
+  /// Replaces the journal by one holding only `kept` (after a cube checkpoint has been renamed
+  /// into place), atomically like the constructor; throws on failure (the old journal stays).
+  void reset(const std::vector<TaskResult>& kept = {});
 
  private:
-  void start_new();
-  std::string path_, hash_;
+  std::string path_, key_;
   std::FILE* file_ = nullptr;
 };
 
-/// Valid records of a journal written for job_hash (none if the file is missing or foreign).
-std::vector<TaskResult> read_journal(const std::string& path, const std::string& job_hash);
+/// What a journal holds for one key.
+struct JournalContents {
+  std::vector<TaskResult> results;    ///< records that passed their checks, in file order
+  std::vector<std::string> problems;  ///< one line each: damaged header, records skipped
+  bool foreign = false;               ///< a sound header written for another key
+};
+
+/// Reads PATH (nothing when missing): records with a bad checksum, another key's fingerprint or
+/// a task outside [0, tasks) are skipped and reported; a torn last record (a kill mid-write) is
+/// dropped silently.
+JournalContents read_journal(const std::string& path, const std::string& key, long tasks);
 
 }  // namespace rigid::campaign

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "rigid/io/cube.hpp"
+#include "rigid/scenario/job.hpp"
 
 namespace rigid::campaign {
 
@@ -41,6 +42,9 @@ Cell cell_of(long task, int records, int scales, int rotations);
 /// Rotation of the horizontals for a cell (unit: deg, in [0, 360)): SplitMix64 applied to the
 /// job seed and the cell coordinates in turn, so any cell's angle is computed on its own.
 double rotation_angle_deg(std::uint64_t seed, const Cell& cell);
+
+/// The rotation of a cell in a job: its fixed angle when the job lists them, else the random one.
+double cell_rotation_deg(const scenario::Job& job, const Cell& cell);
 
 class Plan {
  public:

@@ -2,14 +2,37 @@
 /// Contact between two convex blocks: the common plane (shortest link, with the overlap step for
 /// penetrating pairs; Nezami et al. 2006, physics.md §4), the subcontacts on it, and the force
 /// law at each subcontact (physics.md §3). Pure functions: the caller owns all state.
+#include <string_view>
 #include <vector>
 
 #include "rigid/contact/gjk.hpp"
 
 namespace rigid::contact {
 
+/// How contacts resist interpenetration.
+enum class ContactModel {
+  /// The study's penalty springs (physics.md §3): F_n = K_N d^1.5 (1 + D dd/dt) per subcontact,
+  /// incremental shear springs capped by Coulomb; explicit time step limited by the stiffness.
+  penalty,
+  /// Non-penetrating rigid contact (physics.md §12): Moreau-Jean time stepping, impulses solved
+  /// at the velocity level with the Signorini condition, a Newton impact law and the Coulomb
+  /// cone; the step follows the motion and the geometry, not a spring.
+  rigid,
+};
+
+/// "penalty" or "rigid".
+const char* contact_model_name(ContactModel model);
+/// Parses "penalty" or "rigid"; false for anything else.
+bool parse_contact_model(std::string_view name, ContactModel& model);
+
 /// Contact law of the original Rigid study (physics.md §11 defaults).
 struct ContactLaw {
+  /// Which contact model; the stiffness and damping below belong to the penalty model only.
+  ContactModel model = ContactModel::penalty;
+  /// Normal restitution e_n of the rigid model's Newton impact law (unit: 1): 0 = plastic impact,
+  /// Housner's assumption, under which a rocking block keeps r = 1 - 1.5 sin^2 alpha of its
+  /// angular velocity per impact (physics.md §2).
+  double restitution = 0;
   /// K_N in F_n = K_N d^1.5 (1 + D dd/dt), d = indentation (unit: N/m^1.5; the study writes N/m).
   double normal_stiffness = 1e8;
   /// K_S: shear force grows by K_S per metre of tangential displacement (unit: N/m).

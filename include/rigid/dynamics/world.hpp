@@ -8,6 +8,7 @@
 
 #include "rigid/contact/contact.hpp"
 #include "rigid/core/types.hpp"
+#include "rigid/dynamics/contact_solver.hpp"
 #include "rigid/geometry/polyhedron.hpp"
 
 namespace rigid::dynamics {
@@ -54,6 +55,12 @@ struct StepSettings {
 /// tangent stiffness 1.5 K_N sqrt(d) at the indentation d of a 1 m/s impact (physics.md §10).
 double critical_time_step(const std::vector<BodyDef>& bodies, const contact::ContactLaw& law);
 
+/// Time step of the rigid contact model (physics.md §12), from the geometry alone: `safety` / 50
+/// of sqrt(r / g), r the smallest bounding radius of a free block, the time scale of its rocking
+/// and falling (a rectangular block's 1/p is sqrt(4 R / 3 g)). For a 1 m block that is 1.9 ms at
+/// safety 0.4 (the `fast` preset), the step ODE and Bullet use; it shrinks with the block.
+double rigid_time_step(const std::vector<BodyDef>& bodies, double safety);
+
 /// Per-body kinematic state (world frame).
 struct BodyState {
   Vec3 position{0, 0, 0};
@@ -70,10 +77,17 @@ struct PairContact {
   double overlap = 0;                    ///< last overlap (unit: m); < 0 is a gap
   struct Sub {
     int key;
-    Vec3 shear_force;                    ///< on b (unit: N)
+    Vec3 shear_force;                    ///< on b (unit: N); penalty model
+    double normal_impulse = 0;           ///< on b over the last step (unit: N s); rigid model
   };
-  std::vector<Sub> subs, next_subs;      ///< persistent subcontacts (double-buffered)
-  std::vector<contact::SubcontactPoint> points;  ///< scratch
+  /// Rigid model: the friction impulse of the pair's contact patch on b over the last step,
+  /// along the plane (unit: N s) and twisting about the normal (unit: N m s).
+  Vec3 friction_impulse{0, 0, 0};
+  double twist_impulse = 0;
+  /// Persistent subcontacts (double-buffered); subs[k] belongs to points[k]. The rigid model
+  /// also keeps open contacts within its speculative margin (SubcontactPoint::overlap < 0).
+  std::vector<Sub> subs, next_subs;
+  std::vector<contact::SubcontactPoint> points;  ///< the last step's subcontact points
   long tests = 0;                        ///< narrow-phase tests of this pair so far
   /// Distance skin (WorldEffects::distance_skin): the bounding spheres were skin_gap + margin
   /// apart when the bodies' relative travels summed to skin_travel; < 0 = no skin.
@@ -123,6 +137,11 @@ class World {
   const StepSettings& settings() const { return settings_; }
   StepSettings& mutable_settings() { return settings_; }
   const contact::ContactLaw& law() const { return law_; }
+  /// Normal force carried by subcontact k of a pair in the last step (unit: N): K_N d^1.5 for
+  /// the penalty model (the elastic part), p_n / h for the rigid model; 0 for an open contact.
+  double subcontact_load(const PairContact& pair, std::size_t k) const;
+  /// Sweeps the rigid contact solver needed in the last step, and whether it converged.
+  const SolverResult& last_solve() const { return last_solve_; }
 
   /// World positions of body i's vertices at the current time.
   const std::vector<Vec3>& world_vertices(int i) const { return world_vertices_[i]; }
@@ -163,6 +182,13 @@ class World {
 
  private:
   void update_world_vertices(int i);
+  void move_pedestals(double dt, const Vec3& ground_velocity);
+  /// Whether the pair is too far apart to touch within `margin` (the bounding-sphere test and,
+  /// with the distance skin, the travel since it was last found apart).
+  bool pair_apart(PairContact& p, double margin);
+  void step_penalty(double dt, const Vec3& ground_velocity_start, const Vec3& ground_velocity_end);
+  void step_rigid(double dt, const Vec3& ground_velocity_start, const Vec3& ground_velocity_end);
+  void collect_rigid_rows(double dt, const Vec3& ground_velocity);
   void compute_forces(double dt);
   void drift_rotation(int i, double dt);
 
@@ -183,6 +209,14 @@ class World {
   double dt_ = 0;
   double pedestal_work_ = 0;
   double max_overlap_ = 0;
+  // rigid model scratch (sized once, reused every step)
+  std::vector<ContactRow> rows_;
+  std::vector<FrictionPatch> patches_;
+  std::vector<int> patch_pairs_;  ///< the pair of each patch
+  Vec3 pedestal_velocity_{0, 0, 0};  ///< the pedestals' mean velocity over the last step
+  std::vector<SolverBody> solver_bodies_, pseudo_bodies_;
+  std::vector<SolverBody> free_bodies_, solver_scratch_;  ///< velocities before the solve (local damping)
+  SolverResult last_solve_;
 };
 
 }  // namespace rigid::dynamics

@@ -31,6 +31,7 @@ struct RecordMeta {
   double pgv_pga_s = 0;      ///< PGV/PGA (unit: s)
   double listed_pga_g = 0;   ///< GMRotI PGA given by the record list, 0 if none (unit: g)
   double listed_pgv_cm_s = 0;///< GMRotI PGV given by the record list, 0 if none (unit: cm/s)
+  std::string inputs;        ///< SHA-256 of its motion files, sha256sum lines (io/provenance.hpp)
 };
 
 /// Results of one object (scene) of the campaign. Every array has
@@ -38,6 +39,8 @@ struct RecordMeta {
 struct ObjectCube {
   std::string name;                     ///< object name (HDF5 group name)
   std::string scene;                    ///< scene file as given in the job
+  /// SHA-256 of every file the object was built from (scene, model, STLs, state), sha256sum lines
+  std::string inputs;
   /// Rocking parameters of a single-block object (scenario::rocking_parameters), NaN when the
   /// object has none (stacks): written as attributes alpha_rad, p_rad_s only when finite.
   double alpha_rad = std::numeric_limits<double>::quiet_NaN();
@@ -62,6 +65,12 @@ struct Cube {
   std::string job_hash;                 ///< hex SHA-256 (or other stable hash) of job_text
   std::string software_version;         ///< e.g. "0.1.0 (abc1234)"
   std::string physics_json;             ///< physics and accuracy settings as a JSON object
+  /// SHA-256 of the job's settings (job_settings_text) and its files (job file, record list),
+  /// sha256sum lines; the settings line has the path "(settings)"
+  std::string job_inputs;
+  /// SHA-256 over job_inputs and every object's and record's inputs: one digest that changes
+  /// when any input of any cell does (empty in cubes written before it existed)
+  std::string inputs_sha256;
   std::uint64_t seed = 0;
   /// Edges of the PGV/PGA bins of the fragility surface (unit: s), 10 edges = 9 bins.
   std::vector<double> pgv_pga_edges_s;
@@ -116,6 +125,11 @@ FragilitySurface fragility_surface(const Cube& cube, const ObjectCube& object);
 /// [scale, pgv_pga bin] (mean probability of the records in each PGV/PGA bin, NaN for empty bins).
 /// Throws rigid::InputError(path, 0, ...) on failure.
 void write_cube(const std::string& path, const Cube& cube);
+
+/// Switches off HDF5's automatic printing of its error stack for the rest of the process (also at
+/// library shutdown, when a file left open by a failed write is closed): our one-line messages
+/// carry its gist. The campaign calls it once at start.
+void silence_hdf5_errors();
 
 /// Reads a cube written by write_cube (for resume and tests). Throws rigid::InputError when the
 /// file is missing, not HDF5, or not a Rigid cube.

@@ -20,4 +20,8 @@ std::string text_hash(const std::string& text);
 /// existed, whose hashes therefore stay valid). A resume with another preset is refused.
 std::string job_hash(const scenario::Job& job);
 
+/// What job_hash hashes: the job text (with the command-line overrides the driver appends) and
+/// the accuracy preset, i.e. every physics-relevant setting that is not in an input file.
+std::string job_settings_text(const scenario::Job& job);
+
 }  // namespace rigid::io

@@ -23,6 +23,16 @@ Scene block_on_pedestal(double b, double h, double depth, const contact::Contact
                         double density = 2600, double pedestal_margin = 0.02,
                         double pedestal_height = 0.2);
 
+/// The ground drive of a one-sine acceleration pulse along x, a(t) = A sin(2 pi t / T) for
+/// 0 <= t <= T (unit: m/s^2, s): velocity A T / (2 pi) (1 - cos(2 pi t / T)) sampled every dt,
+/// constant afterwards (Zhang & Makris 2001, physics.md §2).
+GroundDrive one_sine_drive(double amplitude, double period, double dt = 1e-3);
+
+/// The box [lo, hi] with each face cut into n x n squares of two triangles (12 n^2 triangles,
+/// vertices inside its faces and edges): the same solid as box_soup, meshed finely, for checking
+/// that answers do not depend on the tessellation.
+geometry::TriangleSoup subdivided_box_soup(const Vec3& lo, const Vec3& hi, int n);
+
 /// Convex hull of the vertices of an icosahedron subdivided `frequency` times, projected on the
 /// sphere of `radius` (unit: m): a faceted near-sphere (the study's geode test).
 geometry::TriangleSoup geodesic_sphere(double radius, int frequency);

@@ -37,8 +37,13 @@ struct Job {
   std::uint64_t seed = 1;  ///< keys the rotation angles
   std::vector<JobObject> objects;
   std::vector<JobRecord> records;
+  std::string record_list;        ///< the record-list file (resolved path), empty for [[record]] tables
   std::vector<double> scales_g;   ///< target GMRotI50 PGA of each scale, increasing (unit: g)
   int rotations = 2;              ///< random rotations per (record, scale)
+  /// Fixed rotation angles instead of random ones ([campaign] rotation_angles_deg; unit: deg):
+  /// one per rotation index, e.g. [0.0] drives every block with the x component along x, as the
+  /// study's 2D comparison did. Empty: random angles keyed by the seed.
+  std::vector<double> rotation_angles_deg;
   /// Stop raising the scale for a record once this many consecutive scales overturned at every
   /// rotation (the study's rule); 0 disables it.
   int stop_after = 10;
@@ -51,6 +56,9 @@ struct Job {
   /// Which model simulates: "dem3d" (the engine) or "rocking2d" (the 2D Housner reference,
   /// driven by the x component of the rotated motion; scenes must admit it).
   std::string model = "dem3d";
+  /// Contact model for every object ("rigid" or "penalty"), from [run] contact or --contact;
+  /// empty: each scene's own [physics] contact.
+  std::string contact;
   double checkpoint_interval = 30;  ///< unit: s
   double grace = 30;              ///< time in-flight tasks get after a stop signal (unit: s)
 };

@@ -32,6 +32,9 @@ struct Scene {
   FailureRule failure;
   double density = 2600;          ///< unit: kg/m^3 (already applied to the bodies' masses)
   std::string source;             ///< where it was read from, for messages
+  /// Every file the scene was built from, in reading order (scene, model, STLs, state): what a
+  /// campaign hashes to refuse a resume over changed inputs.
+  std::vector<std::string> files;
 };
 
 /// Ground velocity that drives the fixed blocks, sampled every dt from t = 0 (unit: m/s),
