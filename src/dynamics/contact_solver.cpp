@@ -6,12 +6,12 @@
 #include <Eigen/LU>
 
 namespace rigid::dynamics {
-namespace {
 
-// Relative velocity of b against a at the point with lever arms ra, rb.
 Vec3 relative_velocity(const SolverBody& a, const SolverBody& b, const Vec3& ra, const Vec3& rb) {
   return (b.velocity + b.angular_velocity.cross(rb)) - (a.velocity + a.angular_velocity.cross(ra));
 }
+
+namespace {
 
 // A normal-only impulse p_n n on b, its opposite on a (lever terms precomputed).
 void apply_normal(SolverBody& a, SolverBody& b, const ContactRow& r, double pn) {

@@ -187,9 +187,9 @@ void World::step_rigid(double dt, const Vec3& ground_velocity_start, const Vec3&
   if (settings_.local_damping > 0) free_bodies_ = solver_bodies_;
   // warm start: last step's impulses of the same subcontacts
   warm_start(solver_bodies_, rows_, patches_);
-  // converged when a sweep changes velocities by less than 1e-7 of what gravity adds in a step
-  // (1e-6 let a block resting under a slow ramp creep 1e-6 rad before its uplift acceleration)
-  // (and angular velocities by that over the smallest block's radius)
+  // converged when a sweep changes velocities by less than 1e-7 of what gravity adds in a step,
+  // and angular velocities by that over the smallest block's radius (1e-6 let a block resting
+  // under a slow ramp creep 1e-6 rad before its uplift acceleration)
   SolverSettings solver;
   solver.velocity_tolerance = 1e-7 * settings_.gravity * dt;
   solver.angular_tolerance = solver.velocity_tolerance / smallest_radius;
@@ -240,9 +240,7 @@ void World::step_rigid(double dt, const Vec3& ground_velocity_start, const Vec3&
     const double size = std::hypot(patch.impulse.x(), patch.impulse.y(),
                                    patch.radius > 0 ? patch.impulse.z() / patch.radius : 0.0);
     if (total > 0 && size >= patch.friction * total * (1 - 1e-9)) {
-      const SolverBody& a = solver_bodies_[patch.a];
-      const SolverBody& b = solver_bodies_[patch.b];
-      Vec3 u = (b.velocity + b.angular_velocity.cross(patch.rb)) - (a.velocity + a.angular_velocity.cross(patch.ra));
+      Vec3 u = relative_velocity(solver_bodies_[patch.a], solver_bodies_[patch.b], patch.ra, patch.rb);
       u -= patch.normal.dot(u) * patch.normal;
       const double slip = u.norm() * dt;
       if (slip > 0) {

@@ -81,6 +81,9 @@ struct SolverResult {
   bool converged = false;
 };
 
+/// Velocity of b relative to a at the point with lever arms ra, rb from their centroids.
+Vec3 relative_velocity(const SolverBody& a, const SolverBody& b, const Vec3& ra, const Vec3& rb);
+
 /// Sets the patch's tangents: an orthonormal pair completing its normal, a fixed function of it.
 void set_tangents(FrictionPatch& patch);
 
