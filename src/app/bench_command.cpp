@@ -36,6 +36,7 @@ struct GeodeResult {
 };
 GeodeResult run_geode() {
   contact::ContactLaw law;
+  law.model = contact::ContactModel::penalty;
   law.friction = 0;
   law.damping = 0;
   auto geode = scenario::body_from_soup("geode", scenario::geodesic_sphere(0.15, 2), 2600, false);
@@ -208,8 +209,10 @@ void bench(int repeat, bool json, const std::string& only) {
     peers.push_back(peer_figures("rigid", rigid, preset_step, repeat));
   }
   if (only.empty() || only == "penalty") {
-    peers.push_back(peer_figures("penalty", contact::ContactLaw{}, preset_step, repeat));
-    contact::ContactLaw stiff;
+    contact::ContactLaw study;
+    study.model = contact::ContactModel::penalty;
+    peers.push_back(peer_figures("penalty", study, preset_step, repeat));
+    contact::ContactLaw stiff = study;
     stiff.normal_stiffness = stiff.shear_stiffness = 1e10;
     dynamics::StepSettings stiff_step = preset_step;
     stiff_step.safety = 1.0;

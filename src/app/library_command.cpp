@@ -59,8 +59,7 @@ void write_model(const scenario::LibraryModel& m, const fs::path& root) {
       << "# Regenerate: rigid model library --out " << root.generic_string() << " --only " << m.name
       << " (models/library/README.md)\n"
       << "model = \"" << m.name << ".model\"\nstate = \"" << m.name << ".state.toml\"\n\n"
-      << "[physics]  # the study's values (physics.md 11)\ndensity = 2600.0\nnormal_stiffness = 1e8\n"
-      << "shear_stiffness = 1e8\nfriction = 0.6\ndamping = 2.0\n\n[failure]\nrule = \""
+      << io::default_physics_table() << "\n[failure]\nrule = \""
       << (tilt ? "tilt" : "below") << "\"\n";
     if (tilt) f << "tilt_deg = " << fixed_text(m.failure.tilt_angle * 180.0 / kPi, 1) << "\n";
     if (!f) throw InputError(scene_path, 0, "cannot write the scene file");

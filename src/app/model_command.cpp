@@ -52,8 +52,8 @@ void write_block_model(const BlockModelOptions& o) {
           << " rad, depth " << o.depth << " m, on a pedestal it falls off when it topples.\n"
           << "# Regenerate: rigid model block --height " << o.height << " --alpha " << o.alpha
           << " --depth " << o.depth << " --out " << o.out << "\n"
-          << "model = \"" << name << ".model\"\nstate = \"" << name << ".state.toml\"\n\n[physics]\ndensity = 2600.0\nnormal_stiffness = 1e8\n"
-          << "shear_stiffness = 1e8\nfriction = 0.6\ndamping = 2.0\n\n[failure]\nrule = \"below\"\n";
+          << "model = \"" << name << ".model\"\nstate = \"" << name << ".state.toml\"\n\n"
+          << io::default_physics_table() << "\n[failure]\nrule = \"below\"\n";
   }
   // the equilibrium the shaking runs start from
   scenario::Scene scene = io::parse_model_text("block " + pedestal + "\n1 0 0 0\nblock " + block + "\n0 0 0 0\n",

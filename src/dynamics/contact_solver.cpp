@@ -16,9 +16,15 @@ namespace {
 // A normal-only impulse p_n n on b, its opposite on a (lever terms precomputed).
 void apply_normal(SolverBody& a, SolverBody& b, const ContactRow& r, double pn) {
   a.velocity -= (a.inverse_mass * pn) * r.normal;
-  a.angular_velocity -= a.inverse_inertia * (pn * r.ra_n);
+  a.angular_velocity -= pn * r.turn_a;
   b.velocity += (b.inverse_mass * pn) * r.normal;
-  b.angular_velocity += b.inverse_inertia * (pn * r.rb_n);
+  b.angular_velocity += pn * r.turn_b;
+}
+
+// Relative normal velocity at a row's point: n . (v_b + w_b x r_b - v_a - w_a x r_a), with
+// n . (w x r) = w . (r x n) precomputed.
+double normal_velocity(const SolverBody& a, const SolverBody& b, const ContactRow& r) {
+  return r.normal.dot(b.velocity - a.velocity) + b.angular_velocity.dot(r.rb_n) - a.angular_velocity.dot(r.ra_n);
 }
 
 // A patch impulse (force impulse along the tangents at the centre, twisting impulse about n).
@@ -39,7 +45,7 @@ Eigen::Vector3d patch_velocity(const SolverBody& a, const SolverBody& b, const F
 
 // Normal row: p_n = max(0, p_n + m (target - u_n)). Returns the change.
 double solve_normal(SolverBody& a, SolverBody& b, ContactRow& r) {
-  const double un = r.normal.dot(relative_velocity(a, b, r.ra, r.rb));
+  const double un = normal_velocity(a, b, r);
   const double pn = std::max(0.0, r.normal_impulse + r.normal_mass * (r.target_normal_velocity - un));
   const double change = pn - r.normal_impulse;
   if (change != 0) {
@@ -78,8 +84,9 @@ void prepare(const std::vector<SolverBody>& bodies, std::vector<ContactRow>& row
     const SolverBody& b = bodies[r.b];
     r.ra_n = r.ra.cross(r.normal);
     r.rb_n = r.rb.cross(r.normal);
-    const double k = a.inverse_mass + b.inverse_mass + r.ra_n.dot(a.inverse_inertia * r.ra_n) +
-                     r.rb_n.dot(b.inverse_inertia * r.rb_n);
+    r.turn_a = a.inverse_inertia * r.ra_n;
+    r.turn_b = b.inverse_inertia * r.rb_n;
+    const double k = a.inverse_mass + b.inverse_mass + r.ra_n.dot(r.turn_a) + r.rb_n.dot(r.turn_b);
     r.normal_mass = k > 0 ? 1.0 / k : 0.0;
   }
   for (auto& p : patches) {
@@ -170,7 +177,7 @@ void solve_correction(const std::vector<SolverBody>& bodies, std::vector<SolverB
     for (auto& r : rows) {
       SolverBody& a = pseudo[r.a];
       SolverBody& b = pseudo[r.b];
-      const double un = r.normal.dot(relative_velocity(a, b, r.ra, r.rb));
+      const double un = normal_velocity(a, b, r);
       const double p = std::max(0.0, r.correction_impulse + r.normal_mass * (r.correction_velocity - un));
       const double dp = p - r.correction_impulse;
       if (dp == 0) continue;

@@ -80,6 +80,13 @@ World::World(std::vector<BodyDef> bodies, const contact::ContactLaw& law,
       pairs_.push_back(std::move(p));
     }
   }
+  if (law_.model == contact::ContactModel::rigid) {
+    // the solver's buffers at their final size now, so that a step never allocates (the first
+    // position correction or a new patch would otherwise grow them mid-run)
+    for (auto* bodies : {&solver_bodies_, &free_bodies_, &pseudo_bodies_, &solver_scratch_}) bodies->reserve(n);
+    patches_.reserve(pairs_.size());
+    patch_pairs_.reserve(pairs_.size());
+  }
   if (settings_.dt > 0) {
     dt_ = settings_.dt;
   } else if (law_.model == contact::ContactModel::rigid) {

@@ -50,6 +50,7 @@ struct Ramp {
 // contacts (1e10) approach the rigid limit, and that is what the 2 % criterion tests.
 contact::ContactLaw stiff_contacts() {
   contact::ContactLaw law;
+  law.model = contact::ContactModel::penalty;  // the rigid model's own tests: rigid_contact_test.cpp
   law.normal_stiffness = 1e10;
   law.shear_stiffness = 1e10;
   return law;
@@ -178,6 +179,7 @@ TEST_P(HousnerPulse, OneSineThresholdWithinTenPercentOf2DModel) {
   const double a2d = rocking::min_overturning_amplitude(block2d, rocking::PulseShape::one_sine, period);
   ASSERT_TRUE(std::isfinite(a2d));
   contact::ContactLaw law;
+  law.model = contact::ContactModel::penalty;
   law.normal_stiffness = law.shear_stiffness = GetParam().stiffness;
   const scenario::Scene scene = settled_block(alpha, law);
   scenario::RunSettings settings;

@@ -65,9 +65,9 @@ scenario::RunOutcome run(const scenario::Scene& scene, const scenario::GroundDri
 constexpr double kAlpha = 0.2;  // tan(alpha) = 0.2027; one-sine threshold at T = 0.5 s ~ 0.26 g
 
 TEST(Effects, QuietStretchesSleepAndGiveTheSameAnswer) {
-  // Still for 4 s, then a one-sine pulse of 0.36 g that rocks a block of alpha 0.3 (uplift near
+  // Still for 4 s, then a one-sine pulse of 0.42 g that rocks a block of alpha 0.3 (uplift near
   // g tan(alpha) = 0.31 g) without toppling it, then still again to 20 s.
-  const auto drive = drive_from(20.0, pulse(0.36, 0.5, 4.0, 0.0));
+  const auto drive = drive_from(20.0, pulse(0.42, 0.5, 4.0, 0.0));
   const auto& scene = settled_block(0.3);
   const auto all = run(scene, drive, false);
   const auto sel = run(scene, drive, true);
@@ -88,7 +88,7 @@ TEST(Effects, QuietStretchesSleepAndGiveTheSameAnswer) {
 }
 
 TEST(Effects, ABlockThatToppplesStillTopplesAtTheSameTimeAfterAQuietStart) {
-  const auto drive = drive_from(12.0, pulse(0.40, 0.5, 4.0, 0.0));
+  const auto drive = drive_from(12.0, pulse(0.42, 0.5, 4.0, 0.0));
   const auto& scene = settled_block(kAlpha);
   const auto all = run(scene, drive, false);
   const auto sel = run(scene, drive, true);

@@ -25,10 +25,12 @@ const char* contact_model_name(ContactModel model);
 /// Parses "penalty" or "rigid"; false for anything else.
 bool parse_contact_model(std::string_view name, ContactModel& model);
 
-/// Contact law of the original Rigid study (physics.md §11 defaults).
+/// Contact law: the model, and the parameters of each (penalty values: the original study's,
+/// physics.md §11).
 struct ContactLaw {
-  /// Which contact model; the stiffness and damping below belong to the penalty model only.
-  ContactModel model = ContactModel::penalty;
+  /// Which contact model (rigid by default: the rigid-block answer at the lower cost, README
+  /// "Rigid contact"); the stiffness and damping below belong to the penalty model only.
+  ContactModel model = ContactModel::rigid;
   /// Normal restitution e_n of the rigid model's Newton impact law (unit: 1): 0 = plastic impact,
   /// Housner's assumption, under which a rocking block keeps r = 1 - 1.5 sin^2 alpha of its
   /// angular velocity per impact (physics.md §2).

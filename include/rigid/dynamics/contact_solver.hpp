@@ -47,6 +47,8 @@ struct ContactRow {
   // filled by prepare()
   double normal_mass = 0;         ///< 1 / (J_n M^-1 J_n^T)
   Vec3 ra_n{0, 0, 0}, rb_n{0, 0, 0};  ///< ra x n, rb x n
+  /// I_a^-1 (ra x n), I_b^-1 (rb x n): the angular velocity a unit normal impulse gives each body
+  Vec3 turn_a{0, 0, 0}, turn_b{0, 0, 0};
 };
 
 /// The friction of one contact patch: rows [first_row, first_row + row_count) of the same pair.

@@ -18,6 +18,10 @@ scenario::Scene load_scene(const std::string& path);
 scenario::Scene parse_model_text(const std::string& text, const std::string& base_dir,
                                  const std::string& source, long first_line = 1);
 
+/// The `[physics]` table of a generated scene file: the default contact model, named, and the
+/// study's values for density and the penalty parameters (physics.md §11), one per line.
+std::string default_physics_table();
+
 /// Writes the poses of all blocks (a saved equilibrium state) as TOML, full precision.
 void save_state(const std::string& path, const scenario::Scene& scene);
 
