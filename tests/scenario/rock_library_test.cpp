@@ -244,7 +244,8 @@ TEST(TiltTest, RectangularBlockTopplesAtGTanAlpha) {
 // gathers on one or two base vertices near the toe, whose millimetre of indentation tilts the rock
 // onto the next vertices and moves its centroid towards the toe (4-13 % below rigid statics at
 // K = 1e8). Stiffer contacts must bring the tilt test towards the statics of the same geometry
-// (K = 1e10 comes within 2 %; 1e9 is checked here to keep the test short).
+// (K = 1e10 comes within 2 %; 1e9 is checked here to keep the test short), and rigid contact
+// must give the statics itself.
 TEST(TiltTest, IrregularRockApproachesRigidStaticsAsContactsStiffen) {
   const auto& m = model("single_rock_075");
   // the weakest of eight directions, by statics
@@ -256,16 +257,24 @@ TEST(TiltTest, IrregularRockApproachesRigidStaticsAsContactsStiffen) {
       az = 2 * kPi * j / 8;
     }
   }
-  const auto study = scenario::tilt_test(scenario::equilibrate(scenario::library_scene(m), {}), az);
-  contact::ContactLaw stiffer;
+  contact::ContactLaw soft;
+  soft.model = contact::ContactModel::penalty;
+  const auto study = scenario::tilt_test(scenario::equilibrate(scenario::library_scene(m, soft), {}), az);
+  contact::ContactLaw stiffer = soft;
   stiffer.normal_stiffness = stiffer.shear_stiffness = 1e9;
   const auto firm = scenario::tilt_test(scenario::equilibrate(scenario::library_scene(m, stiffer), {}), az);
-  std::printf("single_rock_075, azimuth %.0f deg: rigid statics %.4f g, tilt test %.4f g (K = 1e8), %.4f g (K = 1e9)\n",
-              az * 180 / kPi, weakest, study.acceleration, firm.acceleration);
+  // rigid contact has no compliance to tilt on: the tilt test is the statics of the geometry
+  contact::ContactLaw rigid;
+  rigid.model = contact::ContactModel::rigid;
+  const auto hard = scenario::tilt_test(scenario::equilibrate(scenario::library_scene(m, rigid), {}), az);
+  std::printf("single_rock_075, azimuth %.0f deg: rigid statics %.4f g, tilt test %.4f g (K = 1e8), %.4f g (K = 1e9), "
+              "%.4f g (rigid contact)\n",
+              az * 180 / kPi, weakest, study.acceleration, firm.acceleration, hard.acceleration);
   EXPECT_NEAR(firm.acceleration / weakest, 1.0, 0.06);
   EXPECT_LT(firm.acceleration, weakest);
   EXPECT_LT(study.acceleration, firm.acceleration);
   EXPECT_GT(study.acceleration, 0.85 * weakest);
+  EXPECT_NEAR(hard.acceleration / weakest, 1.0, 0.01);
 }
 
 TEST(TiltTest, ModelAgainstAWallStandsWhenPushedIntoIt) {
