@@ -2,6 +2,7 @@
 // print one line `rigid: error: ...` and exit 2.
 #include <cstdio>
 #include <exception>
+#include <string>
 
 #include "commands.hpp"
 #include "rigid/core/error.hpp"
@@ -20,10 +21,27 @@ int main(int argc, char** argv) {
   rigid::app::register_plot_command(app);
   rigid::app::register_study_command(app);
   rigid::app::set_campaign_arguments(argc, argv);
+  if (argc <= 1) {
+    std::fputs(app.help().c_str(), stdout);
+    return 0;
+  }
   try {
     app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
+  } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    // usage errors in the one-line format of every other input error, exit 2 (CLI11's own codes
+    // are 100+ and its message two lines)
+    std::string message = e.what();
+    for (char& c : message) {
+      if (c == '\n') c = ' ';
+    }
+    std::fprintf(stderr, "rigid: error: %s (see rigid --help)\n", message.c_str());
+    return 2;
   } catch (const rigid::InputError& e) {
     std::fprintf(stderr, "rigid: error: %s\n", e.what());
     return 2;

@@ -2,6 +2,7 @@
 // on stderr naming the file (and line or facet) and the problem; never a crash or a hang.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -128,6 +129,31 @@ TEST_F(BadInput, MalformedAt2) {
   const auto m = write("a.model", "block cube.stl\n1 0 0 0\nblock cube.stl\n0 0 0 0\n");
   const auto a = write("rec-X.AT2", "PEER\nx\nACCELERATION IN G\nNPTS=    3, DT=   0.01 SEC\n0.1 zz 0.3\n");
   expect_error("run " + m + " --motion " + a, {"rec-X.AT2:5"});
+}
+
+// Command-line usage errors of every kind CLI11 reports: the same one-line format, exit 2.
+class UsageError : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(UsageError, ExitsTwoWithOneLine) {
+  const Result r = run_rigid(GetParam());
+  EXPECT_EQ(r.status, 2) << GetParam() << ": " << r.err;
+  EXPECT_EQ(r.err.rfind("rigid: error: ", 0), 0u) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+}
+
+INSTANTIATE_TEST_SUITE_P(Kinds, UsageError,
+                         ::testing::Values("frobnicate",                       // unknown subcommand
+                                           "run",                              // missing positional
+                                           "run a.model --no-such-option",     // unknown option
+                                           "bench --repeat x",                 // not a number
+                                           "bench --repeat 0",                 // out of range
+                                           "run a.model --motion",             // option without value
+                                           "motion",                           // subcommand required
+                                           "campaign a.toml b.toml c.toml"));  // extra positionals
+
+TEST(BareCommand, PrintsHelpAndSucceeds) {
+  const std::string cmd = std::string(RIGID_BINARY_DIR) + "/bin/rigid > /dev/null 2>&1";
+  EXPECT_EQ(WEXITSTATUS(std::system(cmd.c_str())), 0);
 }
 
 }  // namespace
