@@ -7,8 +7,10 @@ from Rigid's HDF5 fragility cubes (README "The fragility cube (HDF5)"; physics.m
     rigid_plot.py table CUBE [CUBE...] --out FILE.md [--scale G] [--layout auto|objects|records]
 
 `rigid plot ARGS...` runs this file with Debian's /usr/bin/python3 (python3-numpy, python3-h5py,
-python3-matplotlib); no scipy: the normal CDF comes from math.erfc and the maximum-likelihood fit
-is our own damped Newton iteration.
+python3-matplotlib, python3-scipy): the normal CDF, log-CDF (stable in the far tails) and quantile
+are scipy.special's; the maximum-likelihood fit is a damped Newton iteration on the exact Hessian,
+since the scale sigma(x) depends on x (a heteroscedastic probit, which statsmodels' GLM cannot
+fit).
 
 The fit ("this project's fit", NOT the coefficients of Purvance et al. 2008, which we do not have):
 
@@ -50,9 +52,10 @@ try:
     from matplotlib import lines as mlines
     from matplotlib import patheffects as pe
     from matplotlib import ticker as mticker
+    from scipy.special import log_ndtr, ndtr, ndtri
 except ImportError as e:  # pragma: no cover
     sys.stderr.write(f"rigid_plot: error: {e}; install python3-numpy python3-h5py python3-matplotlib "
-                     f"and run with /usr/bin/python3 (this is {sys.executable})\n")
+                     f"python3-scipy and run with /usr/bin/python3 (this is {sys.executable})\n")
     sys.exit(2)
 
 DPI = 120
@@ -70,50 +73,32 @@ class InputError(Exception):
 
 
 # --------------------------------------------------------------------------------------------
-# Normal distribution without scipy
+# Normal distribution (scipy.special)
 
-_SQRT2 = math.sqrt(2.0)
 _LOG_SQRT_2PI = 0.5 * math.log(2.0 * math.pi)
-_erfc = np.frompyfunc(math.erfc, 1, 1)
 
 
 def norm_cdf(z):
-    z = np.asarray(z, dtype=float)
-    return 0.5 * np.asarray(_erfc(-z / _SQRT2), dtype=float)
+    return ndtr(np.asarray(z, dtype=float))
 
 
 def norm_logcdf(z):
-    """ln Phi(z), accurate in the far lower tail (asymptotic series below z = -30)."""
-    z = np.atleast_1d(np.asarray(z, dtype=float))
-    out = np.empty_like(z)
-    far = z < -30.0
-    near = ~far
-    out[near] = np.log(norm_cdf(z[near]))
-    zf = z[far]
-    out[far] = -0.5 * zf * zf - _LOG_SQRT_2PI - np.log(-zf) + np.log1p(-1.0 / zf**2 + 3.0 / zf**4 - 15.0 / zf**6 + 105.0 / zf**8)
-    return out
+    """ln Phi(z), accurate in both tails."""
+    return log_ndtr(np.atleast_1d(np.asarray(z, dtype=float)))
 
 
 def norm_ppf(p):
-    """Phi^-1(p) for 0 < p < 1, by bisection on math.erfc (to ~1e-15)."""
+    """Phi^-1(p) for 0 < p < 1."""
     if not 0.0 < p < 1.0:
         raise ValueError("norm_ppf needs 0 < p < 1")
-    lo, hi = -40.0, 40.0
-    for _ in range(200):
-        mid = 0.5 * (lo + hi)
-        if 0.5 * math.erfc(-mid / _SQRT2) < p:
-            lo = mid
-        else:
-            hi = mid
-        if hi - lo < 1e-15:
-            break
-    return 0.5 * (lo + hi)
+    return float(ndtri(p))
 
 
 def mills(z):
     """phi(z) / Phi(z) (the inverse Mills ratio of -z), stable for very negative z."""
     z = np.asarray(z, dtype=float)
-    logphi = -0.5 * z * z - _LOG_SQRT_2PI
+    with np.errstate(over="ignore"):  # |z| > 1e154 in a rejected trial step: phi -> 0, ratio finite
+        logphi = -0.5 * z * z - _LOG_SQRT_2PI
     return np.exp(logphi - norm_logcdf(z))
 
 
