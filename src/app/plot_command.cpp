@@ -81,7 +81,7 @@ std::string find_plot_script() {
   const int err = errno;  // only reached when execv failed
   if (err == ENOENT)
     throw InputError("", 0, python + ": not found; `rigid plot` needs Debian's python3 with python3-numpy, "
-                            "python3-h5py and python3-matplotlib (setup.sh installs them), or set RIGID_PYTHON");
+                            "python3-h5py, python3-matplotlib and python3-scipy (setup.sh installs them), or set RIGID_PYTHON");
   throw std::runtime_error("cannot run " + python + ": " + std::strerror(err));
 }
 
