@@ -67,6 +67,9 @@ if [[ $action == sanitize ]]; then
   export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
   export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$PWD/tests/lsan_suppressions.txt:print_suppressions=0}
 fi
+if [[ $action == demo ]]; then
+  targets=(--target rigid)  # the demo runs only the executable; `test` builds the rest
+fi
 start=$SECONDS
 # shellcheck disable=SC2086
 cmake -S . -B "$build_dir" "${cmake_args[@]}" ${RIGID_CMAKE_ARGS:-} >/dev/null
