@@ -87,14 +87,14 @@ World::World(std::vector<BodyDef> bodies, const contact::ContactLaw& law,
     patches_.reserve(pairs_.size());
     patch_pairs_.reserve(pairs_.size());
   }
-  if (settings_.dt > 0) {
-    dt_ = settings_.dt;
-  } else if (law_.model == contact::ContactModel::rigid) {
-    dt_ = rigid_time_step(defs_, settings_.safety);
-  } else {
-    dt_ = settings_.safety * critical_time_step(defs_, law_);
-  }
+  dt_ = time_step(defs_, law_, settings_);
   refresh();
+}
+
+double time_step(const std::vector<BodyDef>& bodies, const contact::ContactLaw& law, const StepSettings& settings) {
+  if (settings.dt > 0) return settings.dt;
+  if (law.model == contact::ContactModel::rigid) return rigid_time_step(bodies, settings.safety);
+  return settings.safety * critical_time_step(bodies, law);
 }
 
 void World::refresh() {

@@ -21,7 +21,8 @@
 //   /records/inputs_sha256                                            [R] string (sha256sum lines)
 //   /objects/<name>/       attributes: scene (string), index (int32, position in the job),
 //                          inputs_sha256 (string, sha256sum lines: scene, model, STLs, state),
-//                          alpha_rad, p_rad_s (float64, only for single-block objects)
+//                          alpha_rad, p_rad_s (float64, only for single-block objects),
+//                          physics_json (string: the object's own physics and run settings)
 //       outcome            [R,S,A] int8   attribute legend = "0 not run, 1 survived, ..."
 //       rotation_deg, failure_time_s, max_tilt_deg, max_slip_m, wall_s   [R,S,A] float64
 //       failure_reason     [R,S,A] int32  0 = none, else the campaign's FailureReason code
@@ -528,6 +529,7 @@ void write_contents(const H5& h, hid_t file, const Cube& c) {
     w.attribute(g, "scene", o.scene);
     w.attribute(g, "index", static_cast<std::int32_t>(i));
     w.attribute(g, "inputs_sha256", o.inputs);
+    if (!o.physics_json.empty()) w.attribute(g, "physics_json", o.physics_json);
     if (std::isfinite(o.alpha_rad)) w.attribute(g, "alpha_rad", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &o.alpha_rad);
     if (std::isfinite(o.p_rad_s)) w.attribute(g, "p_rad_s", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &o.p_rad_s);
     const auto cells = [&](Hid d, const std::string& path) {
@@ -841,6 +843,7 @@ Cube read_contents(const H5& h, hid_t file) {
     o.name = name;
     o.scene = rd.string_attribute(g, "scene");
     if (rd.has_attribute(g, "inputs_sha256")) o.inputs = rd.string_attribute(g, "inputs_sha256");
+    if (rd.has_attribute(g, "physics_json")) o.physics_json = rd.string_attribute(g, "physics_json");
     if (rd.has_attribute(g, "alpha_rad")) o.alpha_rad = rd.double_attribute(g, "alpha_rad");
     if (rd.has_attribute(g, "p_rad_s")) o.p_rad_s = rd.double_attribute(g, "p_rad_s");
     o.outcome = rd.numbers<std::int8_t>(g + "/outcome", H5T_INTEGER, H5T_NATIVE_INT8, rsa);

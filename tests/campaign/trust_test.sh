@@ -7,6 +7,8 @@
 #                    one line naming the file, cube and journal untouched; --force starts anew
 #   MODE journal     a flipped byte in one record / in the header: reported, the rest kept
 #   MODE lock        a second campaign on the same --out while the first runs: exit 2, one line
+#   MODE physics     two objects with different frictions and models: each object's own physics is
+#                    in the cube (its physics_json attribute), read back with h5py
 #   MODE checkpoint  a full disk (small tmpfs) at a resume, mid-run under mpirun -np 2 and after
 #                    SIGUSR1: exit 1, one line, no abort, cube and journal intact, resume exact
 set -u
@@ -96,6 +98,24 @@ interrupted() {  # OUT N
 }
 
 case "$mode" in
+physics)
+  # a second copy of the scene with friction 0.9 and the penalty model
+  sed -e 's/^friction = 0.6/friction = 0.9/' -e 's/^contact = "rigid"/contact = "penalty"/' block_a02.toml > other.toml
+  check "the copy differs in friction and model" grep -q 'friction = 0.9' other.toml
+  printf '\n[[object]]\nname = "other"\nscene = "other.toml"\n' >> job.toml
+  campaign --out "$work/two.h5" > "$work/two.log" 2>&1
+  check "two-object campaign completes" test $? -eq 0
+  /usr/bin/python3 - "$work/two.h5" > "$work/phys.txt" 2>&1 << 'PY'
+import json, sys, h5py
+with h5py.File(sys.argv[1]) as f:
+    for name in f["objects"]:
+        p = json.loads(f["objects"][name].attrs["physics_json"])
+        print(name, p["friction"], p["contact"], p["density"], p["failure_rule"], p["step_s"] > 0)
+PY
+  check "object block_a02: friction 0.6, rigid contact" grep -q "^block_a02 0.6 rigid 2600 below True" "$work/phys.txt"
+  check "object other: friction 0.9, penalty contact" grep -q "^other 0.9 penalty 2600 below True" "$work/phys.txt"
+  cat "$work/phys.txt"
+  ;;
 inputs)
   interrupted "$work/part.h5" 2
   cp "$work/part.h5" "$work/snap.h5"

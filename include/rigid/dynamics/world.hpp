@@ -61,6 +61,10 @@ double critical_time_step(const std::vector<BodyDef>& bodies, const contact::Con
 /// safety 0.4 (the `fast` preset), the step ODE and Bullet use; it shrinks with the block.
 double rigid_time_step(const std::vector<BodyDef>& bodies, double safety);
 
+/// The step a World over these bodies takes: settings.dt when set, else the contact model's
+/// automatic step (rigid_time_step, or safety x critical_time_step for penalty contact).
+double time_step(const std::vector<BodyDef>& bodies, const contact::ContactLaw& law, const StepSettings& settings);
+
 /// Per-body kinematic state (world frame).
 struct BodyState {
   Vec3 position{0, 0, 0};

@@ -41,6 +41,9 @@ struct ObjectCube {
   std::string scene;                    ///< scene file as given in the job
   /// SHA-256 of every file the object was built from (scene, model, STLs, state), sha256sum lines
   std::string inputs;
+  /// The object's own physics and run settings (contact model and law, density, failure rule,
+  /// time step, accuracy, effects) as a JSON object; empty in cubes written before it existed
+  std::string physics_json;
   /// Rocking parameters of a single-block object (scenario::rocking_parameters), NaN when the
   /// object has none (stacks): written as attributes alpha_rad, p_rad_s only when finite.
   double alpha_rad = std::numeric_limits<double>::quiet_NaN();
