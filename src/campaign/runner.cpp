@@ -19,12 +19,15 @@ TaskRunner::TaskRunner(const scenario::Job& job) : job_(job) {
     scenes_.push_back(std::move(s));
   }
   for (const auto& r : job.records) {
-    const motion::GroundMotion m = motion::windowed(io::read_motion_set(r.spec), r.start, r.end);
+    io::SetReadOptions read;
+    read.align.resample = r.resample;
+    const motion::GroundMotion m = motion::windowed(io::read_motion_set(r.spec, read), r.start, r.end);
     const double unit = motion::target_pga_factor(m, 1.0);
     io::RecordMeta meta;
     meta.name = r.name;
     meta.source = r.spec;
     meta.earthquake = r.earthquake;
+    meta.alignment = m.alignment;
     meta.start_s = r.start;
     meta.end_s = r.start + m.duration();
     meta.listed_pga_g = r.listed_pga_g;

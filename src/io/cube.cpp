@@ -19,6 +19,7 @@
 //   /records/{start_s, end_s, gmroti_pga_g, gmroti_pgv_cm_s, pgv_pga_s,
 //             listed_pga_g, listed_pgv_cm_s}                          [R] float64
 //   /records/inputs_sha256                                            [R] string (sha256sum lines)
+//   /records/alignment                                                [R] string (empty: matched)
 //   /objects/<name>/       attributes: scene (string), index (int32, position in the job),
 //                          inputs_sha256 (string, sha256sum lines: scene, model, STLs, state),
 //                          alpha_rad, p_rad_s (float64, only for single-block objects),
@@ -499,6 +500,9 @@ void write_contents(const H5& h, hid_t file, const Cube& c) {
       "earthquake", [](const RecordMeta& m) { return m.earthquake; },
       "earthquake, from the record list (may be empty)");
   text(
+      "alignment", [](const RecordMeta& m) { return m.alignment; },
+      "how the components were aligned to one length (zero-padding, resampling); empty if they matched");
+  text(
       "inputs_sha256", [](const RecordMeta& m) { return m.inputs; },
       "SHA-256 of the record's motion files, sha256sum lines (HEX  PATH)");
   number(
@@ -810,6 +814,10 @@ Cube read_contents(const H5& h, hid_t file) {
     c.records[r].name = names[r];
     c.records[r].source = sources[r];
     c.records[r].earthquake = quakes[r];
+  }
+  if (rd.has_link("/records/alignment")) {
+    const std::vector<std::string> alignment = rd.strings("/records/alignment", R);
+    for (hsize_t r = 0; r < R; ++r) c.records[r].alignment = alignment[r];
   }
   if (rd.has_link("/records/inputs_sha256")) {
     const std::vector<std::string> inputs = rd.strings("/records/inputs_sha256", R);

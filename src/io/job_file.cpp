@@ -235,7 +235,7 @@ scenario::Job load_job(const std::string& path) {
     for (const auto& node : *arr) {
       const auto* t = node.as_table();
       if (!t) throw InputError(path, line_of(node), "each [[record]] must be a table");
-      reject_unknown(*t, {"name", "motion", "start", "end", "earthquake"}, path, "[[record]]");
+      reject_unknown(*t, {"name", "motion", "start", "end", "earthquake", "align"}, path, "[[record]]");
       scenario::JobRecord r;
       const auto motion = (*t)["motion"].value<std::string>();
       if (!motion) throw InputError(path, line_of(node), "[[record]] needs motion = \"NAME-X.AT2\" or \"H1.AT2,H2.AT2\"");
@@ -244,6 +244,12 @@ scenario::Job load_job(const std::string& path) {
       r.start = optional_number(*t, "start", 0.0, path);
       r.end = optional_number(*t, "end", std::numeric_limits<double>::infinity(), path);
       r.earthquake = (*t)["earthquake"].value_or(std::string());
+      if (const auto* align = t->get("align")) {
+        const auto value = align->value<std::string>();
+        if (!value || (*value != "resample" && *value != "auto"))
+          throw InputError(path, line_of(*align), "[[record]] align must be \"auto\" (pad lengths within 1 %) or \"resample\"");
+        r.resample = *value == "resample";
+      }
       job.records.push_back(r);
     }
   }

@@ -48,6 +48,25 @@ GroundMotion make_ground_motion(std::string name, std::vector<Component> compone
     same_dt = same_dt && std::abs(c.dt - dt0) <= 1e-9 * dt0;
     same_n = same_n && c.acc.size() == n0;
   }
+  std::size_t longest = 0, shortest = n0;
+  for (const auto& c : components) {
+    longest = std::max(longest, c.acc.size());
+    shortest = std::min(shortest, c.acc.size());
+  }
+  std::string alignment;
+  if (!options.resample && same_dt && !same_n && double(longest - shortest) <= kAutoPadFraction * double(longest)) {
+    // a few samples' difference at equal dt: pad the shorter with the quiet they end in
+    for (std::size_t i = 0; i < components.size(); ++i) {
+      auto& c = components[i];
+      if (c.acc.size() == longest) continue;
+      if (!alignment.empty()) alignment += ", ";
+      const std::size_t added = longest - c.acc.size();
+      alignment += "component " + (c.label.empty() ? "#" + std::to_string(i + 1) : c.label) + " zero-padded by " +
+                   std::to_string(added) + " samples (" + num(double(added) * c.dt) + " s)";
+      c.acc.resize(longest, 0.0);
+    }
+    same_n = true;
+  }
   if (!options.resample && (!same_dt || !same_n)) {
     std::string what = "components differ in ";
     what += !same_dt ? "time step" : "length";
@@ -63,7 +82,8 @@ GroundMotion make_ground_motion(std::string name, std::vector<Component> compone
       what += ": npts " + std::to_string(components[i].acc.size()) + " dt " +
               num(components[i].dt);
     }
-    what += "); ask for resampling to a common dt, zero-padded to the longest (--resample)";
+    what += "); lengths within 1 % at equal dt are padded automatically; otherwise ask for resampling to "
+            "a common dt, zero-padded to the longest (--resample, or align = \"resample\" in a job's [[record]])";
     throw InputError(name, 0, what);
   }
   double dt = dt0;
@@ -82,9 +102,12 @@ GroundMotion make_ground_motion(std::string name, std::vector<Component> compone
     }
     // zero-pad at the end: records end in quiet, so this keeps all data of the longest one
     for (auto& c : components) c.acc.resize(n, 0.0);
+    if (!same_dt) alignment = "resampled to dt " + num(dt) + " s, zero-padded to " + std::to_string(n) + " samples";
+    else if (!same_n) alignment = "zero-padded to " + std::to_string(n) + " samples (resampling asked for)";
   }
   GroundMotion m;
   m.name = std::move(name);
+  m.alignment = std::move(alignment);
   m.dt = dt;
   m.x = std::move(components[0].acc);
   m.label_x = components[0].label;

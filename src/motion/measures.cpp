@@ -192,6 +192,7 @@ MotionInfo motion_info(const GroundMotion& m, const MeasureOptions& options,
   MotionInfo info;
   info.name = m.name;
   info.sources = m.sources;
+  info.alignment = m.alignment;
   info.npts = m.npts();
   info.dt = m.dt;
   info.duration = m.duration();
@@ -286,7 +287,7 @@ std::string to_json(const MotionInfo& info) {
     if (i) o += ',';
     o += jstr(info.sources[i]);
   }
-  o += "],\"npts\":" + std::to_string(info.npts) + ",\"dt_s\":" + jnum(info.dt, 10) +
+  o += "],\"alignment\":" + jstr(info.alignment) + ",\"npts\":" + std::to_string(info.npts) + ",\"dt_s\":" + jnum(info.dt, 10) +
        ",\"duration_s\":" + jnum(info.duration, 10) + ",\"components\":[";
   for (std::size_t i = 0; i < info.axes.size(); ++i) {
     const auto& a = info.axes[i];
@@ -327,6 +328,7 @@ std::string to_text(const MotionInfo& info) {
   char buf[256];
   std::string o = info.name + "\n";
   for (const auto& s : info.sources) o += "  source " + s + "\n";
+  if (!info.alignment.empty()) o += "  aligned: " + info.alignment + "\n";
   std::snprintf(buf, sizeof buf, "  npts %zu  dt %.6g s  duration %.6g s\n", info.npts, info.dt,
                 info.duration);
   o += buf;

@@ -271,6 +271,31 @@ TEST(At2Shared, EveryRecordMatchesItsManifest) {
   std::printf("read %d shared records; slowest read %.3f s\n", checked, slowest);
 }
 
+// Real NGA pairs whose horizontals differ by 1-34 samples at equal dt read without options, the
+// shorter zero-padded and noted; the pair whose second component is 14 % shorter is refused
+// unless resampling is asked for.
+TEST(At2Shared, NearlyEqualPairsArePaddedAndAFarShorterOneIsRefused) {
+  const fs::path peer = fs::path(RIGID_SHARED_DIR) / "waveforms" / "peer";
+  if (!fs::exists(peer / "manifest.csv")) GTEST_SKIP() << "no shared records at " << peer;
+  const auto pair = [&](const char* h1, const char* h2) { return (peer / h1).string() + "," + (peer / h2).string(); };
+  const char* padded[][2] = {{"IMPVALL/RSN183_IMPVALL.H_H-E08140.AT2", "IMPVALL/RSN183_IMPVALL.H_H-E08230.AT2"},
+                             {"IMPVALL/RSN181_IMPVALL.H_H-E06140.AT2", "IMPVALL/RSN181_IMPVALL.H_H-E06230.AT2"},
+                             {"STELIAS/RSN1628_STELIAS_059V2090.AT2", "STELIAS/RSN1628_STELIAS_059V2180.AT2"},
+                             {"FRIULI/RSN125_FRIULI.A_A-TMZ000.AT2", "FRIULI/RSN125_FRIULI.A_A-TMZ270.AT2"},
+                             {"CHALFANT/RSN545_CHALFANT.B_B-BPL070.AT2", "CHALFANT/RSN545_CHALFANT.B_B-BPL160.AT2"}};
+  for (const auto& p : padded) {
+    const motion::GroundMotion m = read_motion_set(pair(p[0], p[1]));
+    const At2Record a = read_at2((peer / p[0]).string()), b = read_at2((peer / p[1]).string());
+    EXPECT_EQ(m.npts(), std::max(a.values.size(), b.values.size())) << p[0];
+    EXPECT_NE(m.alignment.find("zero-padded"), std::string::npos) << p[0];
+  }
+  const std::string manjil = pair("MANJIL/RSN1633_MANJIL_ABBAR--L.AT2", "MANJIL/RSN1633_MANJIL_ABBAR--T.AT2");
+  EXPECT_THROW(read_motion_set(manjil), InputError);
+  SetReadOptions resample;
+  resample.align.resample = true;
+  EXPECT_NE(read_motion_set(manjil, resample).alignment.find("zero-padded to 2676"), std::string::npos);
+}
+
 TEST(At2Fuzz, RegressionInputsParseWithoutCrashing) {
   const fs::path dir = fs::path(RIGID_SOURCE_DIR) / "tests/data/at2/fuzz_regressions";
   if (!fs::is_directory(dir)) GTEST_SKIP() << "no " << dir;

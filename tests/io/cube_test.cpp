@@ -64,9 +64,9 @@ Cube synthetic() {
   Cube c;
   c.records = {
       {"rec one", "x=a b/one-X.AT2,y=a b/one-Y.AT2", "Duzce, Turkey", 1.5, 21.25, 0.3, 20.0, 0.068, 0.31,
-       21.5, ""},
-      {"rec_two", "two-X.AT2", "", 0.0, kInf, 0.25, 17.0, 0.0693, 0.0, 0.0, ""},
-      {"rec \"three\"", "three-X.AT2", "Chi-Chi, Taiwan", 2.0, 40.0, 0.1, 49.0, 0.5, 0.1, 49.0, ""},
+       21.5, "", "component y zero-padded by 3 samples (0.015 s)"},
+      {"rec_two", "two-X.AT2", "", 0.0, kInf, 0.25, 17.0, 0.0693, 0.0, 0.0, "", ""},
+      {"rec \"three\"", "three-X.AT2", "Chi-Chi, Taiwan", 2.0, 40.0, 0.1, 49.0, 0.5, 0.1, 49.0, "", ""},
   };
   c.scales_g = {0.1, 0.2, 0.30000000000000004, 0.4};
   c.rotations = 2;
@@ -150,6 +150,7 @@ void expect_same(const Cube& a, const Cube& b) {
     EXPECT_EQ(x.name, y.name);
     EXPECT_EQ(x.source, y.source);
     EXPECT_EQ(x.earthquake, y.earthquake);
+    EXPECT_EQ(x.alignment, y.alignment);
     EXPECT_EQ(x.inputs, y.inputs);
     expect_same_doubles({x.start_s, x.end_s, x.gmroti_pga_g, x.gmroti_pgv_cm_s, x.pgv_pga_s, x.listed_pga_g,
                          x.listed_pgv_cm_s},

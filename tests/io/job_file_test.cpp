@@ -59,6 +59,14 @@ TEST_F(JobFile, GoodJobLoadsWithTheStudysDefaults) {
   EXPECT_EQ(job.hash.size(), 16u);
 }
 
+TEST_F(JobFile, RecordAlignIsResampleOrAutoWithItsLine) {
+  std::string t = kGood + std::string("align = \"resample\"\n");
+  EXPECT_TRUE(load_job(write(t)).records.at(0).resample);
+  EXPECT_FALSE(load_job(write(kGood)).records.at(0).resample);
+  expect_error(kGood + std::string("align = \"stretch\"\n"), "align", 9);
+  expect_error(kGood + std::string("align = 5\n"), "align", 9);
+}
+
 TEST_F(JobFile, UnknownKeyIsRefusedWithItsLine) {
   std::string t = kGood;
   t.insert(t.find("scales"), "rotatons = 3\n");

@@ -182,6 +182,24 @@ TEST(Alignment, UnequalLengthOrDtIsAnErrorUnlessResampling) {
   for (std::size_t i = 0; i < 5; ++i) EXPECT_NEAR(m.z[i], double(i), 1e-12);
 }
 
+TEST(Alignment, LengthsWithinOnePercentAtEqualDtArePaddedAndNoted) {
+  // 1,000 samples against 990 (1 %): padded, the data untouched; 989 (1.1 %): refused
+  std::vector<double> long_one(1000), short_one(990), shorter(989);
+  for (std::size_t i = 0; i < long_one.size(); ++i) long_one[i] = std::sin(0.01 * double(i));
+  for (std::size_t i = 0; i < short_one.size(); ++i) short_one[i] = std::cos(0.01 * double(i));
+  for (std::size_t i = 0; i < shorter.size(); ++i) shorter[i] = 1.0;
+  const GroundMotion m = make_ground_motion("m", {{long_one, 0.02, "H1"}, {short_one, 0.02, "H2"}});
+  ASSERT_EQ(m.npts(), 1000u);
+  ASSERT_EQ(m.y.size(), 1000u);
+  EXPECT_EQ(m.x, long_one);
+  for (std::size_t i = 0; i < short_one.size(); ++i) EXPECT_EQ(m.y[i], short_one[i]);
+  for (std::size_t i = short_one.size(); i < 1000; ++i) EXPECT_EQ(m.y[i], 0.0);
+  EXPECT_NE(m.alignment.find("component H2 zero-padded by 10 samples (0.2 s)"), std::string::npos) << m.alignment;
+  EXPECT_THROW(make_ground_motion("m", {{long_one, 0.02, "H1"}, {shorter, 0.02, "H2"}}), InputError);
+  // equal lengths: nothing to note
+  EXPECT_TRUE(make_ground_motion("m", {{long_one, 0.02, "H1"}, {long_one, 0.02, "H2"}}).alignment.empty());
+}
+
 TEST(Resampling, LinearInterpolationIsExactForLinearSeries) {
   std::vector<double> a(11);
   for (std::size_t i = 0; i < a.size(); ++i) a[i] = 3.0 * double(i) * 0.02 + 1.0;

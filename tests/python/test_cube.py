@@ -96,7 +96,8 @@ class CubeFile(unittest.TestCase):
         self.assertEqual(list(r["pgv_pga_s"][()]), [0.068, 0.0693, 0.5])
         units = {"start_s": "s", "end_s": "s", "gmroti_pga_g": "g", "gmroti_pgv_cm_s": "cm/s",
                  "pgv_pga_s": "s", "listed_pga_g": "g", "listed_pgv_cm_s": "cm/s",
-                 "name": "none", "source": "none", "earthquake": "none", "inputs_sha256": "none"}
+                 "name": "none", "source": "none", "earthquake": "none", "inputs_sha256": "none",
+                 "alignment": "none"}
         self.assertEqual(set(r), set(units))
         for name, unit in units.items():
             self.assertEqual(r[name].shape, (3,), name)

@@ -32,6 +32,7 @@ struct RecordMeta {
   double listed_pga_g = 0;   ///< GMRotI PGA given by the record list, 0 if none (unit: g)
   double listed_pgv_cm_s = 0;///< GMRotI PGV given by the record list, 0 if none (unit: cm/s)
   std::string inputs;        ///< SHA-256 of its motion files, sha256sum lines (io/provenance.hpp)
+  std::string alignment;     ///< how its components were aligned, "" when they matched
 };
 
 /// Results of one object (scene) of the campaign. Every array has

@@ -30,12 +30,19 @@ struct GroundMotion {
   bool has_z = false;
   std::string label_x, label_y, label_z;  ///< component labels from the sources
   std::vector<std::string> sources;       ///< source files or generator description, x,y,z order
+  /// How the components were aligned to a common length, "" when they matched: e.g.
+  /// "H2 zero-padded by 12 samples (0.24 s)" (make_ground_motion)
+  std::string alignment;
 
   /// Number of samples (of every component).
   std::size_t npts() const { return x.size(); }
   /// Duration (npts-1)*dt (unit: s); 0 for fewer than two samples.
   double duration() const { return x.size() < 2 ? 0.0 : double(x.size() - 1) * dt; }
 };
+
+/// Components of equal dt differing in length by up to this fraction of the longest are
+/// zero-padded without being asked (records end in quiet; 1 % of a 40 s record is 0.4 s).
+inline constexpr double kAutoPadFraction = 0.01;
 
 /// What to do with components of unequal time step or length.
 struct AlignOptions {
@@ -48,7 +55,10 @@ struct AlignOptions {
 
 /// Builds a GroundMotion from 1, 2 or 3 components in the order H1, H2, V.
 /// Throws rigid::InputError (naming `name`) for 0 or more than 3 components, empty components,
-/// non-positive dt, or (unless options.resample) unequal dt (relative difference > 1e-9) or npts.
+/// non-positive dt, or (unless options.resample) unequal dt (relative difference > 1e-9) or npts
+/// differing by more than kAutoPadFraction of the longest. Components of equal dt whose lengths
+/// differ by less (real NGA pairs often differ by a few samples) are zero-padded at the end to the
+/// longest, and `alignment` says so.
 GroundMotion make_ground_motion(std::string name, std::vector<Component> components,
                                 const AlignOptions& options = {});
 

@@ -107,6 +107,7 @@ struct MotionInfo {
   };
   std::string name;
   std::vector<std::string> sources;
+  std::string alignment;  ///< GroundMotion::alignment ("" when the components matched)
   std::size_t npts = 0;
   double dt = 0.0;        ///< unit: s
   double duration = 0.0;  ///< unit: s

@@ -27,6 +27,9 @@ struct JobRecord {
   std::string earthquake;  ///< from the record list, may be empty
   double listed_pga_g = 0;     ///< GMRotI PGA given by the list, 0 if none (unit: g)
   double listed_pgv_cm_s = 0;  ///< GMRotI PGV given by the list, 0 if none (unit: cm/s)
+  /// align = "resample": components of unequal dt or length resampled to a common dt and padded
+  /// (else only lengths within 1 % at equal dt are padded, motion::make_ground_motion)
+  bool resample = false;
 };
 
 struct Job {
