@@ -2,6 +2,7 @@
 #include <cstdlib>
 #include <memory>
 
+#include "campaign_report.hpp"
 #include "commands.hpp"
 #include "rigid/campaign/driver.hpp"
 
@@ -17,8 +18,15 @@ void set_campaign_arguments(int& argc, char**& argv) {
   g_argv = &argv;
 }
 
+struct CampaignCommand {
+  campaign::CampaignOptions options;
+  std::string progress = "auto";  // auto | bar | log | none
+  double log_interval = 10;       // seconds between plain progress lines (unit: s)
+};
+
 void register_campaign_command(CLI::App& app) {
-  auto o = std::make_shared<campaign::CampaignOptions>();
+  auto command = std::make_shared<CampaignCommand>();
+  campaign::CampaignOptions* o = &command->options;
   CLI::App* cmd = app.add_subcommand(
       "campaign",
       "Run a fragility campaign from a job file, or resume it when its output exists. Run under "
@@ -43,16 +51,20 @@ void register_campaign_command(CLI::App& app) {
                   "auto (simulate only the effects the scenes and motions call for) or all (every effect, the "
                   "reference): overrides the job's [run] effects (recorded in the cube)")
       ->check(CLI::IsMember({"auto", "all"}));
-  cmd->add_option("--progress", o->progress, "auto (bar on a terminal, log lines otherwise), bar, log or none")
+  cmd->add_option("--progress", command->progress, "auto (bar on a terminal, log lines otherwise), bar, log or none")
       ->capture_default_str()
       ->check(CLI::IsMember({"auto", "bar", "log", "none"}));
-  cmd->add_option("--log-interval", o->log_interval, "Seconds between progress log lines when not on a terminal (s)")
+  cmd->add_option("--log-interval", command->log_interval, "Seconds between progress log lines when not on a terminal (s)")
       ->capture_default_str();
   cmd->add_option("--checkpoint-interval", o->checkpoint_interval, "Seconds between cube checkpoints; default: the job's (30 s)");
   cmd->add_option("--grace", o->grace, "Seconds in-flight tasks get after a stop signal; default: the job's (30 s)");
-  cmd->callback([o] {
-    const int status = campaign::run_campaign(*g_argc, *g_argv, *o);
-    if (status != 0) std::exit(status);
+  cmd->callback([command] {
+    campaign::CampaignOptions& options = command->options;
+    attach_progress(options, command->progress, command->log_interval);
+    options.on_dry_run = print_dry_run;
+    const campaign::CampaignResult result = campaign::run_campaign(*g_argc, *g_argv, options);
+    if (result.cube) print_summary(*result.cube, result.output);
+    if (result.status != 0) std::exit(result.status);
   });
 }
 

@@ -12,6 +12,7 @@
 #include "rigid/io/scene_file.hpp"
 #include "rigid/io/trajectory.hpp"
 #include "rigid/scenario/accuracy.hpp"
+#include "rigid/scenario/case.hpp"
 #include "rigid/scenario/rocking2d.hpp"
 #include "rigid/scenario/scene.hpp"
 
@@ -112,30 +113,26 @@ void run(const RunOptions& o) {
   if (o.effects != "auto" && o.effects != "all") throw InputError("", 0, "--effects must be auto or all");
   settings.select_effects = o.effects == "auto";
 
-  if (o.model != "dem3d" && o.model != "rocking2d") throw InputError("", 0, "--model must be dem3d or rocking2d");
-  // the 2D model checks the scene before any motion is read
-  const auto block2d = o.model == "rocking2d" ? std::optional(scenario::rocking_block_of(scene)) : std::nullopt;
+  const std::optional<scenario::ModelKind> kind = scenario::parse_model_kind(o.model);
+  if (!kind) throw InputError("", 0, "--model must be dem3d or rocking2d");
+  const bool block2d = *kind == scenario::ModelKind::rocking2d;
+  if (block2d) scenario::rocking_block_of(scene);  // the scene is checked before any motion is read
   motion::GroundMotion m;
   if (!o.motion.path.empty()) m = load_motion(o.motion);
 
-  const auto start = std::chrono::steady_clock::now();
-  scenario::RunOutcome r;
-  if (block2d) {
-    if (m.x.empty()) {
-      m.dt = 0.01;
-      m.x.assign(2, 0.0);
-    }
-    r = scenario::run_rocking2d(*block2d, m.x, m.dt, settings);
-  } else {
-    io::TrajectoryRecorder recorder;
-    if (!o.trajectory.empty()) {
-      if (!(o.trajectory_interval > 0)) throw InputError("", 0, "--trajectory-interval must be positive");
-      settings.observer = [&recorder](const dynamics::World& w) { recorder.record(w); };
-      settings.observe_interval = o.trajectory_interval;
-    }
-    r = scenario::run(scene, m.x.empty() ? scenario::GroundDrive{} : scenario::ground_drive(m), settings);
-    if (!o.trajectory.empty()) recorder.write(o.trajectory);
+  io::TrajectoryRecorder recorder;
+  if (!o.trajectory.empty() && !block2d) {
+    if (!(o.trajectory_interval > 0)) throw InputError("", 0, "--trajectory-interval must be positive");
+    settings.observer = [&recorder](const dynamics::World& w) { recorder.record(w); };
+    settings.observe_interval = o.trajectory_interval;
   }
+  // the motion is already windowed, scaled and rotated (load_motion): the case takes it as it is
+  const scenario::Model model(*kind, {std::move(scene)}, {std::move(m)}, std::move(settings));
+  const auto start = std::chrono::steady_clock::now();
+  const scenario::CaseOutcome outcome = scenario::simulate(model, scenario::Case{});
+  if (outcome.error) std::rethrow_exception(outcome.error);
+  const scenario::RunOutcome& r = outcome.run;
+  if (!o.trajectory.empty() && !block2d) recorder.write(o.trajectory);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   if (o.json) {

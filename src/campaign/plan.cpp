@@ -17,9 +17,9 @@ std::uint64_t splitmix64(std::uint64_t x) {
 }
 
 bool is_result(std::int8_t o) {
-  return o == static_cast<std::int8_t>(io::CellOutcome::survived) ||
-         o == static_cast<std::int8_t>(io::CellOutcome::overturned) ||
-         o == static_cast<std::int8_t>(io::CellOutcome::failed);
+  return o == static_cast<std::int8_t>(scenario::CellOutcome::survived) ||
+         o == static_cast<std::int8_t>(scenario::CellOutcome::overturned) ||
+         o == static_cast<std::int8_t>(scenario::CellOutcome::failed);
 }
 
 }  // namespace
@@ -44,7 +44,7 @@ Plan::Plan(int objects, int records, int scales, int rotations, int stop_after,
     throw std::invalid_argument("campaign plan needs at least one object, record, scale and rotation");
   }
   const long n = long(objects) * records * scales * rotations;
-  outcome_.assign(n, static_cast<std::int8_t>(io::CellOutcome::not_run));
+  outcome_.assign(n, static_cast<std::int8_t>(scenario::CellOutcome::not_run));
   results_.assign(n, TaskResult{});
   overturned_.assign(std::size_t(objects) * records * scales, 0);
   cutoff_.assign(std::size_t(objects) * records, -1);
@@ -74,7 +74,7 @@ Cell cell_of(long t, int records, int scales, int rotations) {
 Cell Plan::cell(long t) const { return cell_of(t, records_, scales_, rotations_); }
 
 bool Plan::available(long t) const {
-  if (outcome_[t] != static_cast<std::int8_t>(io::CellOutcome::not_run)) return false;
+  if (outcome_[t] != static_cast<std::int8_t>(scenario::CellOutcome::not_run)) return false;
   const Cell c = cell(t);
   const int cut = cutoff(c.object, c.record);
   return cut < 0 || c.scale < cut;
@@ -85,7 +85,7 @@ long Plan::task(const Cell& c) const {
 }
 
 void Plan::update_cutoff(long t, std::int8_t before) {
-  const auto overturned = static_cast<std::int8_t>(io::CellOutcome::overturned);
+  const auto overturned = static_cast<std::int8_t>(scenario::CellOutcome::overturned);
   const Cell c = cell(t);
   const std::size_t pair = std::size_t(c.object) * records_ + c.record;
   int& count = overturned_[pair * scales_ + c.scale];
@@ -109,7 +109,7 @@ void Plan::restore(const TaskResult& r) {
   if (!is_result(static_cast<std::int8_t>(r.outcome))) return;
   if (!is_result(outcome_[r.task])) {
     ++done_;
-    if (r.outcome == static_cast<std::int32_t>(io::CellOutcome::failed)) ++failures_;
+    if (r.outcome == static_cast<std::int32_t>(scenario::CellOutcome::failed)) ++failures_;
   }
   const std::int8_t before = outcome_[r.task];
   outcome_[r.task] = static_cast<std::int8_t>(r.outcome);
@@ -146,7 +146,7 @@ void Plan::complete(const TaskResult& r) {
 
 void Plan::release(long t) {
   if (t < 0 || t >= size() || outcome_[t] != kInFlight) return;
-  outcome_[t] = static_cast<std::int8_t>(io::CellOutcome::not_run);
+  outcome_[t] = static_cast<std::int8_t>(scenario::CellOutcome::not_run);
   --in_flight_;
   returned_.push_back(t);
 }
@@ -169,7 +169,7 @@ long Plan::remaining() const {
       const int top = cut < 0 ? scales_ : cut;
       for (int s = 0; s < top; ++s) {
         for (int k = 0; k < rotations_; ++k) {
-          n += outcome_[task({o, r, s, k})] == static_cast<std::int8_t>(io::CellOutcome::not_run);
+          n += outcome_[task({o, r, s, k})] == static_cast<std::int8_t>(scenario::CellOutcome::not_run);
         }
       }
     }
@@ -194,7 +194,7 @@ std::vector<bool> Plan::kept_mask() const {
 }
 
 std::vector<std::int8_t> Plan::final_outcomes() const {
-  std::vector<std::int8_t> out(outcome_.size(), static_cast<std::int8_t>(io::CellOutcome::not_run));
+  std::vector<std::int8_t> out(outcome_.size(), static_cast<std::int8_t>(scenario::CellOutcome::not_run));
   for (int o = 0; o < objects_; ++o) {
     for (int r = 0; r < records_; ++r) {
       const int cut = cutoff(o, r);
@@ -202,7 +202,7 @@ std::vector<std::int8_t> Plan::final_outcomes() const {
         for (int k = 0; k < rotations_; ++k) {
           const long t = task({o, r, s, k});
           if (cut >= 0 && s >= cut) {
-            out[t] = static_cast<std::int8_t>(io::CellOutcome::inferred);
+            out[t] = static_cast<std::int8_t>(scenario::CellOutcome::inferred);
           } else if (is_result(outcome_[t])) {
             out[t] = outcome_[t];
           }

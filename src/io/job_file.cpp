@@ -281,10 +281,12 @@ scenario::Job load_job(const std::string& path) {
       }
       job.contact = *name;
     }
-    job.model = (*run)["model"].value_or(std::string("dem3d"));
-    if (job.model != "dem3d" && job.model != "rocking2d") {
-      throw InputError(path, line_of(*run), "model must be \"dem3d\" or \"rocking2d\", not \"" + job.model + "\"");
+    const std::string model = (*run)["model"].value_or(std::string("dem3d"));
+    const std::optional<scenario::ModelKind> kind = scenario::parse_model_kind(model);
+    if (!kind) {
+      throw InputError(path, line_of(*run), "model must be \"dem3d\" or \"rocking2d\", not \"" + model + "\"");
     }
+    job.model = *kind;
     job.run.duration = optional_number(*run, "duration_s", 0.0, path);
     job.run.free_time = optional_number(*run, "free_time_s", job.run.free_time, path);
     job.run.step.dt = optional_number(*run, "dt_s", 0.0, path);

@@ -282,7 +282,10 @@ GroundMotion transformed(const GroundMotion& m, const MotionTransform& t) {
   GroundMotion r = (t.start > 0.0 || std::isfinite(t.end)) ? windowed(m, t.start, t.end) : m;
   // the target sets the level; factor multiplies on top of it (1 = no change)
   double f = t.factor;
-  if (t.target_pga_g > 0.0) f *= target_pga_factor(r, t.target_pga_g);
+  if (t.target_pga_g > 0.0) {
+    const double per_g = t.pga_factor_per_g > 0.0 ? t.pga_factor_per_g : target_pga_factor(r, 1.0);
+    f *= per_g * t.target_pga_g;
+  }
   if (f != 1.0) r = scaled(r, f);
   if (t.rotation != 0.0) r = rotated(r, t.rotation);
   return r;

@@ -7,7 +7,7 @@
 #include <optional>
 #include <vector>
 
-#include "rigid/io/cube.hpp"
+#include "rigid/scenario/case.hpp"
 #include "rigid/scenario/job.hpp"
 
 namespace rigid::campaign {
@@ -17,19 +17,11 @@ struct Cell {
   int object = 0, record = 0, scale = 0, rotation = 0;
 };
 
-/// Why a task failed (stored in the cube's failure_reason).
-enum class FailureReason : std::int32_t {
-  none = 0,
-  exception = 1,       ///< the simulation threw (bad motion, internal error)
-  non_finite = 2,      ///< NaN or Inf in the state
-  worker_lost = 3,     ///< reserved: the rank running it died (the task is redone on resume)
-};
-
 /// Result of one task, as sent between ranks and written to the journal (plain data).
 struct TaskResult {
   std::int64_t task = -1;
-  std::int32_t outcome = 0;   ///< io::CellOutcome
-  std::int32_t reason = 0;    ///< FailureReason
+  std::int32_t outcome = 0;   ///< scenario::CellOutcome
+  std::int32_t reason = 0;    ///< scenario::FailureReason
   double failure_time_s = 0;  ///< NaN if none
   double max_tilt_deg = 0;
   double max_slip_m = 0;

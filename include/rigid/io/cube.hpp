@@ -8,16 +8,12 @@
 #include <string>
 #include <vector>
 
+#include "rigid/scenario/case.hpp"
+
 namespace rigid::io {
 
-/// Outcome of one cell (record, scale, rotation).
-enum class CellOutcome : std::int8_t {
-  not_run = 0,     ///< not simulated yet
-  survived = 1,    ///< simulated, did not overturn
-  overturned = 2,  ///< simulated, overturned
-  inferred = 3,    ///< not simulated: above N consecutive fully overturned scales (stop rule)
-  failed = 4,      ///< the simulation failed (exception, non-finite state); see failure_reason
-};
+/// The values of a cube's `outcome` dataset (defined with the case they come from).
+using CellOutcome = scenario::CellOutcome;
 
 /// Per-record metadata stored beside the cube.
 struct RecordMeta {
@@ -55,7 +51,7 @@ struct ObjectCube {
   std::vector<double> max_tilt_deg;     ///< NaN when not simulated (unit: deg)
   std::vector<double> max_slip_m;       ///< NaN when not simulated (unit: m)
   std::vector<double> wall_s;           ///< wall time of the simulation, NaN when none (unit: s)
-  std::vector<std::int32_t> failure_reason;  ///< 0 = none; FailureReason codes (campaign)
+  std::vector<std::int32_t> failure_reason;  ///< scenario::FailureReason codes
 };
 
 /// Everything written to the file.

@@ -137,6 +137,9 @@ struct MotionTransform {
   double end = std::numeric_limits<double>::infinity();  ///< window end (unit: s), inf = to end
   double factor = 1.0;  ///< scale factor (unit: 1), applied on top of the target scaling
   double target_pga_g = 0.0;  ///< if > 0: scale so the GMRotI50 PGA is this (unit: g)
+  /// target_pga_factor(windowed motion, 1.0) if the caller has it (campaigns scale one record many
+  /// times); 0 = computed here. The scale is this factor times target_pga_g either way.
+  double pga_factor_per_g = 0.0;
   double rotation = 0.0;      ///< rotation about z (unit: rad), convention of rotated()
 };
 

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "rigid/scenario/accuracy.hpp"
+#include "rigid/scenario/case.hpp"
 #include "rigid/scenario/scene.hpp"
 
 namespace rigid::scenario {
@@ -56,9 +57,9 @@ struct Job {
   std::string accuracy = kDefaultAccuracy;
   /// The [run] keys dt_s, safety and integrator, which override the preset's values.
   AccuracyOverrides accuracy_overrides;
-  /// Which model simulates: "dem3d" (the engine) or "rocking2d" (the 2D Housner reference,
-  /// driven by the x component of the rotated motion; scenes must admit it).
-  std::string model = "dem3d";
+  /// Which model simulates: the engine, or the 2D Housner reference (driven by the record's x
+  /// component; scenes must admit it). [run] model = "dem3d" | "rocking2d", or --model.
+  ModelKind model = ModelKind::dem3d;
   /// Contact model for every object ("rigid" or "penalty"), from [run] contact or --contact;
   /// empty: each scene's own [physics] contact.
   std::string contact;

@@ -1,0 +1,116 @@
+#include "campaign_report.hpp"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include "rigid/dynamics/world.hpp"
+
+namespace rigid::app {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+std::string format_duration(double s) {
+  if (!std::isfinite(s) || s < 0) return "--:--";
+  const long t = std::lround(s);
+  char buf[32];
+  if (t >= 3600) {
+    std::snprintf(buf, sizeof buf, "%ld:%02ld:%02ld", t / 3600, (t / 60) % 60, t % 60);
+  } else {
+    std::snprintf(buf, sizeof buf, "%ld:%02ld", t / 60, t % 60);
+  }
+  return buf;
+}
+
+void print_progress(const campaign::ProgressReport& p, bool bar) {
+  const double rate = p.elapsed_s > 0 ? double(p.done - p.done_at_start) / p.elapsed_s : 0.0;
+  const double eta = rate > 0 ? double(p.remaining) / rate : NAN;
+  const long shown_total = p.done + p.remaining;
+  if (bar) {
+    const int width = 30;
+    const int filled = shown_total > 0 ? int(width * double(p.done) / double(shown_total)) : width;
+    std::fprintf(stderr, "\r[%s%s] %ld/%ld tasks  %.1f sim/s  ETA %s  failures %ld   ",
+                 std::string(filled, '#').c_str(), std::string(width - filled, '.').c_str(), p.done, shown_total, rate,
+                 format_duration(eta).c_str(), p.failures);
+    if (p.final) std::fprintf(stderr, "\n");
+  } else {
+    std::fprintf(stderr,
+                 "rigid campaign: %ld/%ld tasks done (%ld of the %ld cells left to simulate), %.2f sim/s, ETA %s, failures %ld\n",
+                 p.done, shown_total, p.remaining, p.total, rate, format_duration(eta).c_str(), p.failures);
+  }
+  std::fflush(stderr);
+}
+
+}  // namespace
+
+void attach_progress(campaign::CampaignOptions& options, const std::string& mode, double log_interval) {
+  if (mode == "none") return;
+  const bool bar = mode == "bar" || (mode == "auto" && isatty(STDERR_FILENO));
+  options.progress_interval = bar ? 0.25 : log_interval;
+  options.on_progress = [bar](const campaign::ProgressReport& p) { print_progress(p, bar); };
+}
+
+void print_summary(const io::Cube& cube, const std::string& output) {
+  std::printf("\nfragility cube: %s\n", std::filesystem::absolute(output).string().c_str());
+  std::printf("overturning probability (mean over records; inferred cells count as overturned)\n");
+  const std::size_t R = cube.records.size(), S = cube.scales_g.size();
+  const std::size_t stride = (S + 15) / 16;  // at most 16 columns: every k-th scale of a long list
+  std::printf("%-20s", "object \\ scale (g)");
+  for (std::size_t s = 0; s < S; s += stride) std::printf("%7.3g", cube.scales_g[s]);
+  std::printf("\n");
+  if (stride > 1) std::printf("(every %zu-th scale of %zu)\n", stride, S);
+  for (const auto& oc : cube.objects) {
+    const std::vector<double> p = io::overturn_probability(cube, oc);  // [record][scale]
+    std::printf("%-20s", oc.name.c_str());
+    for (std::size_t s = 0; s < S; s += stride) {
+      double sum = 0;
+      int known = 0;
+      for (std::size_t r = 0; r < R; ++r) {
+        if (std::isnan(p[r * S + s])) continue;
+        sum += p[r * S + s];
+        ++known;
+      }
+      if (known > 0) {
+        std::printf("%7.2f", sum / known);
+      } else {
+        std::printf("%7s", "-");
+      }
+    }
+    std::printf("\n");
+  }
+}
+
+int print_dry_run(const scenario::Job& job, const scenario::Model& model) {
+  const long cells = long(job.objects.size()) * long(job.records.size()) * long(job.scales_g.size()) * job.rotations;
+  double per_object_sim = 0;  // simulated time of one object's tasks
+  for (int r = 0; r < model.records(); ++r) per_object_sim += model.simulated_time(r);
+  per_object_sim *= double(job.scales_g.size()) * job.rotations;
+  // this machine's cost per step on each object: a short real case, not its whole record
+  scenario::RunSettings probe = model.run_settings();
+  probe.duration = 2.0;
+  double steps = 0, wall = 0;
+  for (int o = 0; o < model.objects(); ++o) {
+    scenario::Model short_model(model.kind(), {model.scene(o)}, {model.records() ? model.record(0) : motion::GroundMotion{}},
+                                probe, {model.records() ? model.pga_factor_per_g(0) : 0.0});
+    const scenario::Case c{0, 0, job.scales_g.empty() ? 0.0 : job.scales_g.front(), 0.0};
+    const auto start = Clock::now();
+    const scenario::CaseOutcome out = scenario::simulate(short_model, c);
+    const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    const double dt = out.run.dt > 0 ? out.run.dt : dynamics::time_step(model.scene(o).bodies, model.scene(o).law, probe.step);
+    const double per_step = out.run.steps > 0 ? seconds / double(out.run.steps) : 0.0;
+    steps += per_object_sim / dt;
+    wall += per_object_sim / dt * per_step;
+  }
+  std::printf("job %s: %zu objects x %zu records x %zu scales x %d rotations = %ld tasks\n", job.path.c_str(),
+              job.objects.size(), job.records.size(), job.scales_g.size(), job.rotations, cells);
+  std::printf("at most %.4g s simulated, %.4g time steps; about %s of one core if every task ran to its end\n",
+              per_object_sim * double(job.objects.size()), steps, format_duration(wall).c_str());
+  std::printf("(overturned runs stop early and the stop rule skips scales, so the real cost is lower)\n");
+  return 0;
+}
+
+}  // namespace rigid::app

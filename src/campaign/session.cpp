@@ -1,0 +1,195 @@
+#include "rigid/campaign/session.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <optional>
+
+#include "rigid/campaign/journal.hpp"
+#include "rigid/core/error.hpp"
+#include "rigid/io/at2.hpp"
+#include "rigid/io/job_file.hpp"
+#include "rigid/scenario/rocking_parameters.hpp"
+
+#if !defined(RIGID_VERSION) || !defined(RIGID_GIT_HASH)
+#error "the build defines RIGID_VERSION and RIGID_GIT_HASH"
+#endif
+
+namespace rigid::campaign {
+namespace {
+
+namespace fs = std::filesystem;
+
+// An object's full physics and run settings as one JSON object: its own contact model and law,
+// density, failure rule and the time step its runs take, with the job's run settings.
+std::string physics_json(const scenario::Scene& scene, const scenario::Job& job) {
+  const auto& law = scene.law;
+  const bool tilt = scene.failure.kind == scenario::FailureRule::Kind::tilt;
+  char physics[1536];
+  std::snprintf(physics, sizeof physics,
+                "{\"contact\": \"%s\", \"restitution\": %.17g, \"normal_stiffness\": %.17g, \"shear_stiffness\": %.17g, \"friction\": %.17g, "
+                "\"damping\": %.17g, \"density\": %.17g, \"failure_rule\": \"%s\", \"failure_tilt_deg\": %.17g, "
+                "\"step_s\": %.17g, \"dt_s\": %.17g, \"safety\": %.17g, \"integrator\": \"%s\", "
+                "\"duration_s\": %.17g, \"free_time_s\": %.17g, \"stop_after\": %d, \"accuracy\": \"%s\", "
+                "\"rest_speed_m_s\": %.17g, \"rest_angular_speed_rad_s\": %.17g, \"rest_time_s\": %.17g, "
+                "\"effects\": \"%s\"}",
+                contact::contact_model_name(law.model), law.restitution, law.normal_stiffness,
+                law.shear_stiffness, law.friction, law.damping, scene.density, tilt ? "tilt" : "below",
+                tilt ? scene.failure.tilt_angle * 180.0 / kPi : 0.0, dynamics::time_step(scene.bodies, law, job.run.step),
+                job.run.step.dt, job.run.step.safety,
+                job.run.step.rotation == dynamics::RotationIntegrator::rk4 ? "rk4" : "splitting",
+                job.run.duration, job.run.free_time, job.stop_after, job.accuracy.c_str(), job.run.rest_speed,
+                job.run.rest_angular_speed, job.run.rest_time, job.run.select_effects ? "auto" : "all");
+  return physics;
+}
+
+InputError changed_file(const std::string& file) {
+  return InputError(file, 0, "changed since the campaign started (resume refused; --force starts anew)");
+}
+
+// Why the cube's results must not be resumed with these inputs, or nothing when they may.
+std::optional<InputError> input_change(const io::Cube& old, const scenario::Job& job, const Inputs& now) {
+  const io::Digests old_job = io::parse_digests(old.job_inputs);
+  if (old.job_hash != job.hash) {
+    // the same job file edited is named; another job file or other command-line settings name the output
+    if (old_job.size() >= 2 && old_job[1].path == now.job[1].path && old_job[1].sha256 != now.job[1].sha256) {
+      return changed_file(job.path);
+    }
+    return InputError(job.output, 0,
+                      "was written by a different job file, accuracy preset or command-line settings (hash " + old.job_hash + ", now " + job.hash +
+                          "); use --force to start a new campaign over it, or another --out");
+  }
+  if (old.inputs_sha256.empty()) {
+    std::fprintf(stderr, "rigid campaign: warning: %s was written before input hashes were stored; its scenes and "
+                 "records are not checked for changes\n", job.output.c_str());
+    return std::nullopt;
+  }
+  if (old.inputs_sha256 == now.combined) return std::nullopt;
+  if (auto f = io::first_changed(old_job, now.job)) return changed_file(*f);
+  for (std::size_t o = 0; o < now.objects.size() && o < old.objects.size(); ++o) {
+    if (auto f = io::first_changed(io::parse_digests(old.objects[o].inputs), now.objects[o])) return changed_file(*f);
+  }
+  for (std::size_t r = 0; r < now.records.size() && r < old.records.size(); ++r) {
+    if (auto f = io::first_changed(io::parse_digests(old.records[r].inputs), now.records[r])) return changed_file(*f);
+  }
+  return changed_file(job.output);  // a digest that matches no file list: the cube itself was altered
+}
+
+}  // namespace
+
+Inputs collect_inputs(const scenario::Job& job, const scenario::Model& model) {
+  Inputs in;
+  in.job.push_back({"(settings)", io::sha256_hex(io::job_settings_text(job))});
+  in.job.push_back({job.path, io::file_sha256(job.path)});
+  if (!job.record_list.empty()) in.job.push_back({job.record_list, io::file_sha256(job.record_list)});
+  for (std::size_t o = 0; o < job.objects.size(); ++o) in.objects.push_back(io::digest_files(model.scene(int(o)).files));
+  for (const auto& r : job.records) {
+    const io::SetFiles set = io::resolve_set(r.spec);
+    std::vector<std::string> files;
+    for (const std::string* f : {&set.x, &set.y, &set.z}) {
+      if (!f->empty()) files.push_back(*f);
+    }
+    in.records.push_back(io::digest_files(files));
+  }
+  std::string all;
+  const auto add = [&all](const char* what, const io::Digests& d) {
+    all += std::string(what) + " " + std::to_string(d.size()) + "\n";
+    for (const auto& f : d) all += f.sha256 + "\n";
+  };
+  add("job", in.job);
+  for (const auto& d : in.objects) add("object", d);
+  for (const auto& d : in.records) add("record", d);
+  in.combined = io::sha256_hex(all);
+  return in;
+}
+
+io::Cube make_cube(const CampaignContext& context, const Plan& plan) {
+  const scenario::Job& job = context.job;
+  const scenario::Model& model = context.model;
+  const Inputs& inputs = context.inputs;
+  io::Cube cube;
+  cube.records = context.records;
+  for (std::size_t r = 0; r < cube.records.size(); ++r) cube.records[r].inputs = io::format_digests(inputs.records[r]);
+  cube.job_inputs = io::format_digests(inputs.job);
+  cube.inputs_sha256 = inputs.combined;
+  cube.scales_g = job.scales_g;
+  cube.rotations = job.rotations;
+  cube.job_text = job.text;
+  cube.job_hash = job.hash;
+  cube.software_version = RIGID_VERSION " (" RIGID_GIT_HASH ")";
+  cube.seed = job.seed;
+  cube.physics_json = physics_json(model.scene(0), job);  // object 0's, as before per-object records
+  const std::vector<std::int8_t> outcome = plan.final_outcomes();
+  const std::vector<bool> kept = plan.kept_mask();
+  const long per_object = long(job.records.size()) * long(job.scales_g.size()) * job.rotations;
+  const double nan = std::nan("");
+  for (std::size_t o = 0; o < job.objects.size(); ++o) {
+    io::ObjectCube oc;
+    oc.name = job.objects[o].name;
+    oc.scene = job.objects[o].scene;
+    oc.inputs = io::format_digests(inputs.objects[o]);
+    oc.physics_json = physics_json(model.scene(int(o)), job);
+    if (const auto rocking = scenario::rocking_parameters(model.scene(int(o)))) {
+      oc.alpha_rad = rocking->alpha;
+      oc.p_rad_s = rocking->p;
+    }
+    for (long i = 0; i < per_object; ++i) {
+      const long t = long(o) * per_object + i;
+      const TaskResult& r = plan.results()[t];
+      oc.outcome.push_back(outcome[t]);
+      oc.rotation_deg.push_back(cell_rotation_deg(job, plan.cell(t)));
+      oc.failure_time_s.push_back(kept[t] ? r.failure_time_s : nan);
+      oc.max_tilt_deg.push_back(kept[t] ? r.max_tilt_deg : nan);
+      oc.max_slip_m.push_back(kept[t] ? r.max_slip_m : nan);
+      oc.wall_s.push_back(kept[t] ? r.wall_s : nan);
+      oc.failure_reason.push_back(kept[t] ? r.reason : 0);
+    }
+    cube.objects.push_back(std::move(oc));
+  }
+  return cube;
+}
+
+std::vector<TaskResult> restore(const std::string& output, const scenario::Job& job, const Inputs& inputs, Plan& plan,
+                                bool force) {
+  const std::string journal = output + ".journal";
+  const bool have_cube = fs::exists(output);
+  if (have_cube) {
+    const io::Cube old = io::read_cube(output);
+    if (std::optional<InputError> change = input_change(old, job, inputs)) {
+      if (!force) throw *change;
+      fs::remove(output);
+      fs::remove(journal);
+      return {};
+    }
+    const long per_object = long(job.records.size()) * long(job.scales_g.size()) * job.rotations;
+    for (std::size_t o = 0; o < old.objects.size() && o < job.objects.size(); ++o) {
+      const auto& oc = old.objects[o];
+      for (long i = 0; i < per_object && i < long(oc.outcome.size()); ++i) {
+        const auto v = static_cast<scenario::CellOutcome>(oc.outcome[i]);
+        if (v != scenario::CellOutcome::survived && v != scenario::CellOutcome::overturned && v != scenario::CellOutcome::failed) continue;
+        TaskResult r;
+        r.task = long(o) * per_object + i;
+        r.outcome = oc.outcome[i];
+        r.reason = oc.failure_reason[i];
+        r.failure_time_s = oc.failure_time_s[i];
+        r.max_tilt_deg = oc.max_tilt_deg[i];
+        r.max_slip_m = oc.max_slip_m[i];
+        r.wall_s = oc.wall_s[i];
+        plan.restore(r);
+      }
+    }
+  } else if (force) {
+    fs::remove(journal);
+  }
+  JournalContents kept = read_journal(journal, inputs.combined, plan.size());
+  if (kept.foreign) {
+    // without a cube to name the changed file, the journal itself is the evidence
+    if (!have_cube) throw changed_file(journal);
+    kept.problems.push_back(journal + ": written for other inputs; ignored");
+  }
+  for (const std::string& p : kept.problems) std::fprintf(stderr, "rigid campaign: warning: %s\n", p.c_str());
+  for (const TaskResult& r : kept.results) plan.restore(r);
+  return std::move(kept.results);
+}
+
+}  // namespace rigid::campaign

@@ -1,0 +1,36 @@
+#include "rigid/campaign/task.hpp"
+
+#include <chrono>
+#include <cmath>
+
+namespace rigid::campaign {
+
+scenario::Case case_of(const scenario::Job& job, const Cell& cell) {
+  return {cell.object, cell.record, job.scales_g[std::size_t(cell.scale)], cell_rotation_deg(job, cell)};
+}
+
+TaskResult run_task(const scenario::Job& job, const scenario::Model& model, std::int64_t task, bool noop) {
+  TaskResult out;
+  out.task = task;
+  out.failure_time_s = std::nan("");
+  out.max_tilt_deg = std::nan("");
+  out.max_slip_m = std::nan("");
+  if (noop) {
+    out.outcome = static_cast<std::int32_t>(scenario::CellOutcome::survived);
+    return out;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  const Cell cell = cell_of(task, int(job.records.size()), int(job.scales_g.size()), job.rotations);
+  const scenario::CaseOutcome c = scenario::simulate(model, case_of(job, cell));
+  out.outcome = static_cast<std::int32_t>(c.outcome);
+  out.reason = static_cast<std::int32_t>(c.reason);
+  if (c.outcome != scenario::CellOutcome::failed) {
+    if (c.run.failure_time) out.failure_time_s = *c.run.failure_time;
+    out.max_tilt_deg = c.run.max_tilt * 180.0 / kPi;
+    out.max_slip_m = c.run.max_slip;
+  }
+  out.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+}  // namespace rigid::campaign

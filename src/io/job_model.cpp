@@ -1,0 +1,58 @@
+#include "rigid/io/job_model.hpp"
+
+#include "rigid/io/at2.hpp"
+#include "rigid/io/scene_file.hpp"
+#include "rigid/motion/measures.hpp"
+
+namespace rigid::io {
+
+scenario::Model load_model(const scenario::Job& job) {
+  std::vector<scenario::Scene> scenes;
+  for (const auto& o : job.objects) {
+    scenario::Scene s = load_scene(o.scene);
+    if (!o.state.empty()) apply_state(o.state, s);
+    if (!job.contact.empty()) contact::parse_contact_model(job.contact, s.law.model);
+    scenes.push_back(std::move(s));
+  }
+  std::vector<motion::GroundMotion> records;
+  std::vector<double> per_g;
+  for (const auto& r : job.records) {
+    SetReadOptions read;
+    read.align.resample = r.resample;
+    records.push_back(motion::windowed(read_motion_set(r.spec, read), r.start, r.end));
+    // once per record: every case scales this record, and the GMRotI50 measure is costly
+    per_g.push_back(motion::target_pga_factor(records.back(), 1.0));
+  }
+  return scenario::Model(job.model, std::move(scenes), std::move(records), job.run, std::move(per_g));
+}
+
+std::vector<RecordMeta> record_metadata(const scenario::Job& job, const scenario::Model& model) {
+  std::vector<RecordMeta> metas;
+  for (std::size_t i = 0; i < job.records.size(); ++i) {
+    const scenario::JobRecord& r = job.records[i];
+    const motion::GroundMotion& m = model.record(int(i));
+    RecordMeta meta;
+    meta.name = r.name;
+    meta.source = r.spec;
+    meta.earthquake = r.earthquake;
+    meta.alignment = m.alignment;
+    meta.start_s = r.start;
+    meta.end_s = r.start + m.duration();
+    meta.listed_pga_g = r.listed_pga_g;
+    meta.listed_pgv_cm_s = r.listed_pgv_cm_s;
+    if (m.has_y) {
+      const motion::HorizontalMeasures h = motion::horizontal_measures(m);
+      meta.gmroti_pga_g = h.gmroti50_pga / kGravity;
+      meta.gmroti_pgv_cm_s = 100.0 * h.gmroti50_pgv;
+    } else {
+      const motion::Peaks p = motion::peaks(m.x, m.dt);
+      meta.gmroti_pga_g = p.pga / kGravity;
+      meta.gmroti_pgv_cm_s = 100.0 * p.pgv;
+    }
+    meta.pgv_pga_s = meta.gmroti_pgv_cm_s / (100.0 * meta.gmroti_pga_g * kGravity);
+    metas.push_back(meta);
+  }
+  return metas;
+}
+
+}  // namespace rigid::io
