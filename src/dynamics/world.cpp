@@ -400,6 +400,24 @@ double World::subcontact_load(const PairContact& pair, std::size_t k) const {
   return law_.normal_stiffness * d * std::sqrt(d);
 }
 
+void World::summarize_contacts(ContactSummary& out) const {
+  out.pairs.clear();
+  out.points.clear();
+  for (const auto& p : pairs_) {
+    ContactSummary::Pair s;
+    s.a = p.a;
+    s.b = p.b;
+    s.normal = p.normal;
+    s.first = out.points.size();
+    for (std::size_t k = 0; k < p.points.size(); ++k) {
+      const double load = subcontact_load(p, k);
+      if (load > 0) out.points.push_back({p.points[k].point, load});
+    }
+    s.loaded = out.points.size() - s.first;
+    out.pairs.push_back(s);
+  }
+}
+
 double World::elastic_energy() const {
   if (law_.model == contact::ContactModel::rigid) return 0;  // rigid contacts store no energy
   double e = 0;

@@ -12,7 +12,7 @@
 namespace rigid::campaign {
 namespace {
 
-using io::CellOutcome;
+using scenario::CellOutcome;
 
 // A fixed "physics": the block overturns at scale >= threshold[record], except a few holes.
 CellOutcome truth(const Cell& c) {

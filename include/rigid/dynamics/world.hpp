@@ -99,6 +99,24 @@ struct PairContact {
   double skin_travel = 0;
 };
 
+/// The last step's contacts as a caller deciding about rest, sleep and stillness reads them: every
+/// pair's normal and its loaded subcontacts (those that carried a positive normal force,
+/// World::subcontact_load). Filled by World::summarize_contacts into the caller's buffers.
+struct ContactSummary {
+  struct Pair {
+    int a = 0, b = 0;            ///< body indices, a < b
+    Vec3 normal{0, 0, 1};        ///< common-plane normal, from a to b
+    std::size_t first = 0;       ///< its loaded subcontacts are points[first, first + loaded)
+    std::size_t loaded = 0;
+  };
+  struct Point {
+    Vec3 position{0, 0, 0};      ///< world frame (unit: m)
+    double load = 0;             ///< normal force (unit: N), > 0
+  };
+  std::vector<Pair> pairs;       ///< every pair, in the World's order
+  std::vector<Point> points;
+};
+
 /// Counters that tell what the stepper did (for reports and tests).
 struct StepStats {
   long steps = 0;
@@ -144,6 +162,8 @@ class World {
   /// Normal force carried by subcontact k of a pair in the last step (unit: N): K_N d^1.5 for
   /// the penalty model (the elastic part), p_n / h for the rigid model; 0 for an open contact.
   double subcontact_load(const PairContact& pair, std::size_t k) const;
+  /// The last step's contacts, into `out` (its buffers are reused: no allocation once grown).
+  void summarize_contacts(ContactSummary& out) const;
   /// Sweeps the rigid contact solver needed in the last step, and whether it converged.
   const SolverResult& last_solve() const { return last_solve_; }
 
