@@ -9,18 +9,10 @@
 #include <limits>
 #include <stdexcept>
 
+#include "rigid/core/rng.hpp"
 #include "rigid/scenario/builders.hpp"
 
 namespace rigid::scenario {
-
-std::uint64_t SplitMix64::next() {
-  std::uint64_t z = (state_ += 0x9e3779b97f4a7c15ULL);
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-  return z ^ (z >> 31);
-}
-
-double SplitMix64::uniform() { return double(next() >> 11) * 0x1.0p-53; }
 
 namespace {
 

@@ -11,21 +11,6 @@
 
 namespace rigid::scenario {
 
-/// Deterministic 64-bit generator (SplitMix64, Steele, Lea & Flood 2014): the same seed gives the
-/// same stream on every platform, unlike the distributions of <random>.
-class SplitMix64 {
- public:
-  explicit SplitMix64(std::uint64_t seed) : state_(seed) {}
-  std::uint64_t next();
-  /// Uniform in [0, 1) with 53 random bits.
-  double uniform();
-  /// Uniform in [-1, 1).
-  double symmetric() { return 2.0 * uniform() - 1.0; }
-
- private:
-  std::uint64_t state_;
-};
-
 /// One block of a library model, in its place (world coordinates at build time, unit: m).
 struct LibraryPiece {
   std::string name;              ///< block name, also the STL file stem
