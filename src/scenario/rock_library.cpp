@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "rigid/core/rng.hpp"
+#include "rigid/geometry/polygon2d.hpp"
 #include "rigid/scenario/builders.hpp"
 
 namespace rigid::scenario {
@@ -35,73 +36,8 @@ struct SideCut {
 };
 
 // 2D polygons, for the seats below and the rigid-statics estimate
-
-using P2 = Eigen::Vector2d;
-
-double cross2(const P2& a, const P2& b) { return a.x() * b.y() - a.y() * b.x(); }
-
-// Counter-clockwise convex hull (monotone chain), collinear points dropped.
-std::vector<P2> hull2(std::vector<P2> p) {
-  std::sort(p.begin(), p.end(), [](const P2& a, const P2& b) { return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y()); });
-  if (p.size() < 3) return p;
-  std::vector<P2> h(2 * p.size());
-  std::size_t k = 0;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    while (k >= 2 && cross2(h[k - 1] - h[k - 2], p[i] - h[k - 2]) <= 1e-15) --k;
-    h[k++] = p[i];
-  }
-  for (std::size_t i = p.size() - 1, t = k + 1; i > 0; --i) {
-    while (k >= t && cross2(h[k - 1] - h[k - 2], p[i - 1] - h[k - 2]) <= 1e-15) --k;
-    h[k++] = p[i - 1];
-  }
-  h.resize(k - 1);
-  return h;
-}
-
-// Intersection of two convex CCW polygons (Sutherland-Hodgman).
-std::vector<P2> clip(const std::vector<P2>& subject, const std::vector<P2>& window) {
-  std::vector<P2> out = subject;
-  for (std::size_t i = 0; i < window.size() && !out.empty(); ++i) {
-    const P2 a = window[i], b = window[(i + 1) % window.size()];
-    auto inside = [&](const P2& p) { return cross2(b - a, p - a) >= 0; };
-    std::vector<P2> in = std::move(out);
-    out.clear();
-    for (std::size_t j = 0; j < in.size(); ++j) {
-      const P2 p = in[j], q = in[(j + 1) % in.size()];
-      const bool pin = inside(p), qin = inside(q);
-      if (pin) out.push_back(p);
-      if (pin != qin) {
-        const double dp = cross2(b - a, p - a), dq = cross2(b - a, q - a);
-        out.push_back(p + (q - p) * (dp / (dp - dq)));
-      }
-    }
-  }
-  return out;
-}
-
-// Distance from c to the boundary of a convex CCW polygon along direction d (unit vector); 0 when
-// c is outside.
-double ray_to_boundary(const std::vector<P2>& poly, const P2& c, const P2& d) {
-  double best = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < poly.size(); ++i) {
-    const P2 a = poly[i], b = poly[(i + 1) % poly.size()];
-    const P2 e = b - a;
-    if (cross2(e, c - a) < 0) return 0;  // outside this edge
-    const double den = cross2(e, d);
-    if (den < 0) best = std::min(best, cross2(e, c - a) / -den);  // leaves through this edge
-  }
-  return best;
-}
-
-double distance_to_boundary(const std::vector<P2>& poly, const P2& c) {
-  double best = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < poly.size(); ++i) {
-    const P2 a = poly[i], b = poly[(i + 1) % poly.size()];
-    const double s = cross2(b - a, c - a) / (b - a).norm();
-    best = std::min(best, std::max(0.0, s));
-  }
-  return best;
-}
+using P2 = geometry::Point2;
+using geometry::cross;
 
 std::vector<P2> face_polygon(const TriangleSoup& soup, double z, double tol) {
   std::vector<P2> p;
@@ -110,7 +46,7 @@ std::vector<P2> face_polygon(const TriangleSoup& soup, double z, double tol) {
       if (std::abs(v->z() - z) <= tol) p.emplace_back(v->x(), v->y());
     }
   }
-  return hull2(p);
+  return geometry::convex_hull_2d(p);
 }
 
 // A horizontal face (the floor or the ceiling z of a rock) that must lie inside a polygon, at least
@@ -129,7 +65,7 @@ P2 pull_inside(const P2& p, const P2& c, const std::vector<P2>& poly, double mar
   double t = 1.0;
   for (std::size_t i = 0; i < poly.size(); ++i) {
     const P2 a = poly[i], e = poly[(i + 1) % poly.size()] - a;
-    const double fc = cross2(e, c - a) / e.norm(), fp = cross2(e, p - a) / e.norm();
+    const double fc = cross(e, c - a) / e.norm(), fp = cross(e, p - a) / e.norm();
     if (fc < margin) throw std::logic_error("rock_library: a seat is too small for its margin");
     if (fp < margin) t = std::min(t, (fc - margin) / (fc - fp));
   }
@@ -811,7 +747,7 @@ double static_toppling(const LibraryModel& model, double azimuth, double density
       throw std::invalid_argument("static_toppling: " + model.pieces[k].name + " does not rest on the top of " +
                                   model.pieces[k - 1].name);
     }
-    const auto contact = clip(face_polygon(upper, z, 1e-9), face_polygon(lower, z, 1e-9));
+    const auto contact = geometry::clip(face_polygon(upper, z, 1e-9), face_polygon(lower, z, 1e-9));
     double m = 0;
     Vec3 c = Vec3::Zero();
     for (std::size_t j = k; j < model.pieces.size(); ++j) {
@@ -823,8 +759,8 @@ double static_toppling(const LibraryModel& model, double azimuth, double density
     const P2 cxy(c.x(), c.y());
     double s = 0;
     if (contact.size() >= 3) {
-      s = azimuth < 0 ? distance_to_boundary(contact, cxy)
-                      : ray_to_boundary(contact, cxy, -P2(std::cos(azimuth), std::sin(azimuth)));
+      s = azimuth < 0 ? geometry::distance_to_boundary(contact, cxy)
+                      : geometry::ray_to_boundary(contact, cxy, -P2(std::cos(azimuth), std::sin(azimuth)));
     }
     best = std::min(best, s / h);
   }

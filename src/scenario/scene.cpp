@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "rigid/geometry/polygon2d.hpp"
+
 namespace rigid::scenario {
 
 Vec3 GroundDrive::at(double t) const {
@@ -131,36 +133,26 @@ class GroundAcceleration {
   std::vector<double> suffix_h_, suffix_z_;        // their maxima from each interval to the end
 };
 
-double cross2(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
-}
+// Points of the support polygons and the scratch of their hull, reused from call to call.
+struct SupportScratch {
+  std::vector<geometry::Point2> points;
+  std::vector<int> hull, order;
+};
 
-// Smallest distance from c to an edge of the convex hull of `points` (unit: m), 0 when c is
-// outside it or the hull is degenerate. Sorts `points` and uses `hull` as scratch.
-double inner_distance(std::vector<Eigen::Vector2d>& points, std::vector<Eigen::Vector2d>& hull,
-                      const Eigen::Vector2d& c) {
-  std::sort(points.begin(), points.end(), [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-    return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
-  });
-  // Andrew's monotone chain, counter-clockwise, collinear points dropped
-  hull.clear();
-  for (int pass = 0; pass < 2; ++pass) {
-    const std::size_t base = hull.size();
-    for (std::size_t k = 0; k < points.size(); ++k) {
-      const auto& p = pass == 0 ? points[k] : points[points.size() - 1 - k];
-      while (hull.size() >= base + 2 && cross2(hull[hull.size() - 2], hull.back(), p) <= 0) hull.pop_back();
-      hull.push_back(p);
-    }
-    hull.pop_back();
-  }
+// Smallest distance from c to an edge of the convex hull of `scratch.points` (unit: m), 0 when c
+// is outside it or the hull is degenerate.
+double inner_distance(SupportScratch& scratch, const geometry::Point2& c) {
+  geometry::convex_hull_2d(scratch.points, scratch.hull, scratch.order, 0.0);
+  const auto& hull = scratch.hull;
+  const auto& points = scratch.points;
   if (hull.size() < 3) return 0;
   double d = std::numeric_limits<double>::infinity();
   for (std::size_t k = 0; k < hull.size(); ++k) {
-    const auto& a = hull[k];
-    const auto& b = hull[(k + 1) % hull.size()];
+    const auto& a = points[hull[k]];
+    const auto& b = points[hull[(k + 1) % hull.size()]];
     const double len = (b - a).norm();
     if (!(len > 0)) return 0;
-    d = std::min(d, cross2(a, b, c) / len);  // > 0 inside a counter-clockwise hull
+    d = std::min(d, geometry::turn(a, b, c) / len);  // > 0 inside a counter-clockwise hull
   }
   return std::max(d, 0.0);
 }
@@ -172,9 +164,9 @@ double inner_distance(std::vector<Eigen::Vector2d>& points, std::vector<Eigen::V
 // rectangular block), sliding needs a/g > tan(atan(mu) - theta) on contacts tilted by theta.
 // Returns 0 when some free block does not rest on fixed blocks only (a stack: its threshold is
 // not this simple), with `supported` false.
-double quasi_static_ratio(const dynamics::World& world, double friction,
-                          std::vector<Eigen::Vector2d>& points, std::vector<Eigen::Vector2d>& hull,
+double quasi_static_ratio(const dynamics::World& world, double friction, SupportScratch& scratch,
                           bool& supported) {
+  auto& points = scratch.points;
   const auto& defs = world.bodies();
   supported = true;
   double ratio = std::numeric_limits<double>::infinity();
@@ -207,7 +199,7 @@ double quasi_static_ratio(const dynamics::World& world, double friction,
     if (points.size() < 3 || !(min_up > 0)) return 0;
     const double h = c.z() - lowest;
     if (!(h > 0)) return 0;
-    const double d = inner_distance(points, hull, Eigen::Vector2d(c.x(), c.y()));
+    const double d = inner_distance(scratch, geometry::Point2(c.x(), c.y()));
     const double slope = std::atan(friction) - std::acos(std::min(min_up, 1.0));
     if (!(d > 0) || !(slope > 0)) return 0;
     ratio = std::min({ratio, d / h, std::tan(slope)});
@@ -284,7 +276,7 @@ RunOutcome run(const Scene& scene, const GroundDrive& ground, const RunSettings&
   world_effects.distance_skin = select;
   world.set_effects(world_effects);
   const GroundAcceleration acceleration = select ? GroundAcceleration(ground) : GroundAcceleration();
-  std::vector<Eigen::Vector2d> points, hull;
+  SupportScratch support;
   std::vector<std::size_t> counts, last_counts;
   const double g = settings.step.gravity;
 
@@ -333,7 +325,7 @@ RunOutcome run(const Scene& scene, const GroundDrive& ground, const RunSettings&
     if (select && (at_rest_long || still_long) && acceleration.interval(t) != declined_interval) {
       const long j0 = acceleration.interval(t);
       bool supported = false;
-      const double ratio = quasi_static_ratio(world, scene.law.friction, points, hull, supported);
+      const double ratio = quasi_static_ratio(world, scene.law.friction, support, supported);
       if (supported) fx.sleep_possible = true;
       const double f = settings.sleep_wake_fraction;
       long wake = -1;
