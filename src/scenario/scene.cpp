@@ -89,10 +89,10 @@ bool at_rest_relative(const dynamics::World& world, const Vec3& ground_velocity,
 
 // Ground acceleration per interval of a drive (its velocity is linear between samples, so the
 // acceleration is constant on each interval), with suffix maxima; zero outside the record.
-class GroundAcceleration {
+class GroundAccelerationLevels {
  public:
-  GroundAcceleration() = default;
-  explicit GroundAcceleration(const GroundDrive& g) : dt_(g.dt) {
+  GroundAccelerationLevels() = default;
+  explicit GroundAccelerationLevels(const GroundDrive& g) : dt_(g.dt) {
     for (std::size_t j = 0; j + 1 < g.velocity.size(); ++j) {
       const Vec3 a = (g.velocity[j + 1] - g.velocity[j]) / g.dt;
       horizontal_.push_back(std::hypot(a.x(), a.y()));
@@ -275,7 +275,7 @@ RunOutcome run(const Scene& scene, const GroundDrive& ground, const RunSettings&
   world_effects.vertical_ground = !select || fx.vertical_motion;
   world_effects.distance_skin = select;
   world.set_effects(world_effects);
-  const GroundAcceleration acceleration = select ? GroundAcceleration(ground) : GroundAcceleration();
+  const GroundAccelerationLevels acceleration = select ? GroundAccelerationLevels(ground) : GroundAccelerationLevels();
   SupportScratch support;
   std::vector<std::size_t> counts, last_counts;
   const double g = settings.step.gravity;
