@@ -30,6 +30,7 @@
 #include "rigid/scenario/builders.hpp"
 #include "rigid/scenario/rock_library.hpp"
 #include "rigid/scenario/rocking2d.hpp"
+#include "rigid/scenario/tilt_test.hpp"
 
 namespace rigid::app {
 namespace {
