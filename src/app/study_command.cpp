@@ -26,6 +26,7 @@
 #include "rigid/io/at2.hpp"
 #include "rigid/motion/synth.hpp"
 #include "rigid/rocking/housner.hpp"
+#include "rigid/rocking/newmark.hpp"
 #include "rigid/scenario/accuracy.hpp"
 #include "rigid/scenario/builders.hpp"
 #include "rigid/scenario/rock_library.hpp"
@@ -254,45 +255,6 @@ motion::GroundMotion x_only_scaled(const motion::GroundMotion& m, double pga_g) 
   x.z.clear();
   x.has_y = x.has_z = false;
   return motion::scaled(x, motion::target_pga_factor(x, pga_g));
-}
-
-// Newmark (1965) rigid-plastic sliding of a block on a base with horizontal acceleration a(t)
-// (sampled every dt, linear between samples, zero after): relative displacement u of the block
-// against the base; the block sticks while |a| <= mu g. Returns u once the base is quiet and the
-// block has stopped (unit: m).
-double newmark_displacement(const std::vector<double>& a, double dt, double mu) {
-  const double h = 1e-5;
-  const double fr = mu * kGravity;
-  const double end = dt * double(a.size() - 1);
-  auto acc = [&](double t) {
-    if (t >= end) return 0.0;
-    const double x = t / dt;
-    const std::size_t k = static_cast<std::size_t>(x);
-    const double f = x - double(k);
-    return (1 - f) * a[k] + f * a[std::min(k + 1, a.size() - 1)];
-  };
-  double u = 0, v = 0;
-  for (long i = 0;; ++i) {
-    const double t = double(i) * h;
-    if (t > end && v == 0) break;
-    const double ag = acc(t + 0.5 * h);
-    double s = v > 0 ? 1 : v < 0 ? -1 : 0;
-    if (s == 0) {
-      if (std::abs(ag) <= fr) continue;
-      s = ag > 0 ? -1 : 1;  // the block lags behind the base
-    }
-    const double rel = -ag - s * fr;
-    const double vn = v + rel * h;
-    if (vn * s <= 0) {  // stops within the step
-      const double tau = -v / rel;
-      u += v * tau + 0.5 * rel * tau * tau;
-      v = 0;
-    } else {
-      u += 0.5 * (v + vn) * h;
-      v = vn;
-    }
-  }
-  return u;
 }
 
 // ------------------------------------------------------------------------------------------
@@ -667,7 +629,7 @@ void study_accuracy(const StudyOptions& o) {
     } else if (c.oracle == Oracle::rigid_statics) {
       c.oracle_value = scenario::static_toppling(*c.library, 0.0);
     } else if (c.oracle == Oracle::newmark_slide) {
-      c.oracle_value = newmark_displacement(c.ground.x, c.ground.dt, c.law.friction);
+      c.oracle_value = rocking::newmark_displacement(c.ground.x, c.ground.dt, c.law.friction);
     }
     const Setting& ref_setting = settings.front();
     std::optional<Trajectory> ref;
