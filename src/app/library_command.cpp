@@ -16,6 +16,7 @@
 #include "rigid/io/scene_file.hpp"
 #include "rigid/io/stl.hpp"
 #include "rigid/scenario/rock_library.hpp"
+#include "rigid/scenario/tilt_test.hpp"
 
 namespace rigid::app {
 namespace {

@@ -4,17 +4,12 @@
 #include <numeric>
 #include <stdexcept>
 
+#include "rigid/core/rng.hpp"
+
 namespace rigid::campaign {
 namespace {
 
 constexpr std::int8_t kInFlight = -1;
-
-std::uint64_t splitmix64(std::uint64_t x) {
-  x += 0x9E3779B97F4A7C15ull;
-  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
-  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
-  return x ^ (x >> 31);
-}
 
 bool is_result(std::int8_t o) {
   return o == static_cast<std::int8_t>(scenario::CellOutcome::survived) ||
@@ -27,8 +22,7 @@ bool is_result(std::int8_t o) {
 double rotation_angle_deg(std::uint64_t seed, const Cell& c) {
   std::uint64_t h = splitmix64(seed);
   for (int v : {c.object, c.record, c.scale, c.rotation}) h = splitmix64(h ^ static_cast<std::uint64_t>(v));
-  // 53 random bits -> [0, 1)
-  return 360.0 * static_cast<double>(h >> 11) * 0x1.0p-53;
+  return 360.0 * unit_interval(h);
 }
 
 double cell_rotation_deg(const scenario::Job& job, const Cell& c) {

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "rigid/core/error.hpp"
+#include "rigid/core/rng.hpp"
 #include "rigid/core/types.hpp"
 #include "rigid/motion/measures.hpp"
 
@@ -34,14 +35,6 @@ std::size_t sample_count(const std::string& name, double duration, double dt) {
   require(n <= double(kMaxSamples), name,
           "too many samples (" + num(n) + " > " + std::to_string(kMaxSamples) + ")");
   return std::size_t(n);
-}
-
-// splitmix64 finaliser: decorrelates the user seed and the component index
-std::uint64_t mix(std::uint64_t z) {
-  z += 0x9e3779b97f4a7c15ULL;
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-  return z ^ (z >> 31);
 }
 
 // puts one horizontal series on x, or along an azimuth on x and y
@@ -252,7 +245,7 @@ GroundMotion stochastic_motion(const std::string& name, const StochasticParams& 
   for (int c = 0; c < p.components; ++c) {
     const bool vertical = c == 2;
     const double f = vertical ? p.f_mid * p.vertical_freq_ratio : p.f_mid;
-    std::vector<double> a = rd_component(p, n, f, mix(p.seed ^ mix(std::uint64_t(c) + 1)));
+    std::vector<double> a = rd_component(p, n, f, splitmix64(p.seed ^ splitmix64(std::uint64_t(c) + 1)));
     const double pk = peak_abs(a);
     const double target = (vertical ? p.vertical_ratio : 1.0) * p.pga_g * kGravity;
     for (double& v : a) v = pk > 0.0 ? v * target / pk : 0.0;

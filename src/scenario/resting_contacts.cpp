@@ -7,36 +7,20 @@
 namespace rigid::scenario {
 namespace {
 
-double cross2(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
-}
-
-// Smallest distance from c to an edge of the convex hull of `points` (unit: m), 0 when c is
-// outside it or the hull is degenerate. Sorts `points` and uses `hull` as scratch.
-double inner_distance(std::vector<Eigen::Vector2d>& points, std::vector<Eigen::Vector2d>& hull,
-                      const Eigen::Vector2d& c) {
-  std::sort(points.begin(), points.end(), [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-    return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
-  });
-  // Andrew's monotone chain, counter-clockwise, collinear points dropped
-  hull.clear();
-  for (int pass = 0; pass < 2; ++pass) {
-    const std::size_t base = hull.size();
-    for (std::size_t k = 0; k < points.size(); ++k) {
-      const auto& p = pass == 0 ? points[k] : points[points.size() - 1 - k];
-      while (hull.size() >= base + 2 && cross2(hull[hull.size() - 2], hull.back(), p) <= 0) hull.pop_back();
-      hull.push_back(p);
-    }
-    hull.pop_back();
-  }
+// Smallest distance from c to an edge of the convex hull of `scratch.points` (unit: m), 0 when c
+// is outside it or the hull is degenerate.
+double inner_distance(SupportScratch& scratch, const geometry::Point2& c) {
+  geometry::convex_hull_2d(scratch.points, scratch.hull, scratch.order, 0.0);
+  const auto& hull = scratch.hull;
+  const auto& points = scratch.points;
   if (hull.size() < 3) return 0;
   double d = std::numeric_limits<double>::infinity();
   for (std::size_t k = 0; k < hull.size(); ++k) {
-    const auto& a = hull[k];
-    const auto& b = hull[(k + 1) % hull.size()];
+    const auto& a = points[std::size_t(hull[k])];
+    const auto& b = points[std::size_t(hull[(k + 1) % hull.size()])];
     const double len = (b - a).norm();
     if (!(len > 0)) return 0;
-    d = std::min(d, cross2(a, b, c) / len);  // > 0 inside a counter-clockwise hull
+    d = std::min(d, geometry::turn(a, b, c) / len);  // > 0 inside a counter-clockwise hull
   }
   return std::max(d, 0.0);
 }
@@ -118,7 +102,7 @@ double quasi_static_ratio(const dynamics::World& world, const dynamics::ContactS
     if (scratch.points.size() < 3 || !(min_up > 0)) return 0;
     const double h = c.z() - lowest;
     if (!(h > 0)) return 0;
-    const double d = inner_distance(scratch.points, scratch.hull, Eigen::Vector2d(c.x(), c.y()));
+    const double d = inner_distance(scratch, geometry::Point2(c.x(), c.y()));
     const double slope = std::atan(friction) - std::acos(std::min(min_up, 1.0));
     if (!(d > 0) || !(slope > 0)) return 0;
     ratio = std::min({ratio, d / h, std::tan(slope)});

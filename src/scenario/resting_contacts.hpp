@@ -1,10 +1,10 @@
 #pragma once
 // What a shaking run reads from the contacts to decide that free blocks are at rest, still or
 // may sleep (RunSettings::select_effects), all over the World's published ContactSummary.
-#include <Eigen/Core>
 #include <vector>
 
 #include "rigid/dynamics/world.hpp"
+#include "rigid/geometry/polygon2d.hpp"
 #include "rigid/scenario/scene.hpp"
 
 namespace rigid::scenario {
@@ -42,7 +42,8 @@ class DriveAcceleration {
 
 /// Scratch of quasi_static_ratio (reused from call to call).
 struct SupportScratch {
-  std::vector<Eigen::Vector2d> points, hull;
+  std::vector<geometry::Point2> points;
+  std::vector<int> hull, order;
 };
 
 /// The smallest quasi-static acceleration, as a fraction of the (effective) gravity, at which a

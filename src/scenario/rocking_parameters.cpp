@@ -4,38 +4,12 @@
 #include <cmath>
 #include <vector>
 
+#include "rigid/geometry/polygon2d.hpp"
+
 namespace rigid::scenario {
 namespace {
 
-using P2 = Eigen::Vector2d;
-
-double cross2(const P2& a, const P2& b) { return a.x() * b.y() - a.y() * b.x(); }
-
-// Indices of the counter-clockwise convex hull of the points' (x, y) (monotone chain), collinear
-// points dropped.
-std::vector<int> hull_xy(const std::vector<Vec3>& p) {
-  std::vector<int> order(p.size());
-  for (std::size_t i = 0; i < p.size(); ++i) order[i] = static_cast<int>(i);
-  std::sort(order.begin(), order.end(), [&](int a, int b) {
-    return p[a].x() < p[b].x() || (p[a].x() == p[b].x() && p[a].y() < p[b].y());
-  });
-  if (order.size() < 3) return order;
-  const auto turn = [&](int o, int a, int b) {
-    return cross2(p[a].head<2>() - p[o].head<2>(), p[b].head<2>() - p[o].head<2>());
-  };
-  std::vector<int> h(2 * order.size());
-  std::size_t k = 0;
-  for (int i : order) {
-    while (k >= 2 && turn(h[k - 2], h[k - 1], i) <= 1e-15) --k;
-    h[k++] = i;
-  }
-  for (std::size_t i = order.size() - 1, t = k + 1; i > 0; --i) {
-    while (k >= t && turn(h[k - 2], h[k - 1], order[i - 1]) <= 1e-15) --k;
-    h[k++] = order[i - 1];
-  }
-  h.resize(k - 1);
-  return h;
-}
+using P2 = geometry::Point2;
 
 // Largest signed distance of a world point outside a fixed block's face planes (< 0 inside).
 double outside_distance(const dynamics::BodyDef& b, const Vec3& world_point) {
@@ -75,7 +49,9 @@ std::optional<RockingParameters> rocking_parameters(const Scene& scene, double c
       if (outside_distance(*block, w) <= contact_tolerance) support.push_back(w);
     }
   }
-  const std::vector<int> hull = hull_xy(support);
+  std::vector<geometry::Point2> support_xy;
+  for (const auto& w : support) support_xy.push_back(w.head<2>());
+  const std::vector<int> hull = geometry::convex_hull_2d_indices(support_xy);
   if (hull.size() < 3) return std::nullopt;
   const Vec3 c = block->position;
   // inertia about the centroid in world axes
@@ -89,7 +65,7 @@ std::optional<RockingParameters> rocking_parameters(const Scene& scene, double c
     const double length = edge.norm();
     if (length <= 0) continue;
     // counter-clockwise hull: the centroid is inside when it lies left of every edge
-    const double d = cross2(edge, (c - a).head<2>()) / length;
+    const double d = geometry::cross(edge, (c - a).head<2>()) / length;
     if (d <= 0) return std::nullopt;
     // height above the edge where the centroid's vertical plane normal to it crosses it
     const double t = std::clamp((c - a).head<2>().dot(edge) / (length * length), 0.0, 1.0);

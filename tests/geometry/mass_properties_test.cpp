@@ -19,7 +19,6 @@ using namespace rigid::geometry;
 
 constexpr double kRel = 1e-10;
 
-// splitmix64: the same stream on every platform (std distributions are not portable)
 using rigid::test::Rng;
 
 ClosedMesh mesh_of(const TriangleSoup& soup) { return make_closed_mesh(soup, {}, "test"); }

@@ -1,6 +1,7 @@
 // STL reader and writers: format detection, fixtures, errors with file and line, round trips,
 // and no crash on truncated, mutated or fuzz-found inputs.
 #include "rigid/io/stl.hpp"
+#include "rigid/core/rng.hpp"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -31,16 +32,7 @@ using rigid::io::read_stl_from_memory;
 
 const std::string kData = std::string(RIGID_SOURCE_DIR) + "/tests/data/stl/";
 
-struct Rng {
-  std::uint64_t s;
-  std::uint64_t next() {
-    std::uint64_t z = (s += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-  }
-  double uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
-};
+using Rng = rigid::SplitMix64;
 
 // A fresh directory per test process, removed at exit.
 class TempDir {

@@ -16,6 +16,7 @@
 #include "rigid/io/stl.hpp"
 #include "rigid/scenario/builders.hpp"
 #include "rigid/scenario/rock_library.hpp"
+#include "rigid/scenario/tilt_test.hpp"
 
 namespace rigid {
 namespace {

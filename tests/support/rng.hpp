@@ -1,20 +1,10 @@
 #pragma once
-// SplitMix64: a portable, seeded random stream for test inputs (std:: distributions differ
-// between standard libraries).
-#include <cstdint>
+// The seeded stream for test inputs: the engine's SplitMix64 (std:: distributions differ between
+// standard libraries).
+#include "rigid/core/rng.hpp"
 
 namespace rigid::test {
 
-struct Rng {
-  std::uint64_t s;
-  /// Uniform on [0, 1).
-  double uniform() {
-    std::uint64_t z = (s += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    z ^= z >> 31;
-    return static_cast<double>(z >> 11) * 0x1.0p-53;
-  }
-};
+using Rng = rigid::SplitMix64;
 
 }  // namespace rigid::test
