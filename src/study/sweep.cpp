@@ -83,11 +83,10 @@ StudyResult run_study(const StudyOptions& o, std::vector<Case> cases_in, std::ve
           row.search_wall = wall;
           if (&s == &ref_setting) c.ground = one_sine(0.9 * row.model_value, c.pulse_period);
         }
-        const scenario::GroundDrive drive = c.ground.x.empty() ? scenario::GroundDrive{} : scenario::ground_drive(c.ground);
         std::vector<double> walls;
         Trajectory tr;
         for (int k = 0; k < repeat; ++k) {
-          Trajectory t = run_trajectory(scene, drive, rs, c.conservative, interval);
+          Trajectory t = run_trajectory(scene, c.ground, rs, c.conservative, interval);
           walls.push_back(t.wall);
           if (k == 0) tr = std::move(t);
         }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "rigid/scenario/case.hpp"
 #include "rigid/study/accuracy_study.hpp"
 
 namespace rigid::study {
@@ -14,7 +15,18 @@ double median(std::vector<double> v) {
   return n == 0 ? kNoValue : n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-Trajectory run_trajectory(const scenario::Scene& scene, const scenario::GroundDrive& drive,
+namespace {
+
+// The run of the model's one case (its record as it is); an error inside it is thrown again.
+scenario::RunOutcome simulated_run(const scenario::Model& model) {
+  scenario::CaseOutcome out = scenario::simulate(model, scenario::Case{});
+  if (out.error) std::rethrow_exception(out.error);
+  return out.run;
+}
+
+}  // namespace
+
+Trajectory run_trajectory(const scenario::Scene& scene, const motion::GroundMotion& ground,
                           scenario::RunSettings settings, bool conservative, double interval) {
   Trajectory tr;
   std::vector<int> free, fixed;
@@ -59,8 +71,9 @@ Trajectory run_trajectory(const scenario::Scene& scene, const scenario::GroundDr
     const double residual = e - e0;
     tr.energy_err = std::max(tr.energy_err, (conservative ? std::abs(residual) : std::max(0.0, residual)) / scale);
   };
+  const scenario::Model model(scenario::ModelKind::dem3d, {scene}, {ground}, std::move(settings));
   const auto start = Clock::now();
-  tr.outcome = scenario::run(scene, drive, settings);
+  tr.outcome = simulated_run(model);
   tr.wall = seconds_since(start);
   return tr;
 }
@@ -109,7 +122,9 @@ double pulse_threshold(const scenario::Scene& scene, const scenario::RunSettings
   const auto start = Clock::now();
   scenario::RunSettings s = settings;
   s.duration = period + 10.0;
-  auto overturns = [&](double a) { return scenario::run(scene, scenario::ground_drive(one_sine(a, period)), s).overturned; };
+  auto overturns = [&](double a) {
+    return simulated_run(scenario::Model(scenario::ModelKind::dem3d, {scene}, {one_sine(a, period)}, s)).overturned;
+  };
   for (int k = 0; k < 8 && overturns(lo); ++k) lo *= 0.8;
   for (int k = 0; k < 8 && !overturns(hi); ++k) hi *= 1.25;
   while (hi - lo > rel_tol * hi) {

@@ -27,7 +27,8 @@ struct Trajectory {
   double wall = 0;
 };
 
-Trajectory run_trajectory(const scenario::Scene& scene, const scenario::GroundDrive& drive,
+/// One case of the scene under `ground` (x component; empty: none), through scenario::simulate.
+Trajectory run_trajectory(const scenario::Scene& scene, const motion::GroundMotion& ground,
                           scenario::RunSettings settings, bool conservative, double interval);
 
 struct TrajectoryError {
