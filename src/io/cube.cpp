@@ -210,6 +210,23 @@ std::vector<double> overturn_probability(const Cube& cube, const ObjectCube& obj
   return p;
 }
 
+std::vector<double> mean_overturn_probability(const Cube& cube, const ObjectCube& object) {
+  const std::vector<double> p = overturn_probability(cube, object);
+  const std::size_t R = cube.records.size(), S = cube.scales_g.size();
+  std::vector<double> mean(S, kNaN);
+  for (std::size_t s = 0; s < S; ++s) {
+    double sum = 0.0;
+    int known = 0;
+    for (std::size_t r = 0; r < R; ++r) {
+      if (std::isnan(p[r * S + s])) continue;
+      sum += p[r * S + s];
+      ++known;
+    }
+    if (known > 0) mean[s] = sum / known;
+  }
+  return mean;
+}
+
 FragilitySurface fragility_surface(const Cube& cube, const ObjectCube& object) {
   const std::vector<double> p = overturn_probability(cube, object);
   FragilitySurface f;
