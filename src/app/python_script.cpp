@@ -18,7 +18,17 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// argv for execv: PYTHON SCRIPT ARGS... (pointers into storage, null-terminated)
+// PYTHON SCRIPT ARGS..., with stdout and stderr flushed so that the script's output follows ours
+std::vector<std::string> python_command(const std::string& python, const std::string& script,
+                                        const std::vector<std::string>& args) {
+  std::vector<std::string> command{python, script};
+  command.insert(command.end(), args.begin(), args.end());
+  std::fflush(stdout);
+  std::fflush(stderr);
+  return command;
+}
+
+// argv for execv: pointers into storage, null-terminated
 std::vector<char*> python_argv(std::vector<std::string>& storage) {
   std::vector<char*> argv;
   argv.reserve(storage.size() + 1);
@@ -61,11 +71,8 @@ std::string find_plot_helper(const std::string& name) { return first_file(plot_h
 
 int run_python(const std::string& script, const std::vector<std::string>& args) {
   const std::string python = python_interpreter();
-  std::vector<std::string> storage{python, script};
-  storage.insert(storage.end(), args.begin(), args.end());
-  const std::vector<char*> argv = python_argv(storage);
-  std::fflush(stdout);
-  std::fflush(stderr);
+  std::vector<std::string> command = python_command(python, script, args);
+  const std::vector<char*> argv = python_argv(command);
   const pid_t pid = ::fork();
   if (pid < 0) return -1;
   if (pid == 0) {
@@ -80,11 +87,8 @@ int run_python(const std::string& script, const std::vector<std::string>& args) 
 
 void exec_python(const std::string& script, const std::vector<std::string>& args, const std::string& needs) {
   const std::string python = python_interpreter();
-  std::vector<std::string> storage{python, script};
-  storage.insert(storage.end(), args.begin(), args.end());
-  const std::vector<char*> argv = python_argv(storage);
-  std::fflush(stdout);
-  std::fflush(stderr);
+  std::vector<std::string> command = python_command(python, script, args);
+  const std::vector<char*> argv = python_argv(command);
   ::execv(python.c_str(), argv.data());
   const int err = errno;  // only reached when execv failed
   if (err == ENOENT) throw InputError("", 0, python + ": not found; " + needs + ", or set RIGID_PYTHON");
