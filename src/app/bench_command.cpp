@@ -12,7 +12,7 @@
 
 #include "commands.hpp"
 #include "rigid/core/error.hpp"
-#include "json.hpp"
+#include "rigid/io/json.hpp"
 #include "rigid/rocking/housner.hpp"
 #include "rigid/scenario/accuracy.hpp"
 #include "rigid/scenario/builders.hpp"
@@ -93,19 +93,21 @@ struct PeerEngine {
 // long one in the other.
 constexpr double kFixedAmplitudes[2] = {0.29, 0.35};  // g
 
-double json_number(const std::string& text, const std::string& key) {
-  const std::size_t at = text.find("\"" + key + "\":");
-  return at == std::string::npos ? std::nan("") : std::strtod(text.c_str() + at + key.size() + 3, nullptr);
+// A number of the peer's JSON line; NaN when the line or the key is missing.
+double json_number(const io::Json& j, const char* key) {
+  const auto it = j.find(key);
+  return it != j.end() && it->is_number() ? it->get<double>() : std::nan("");
 }
 
-// Runs the peer with these arguments and returns its one-line JSON ("" on failure).
-std::string run_peer(const std::filesystem::path& exe, const std::string& args) {
+// Runs the peer with these arguments and returns its one-line JSON (null on failure).
+io::Json run_peer(const std::filesystem::path& exe, const std::string& args) {
   std::FILE* pipe = popen((exe.string() + " " + args + " --json").c_str(), "r");
-  if (!pipe) return "";
+  if (!pipe) return nullptr;
   std::string out;
   char buf[512];
   while (std::fgets(buf, sizeof buf, pipe)) out += buf;
-  return pclose(pipe) == 0 ? out : "";
+  if (pclose(pipe) != 0) return nullptr;
+  return io::Json::parse(out, nullptr, /*allow_exceptions=*/false);  // discarded (null) if malformed
 }
 
 PeerEngine ode_peer(int repeat) {
@@ -115,15 +117,15 @@ PeerEngine ode_peer(int repeat) {
   const std::filesystem::path exe = self.parent_path() / "rigid_ode_peer";
   if (ec || !std::filesystem::exists(exe)) return p;
   const std::string n = " --dt 0.001 --repeat " + std::to_string(repeat);
-  const std::string search = run_peer(exe, "--threshold --tolerance 0.0015" + n);
+  const io::Json search = run_peer(exe, "--threshold --tolerance 0.0015" + n);
   p.threshold_g = json_number(search, "threshold_g");
   p.wall_per_run = json_number(search, "wall_s_per_run_median");
   p.dt = json_number(search, "dt_s");
   p.runs = int(json_number(search, "runs"));
   for (int k = 0; k < 2; ++k) {
-    const std::string run = run_peer(exe, "--amplitude " + std::to_string(kFixedAmplitudes[k]) + n);
+    const io::Json run = run_peer(exe, "--amplitude " + std::to_string(kFixedAmplitudes[k]) + n);
     p.wall_at[k] = json_number(run, "wall_s_median");
-    p.overturned_at[k] = run.find("\"overturned\": true") != std::string::npos;
+    p.overturned_at[k] = run.is_object() && run.value("overturned", false);
   }
   p.found = std::isfinite(p.threshold_g) && std::isfinite(p.wall_per_run) && std::isfinite(p.wall_at[0]) &&
             std::isfinite(p.wall_at[1]);
@@ -225,35 +227,35 @@ void bench(int repeat, bool json, const std::string& only) {
   const PeerEngine ode = ode_peer(repeat);
 
   if (json) {
-    JsonObject j;
-    j.add("repeat", long(repeat))
-        .add("geode_wall_s_median", geode_median)
-        .add("geode_steps", geode_steps)
-        .add("geode_steps_per_s", double(geode_steps) / geode_median)
-        .add("housner_threshold_g", housner);
+    io::Json j;
+    j["repeat"] = long(repeat);
+    j["geode_wall_s_median"] = geode_median;
+    j["geode_steps"] = geode_steps;
+    j["geode_steps_per_s"] = double(geode_steps) / geode_median;
+    j["housner_threshold_g"] = housner;
     if (ode.found) {
-      j.add("ode_threshold_g", ode.threshold_g)
-          .add("ode_threshold_ratio", ode.threshold_g / housner)
-          .add("ode_dt_s", ode.dt)
-          .add("ode_wall_s_per_search_run", ode.wall_per_run)
-          .add("ode_wall_s_median", ode.wall_at[0])
-          .add("ode_wall_s_median_at_0p35g", ode.wall_at[1]);
+      j["ode_threshold_g"] = ode.threshold_g;
+      j["ode_threshold_ratio"] = ode.threshold_g / housner;
+      j["ode_dt_s"] = ode.dt;
+      j["ode_wall_s_per_search_run"] = ode.wall_per_run;
+      j["ode_wall_s_median"] = ode.wall_at[0];
+      j["ode_wall_s_median_at_0p35g"] = ode.wall_at[1];
     }
     for (const auto& f : peers) {
       std::string key = f.name == "penalty K=1e10" ? "stiff" : f.name;
-      j.add(key + "_wall_s_median", f.wall_at[0])
-          .add(key + "_wall_s_median_at_0p35g", f.wall_at[1])
-          .add(key + "_steps", f.steps)
-          .add(key + "_dt_s", f.dt)
-          .add(key + "_simulated_s", f.simulated)
-          .add(key + "_overturned_at_0p29g", f.overturned_at[0])
-          .add(key + "_overturned_at_0p35g", f.overturned_at[1])
-          .add(key + "_threshold_g", f.threshold.g)
-          .add(key + "_threshold_ratio", f.threshold.g / housner)
-          .add(key + "_wall_s_per_search_run", f.threshold.wall_per_run)
-          .add(key + "_fine_mesh_threshold_g", f.fine_mesh_threshold);
+      j[key + "_wall_s_median"] = f.wall_at[0];
+      j[key + "_wall_s_median_at_0p35g"] = f.wall_at[1];
+      j[key + "_steps"] = f.steps;
+      j[key + "_dt_s"] = f.dt;
+      j[key + "_simulated_s"] = f.simulated;
+      j[key + "_overturned_at_0p29g"] = f.overturned_at[0];
+      j[key + "_overturned_at_0p35g"] = f.overturned_at[1];
+      j[key + "_threshold_g"] = f.threshold.g;
+      j[key + "_threshold_ratio"] = f.threshold.g / housner;
+      j[key + "_wall_s_per_search_run"] = f.threshold.wall_per_run;
+      j[key + "_fine_mesh_threshold_g"] = f.fine_mesh_threshold;
     }
-    std::printf("%s\n", j.str().c_str());
+    std::printf("%s\n", io::json_line(j).c_str());
     return;
   }
   std::printf("rigid bench (medians of %d runs, one core)\n", repeat);

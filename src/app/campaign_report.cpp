@@ -57,27 +57,20 @@ void attach_progress(campaign::CampaignOptions& options, const std::string& mode
 void print_summary(const io::Cube& cube, const std::string& output) {
   std::printf("\nfragility cube: %s\n", std::filesystem::absolute(output).string().c_str());
   std::printf("overturning probability (mean over records; inferred cells count as overturned)\n");
-  const std::size_t R = cube.records.size(), S = cube.scales_g.size();
+  const std::size_t S = cube.scales_g.size();
   const std::size_t stride = (S + 15) / 16;  // at most 16 columns: every k-th scale of a long list
   std::printf("%-20s", "object \\ scale (g)");
   for (std::size_t s = 0; s < S; s += stride) std::printf("%7.3g", cube.scales_g[s]);
   std::printf("\n");
   if (stride > 1) std::printf("(every %zu-th scale of %zu)\n", stride, S);
   for (const auto& oc : cube.objects) {
-    const std::vector<double> p = io::overturn_probability(cube, oc);  // [record][scale]
+    const std::vector<double> mean = io::mean_overturn_probability(cube, oc);  // per scale
     std::printf("%-20s", oc.name.c_str());
     for (std::size_t s = 0; s < S; s += stride) {
-      double sum = 0;
-      int known = 0;
-      for (std::size_t r = 0; r < R; ++r) {
-        if (std::isnan(p[r * S + s])) continue;
-        sum += p[r * S + s];
-        ++known;
-      }
-      if (known > 0) {
-        std::printf("%7.2f", sum / known);
-      } else {
+      if (std::isnan(mean[s])) {
         std::printf("%7s", "-");
+      } else {
+        std::printf("%7.2f", mean[s]);
       }
     }
     std::printf("\n");

@@ -3,17 +3,13 @@
 #include <memory>
 
 #include "commands.hpp"
-#include "json.hpp"
+#include "rigid/io/json.hpp"
 #include "rigid/io/scene_file.hpp"
 
 namespace rigid::app {
 namespace {
 
-std::string vec_json(const Vec3& v) {
-  char buf[96];
-  std::snprintf(buf, sizeof buf, "[%.10g, %.10g, %.10g]", v.x(), v.y(), v.z());
-  return buf;
-}
+io::Json vec_json(const Vec3& v) { return io::Json::array({v.x(), v.y(), v.z()}); }
 
 void inspect(const std::string& path, bool json) {
   // loading runs every mesh check (closed, oriented, convex); a failure throws before this point
@@ -21,18 +17,18 @@ void inspect(const std::string& path, bool json) {
   for (const auto& b : scene.bodies) {
     const auto& s = b.shape;
     if (json) {
-      JsonObject j;
-      j.add("block", b.name)
-          .add("fixed", b.fixed)
-          .add("vertices", long(s.vertices.size()))
-          .add("faces", long(s.faces.size()))
-          .add("volume_m3", s.volume)
-          .add("mass_kg", s.mass)
-          .raw("centroid_m", vec_json(b.position))
-          .raw("principal_moments_kg_m2", vec_json(s.inertia))
-          .add("bounding_radius_m", s.bounding_radius)
-          .raw("checks", "[\"closed\", \"oriented\", \"convex\", \"finite\"]");
-      std::printf("%s\n", j.str().c_str());
+      io::Json j;
+      j["block"] = b.name;
+      j["fixed"] = b.fixed;
+      j["vertices"] = long(s.vertices.size());
+      j["faces"] = long(s.faces.size());
+      j["volume_m3"] = s.volume;
+      j["mass_kg"] = s.mass;
+      j["centroid_m"] = vec_json(b.position);
+      j["principal_moments_kg_m2"] = vec_json(s.inertia);
+      j["bounding_radius_m"] = s.bounding_radius;
+      j["checks"] = io::Json::array({"closed", "oriented", "convex", "finite"});
+      std::printf("%s\n", io::json_line(j).c_str());
     } else {
       std::printf("%s (%s): %zu vertices, %zu faces\n", b.name.c_str(), b.fixed ? "fixed" : "free",
                   s.vertices.size(), s.faces.size());

@@ -6,9 +6,9 @@
 #include <optional>
 
 #include "commands.hpp"
-#include "json.hpp"
 #include "motion_input.hpp"
 #include "rigid/core/error.hpp"
+#include "rigid/io/json.hpp"
 #include "rigid/io/scene_file.hpp"
 #include "rigid/io/trajectory.hpp"
 #include "rigid/scenario/accuracy.hpp"
@@ -50,24 +50,24 @@ const char* end_name(scenario::ActiveEffects::End end) {
 }
 
 // The effects a run simulated (issue 6), as the "effects" object of --json.
-std::string effects_json(const scenario::ActiveEffects& e) {
-  JsonObject j;
-  j.add("selected", e.selected)
-      .add("vertical_motion", e.vertical_motion)
-      .add("pairs_total", e.pairs_total)
-      .add("pairs_fixed_fixed", e.pairs_fixed_fixed)
-      .add("pairs_never_tested", e.pairs_never_tested)
-      .add("pair_steps_culled", e.pair_steps_culled)
-      .add("sleep_possible", e.sleep_possible)
-      .add("sleep_intervals", e.sleep_intervals)
-      .add("asleep_s", e.asleep_s)
-      .add("steps_skipped", e.steps_skipped)
-      .add("sliding", e.sliding)
-      .add("contact_steps", e.contact_steps)
-      .add("sliding_steps", e.sliding_steps)
-      .add("end", end_name(e.end))
-      .add("time_saved_s", e.time_saved_s);
-  return j.str();
+io::Json effects_json(const scenario::ActiveEffects& e) {
+  io::Json j;
+  j["selected"] = e.selected;
+  j["vertical_motion"] = e.vertical_motion;
+  j["pairs_total"] = e.pairs_total;
+  j["pairs_fixed_fixed"] = e.pairs_fixed_fixed;
+  j["pairs_never_tested"] = e.pairs_never_tested;
+  j["pair_steps_culled"] = e.pair_steps_culled;
+  j["sleep_possible"] = e.sleep_possible;
+  j["sleep_intervals"] = e.sleep_intervals;
+  j["asleep_s"] = e.asleep_s;
+  j["steps_skipped"] = e.steps_skipped;
+  j["sliding"] = e.sliding;
+  j["contact_steps"] = e.contact_steps;
+  j["sliding_steps"] = e.sliding_steps;
+  j["end"] = end_name(e.end);
+  j["time_saved_s"] = e.time_saved_s;
+  return j;
 }
 
 std::string effects_line(const scenario::ActiveEffects& e) {
@@ -136,21 +136,21 @@ void run(const RunOptions& o) {
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   if (o.json) {
-    JsonObject j;
-    j.add("overturned", r.overturned)
-        .add("failure_time_s", r.failure_time)
-        .add("failed_block", r.failed_block)
-        .add("steps", r.steps)
-        .add("dt_s", r.dt)
-        .add("simulated_s", r.simulated)
-        .add("wall_s", wall)
-        .add("max_tilt_deg", r.max_tilt * 180.0 / kPi)
-        .add("max_slip_m", r.max_slip)
-        .add("max_overlap_m", r.max_overlap)
-        .add("ended_at_rest", r.ended_at_rest)
-        .add("finite", r.finite);
-    if (!block2d) j.raw("effects", effects_json(r.effects));
-    std::printf("%s\n", j.str().c_str());
+    io::Json j;
+    j["overturned"] = r.overturned;
+    j["failure_time_s"] = io::json_or_null(r.failure_time);
+    j["failed_block"] = r.failed_block;
+    j["steps"] = r.steps;
+    j["dt_s"] = r.dt;
+    j["simulated_s"] = r.simulated;
+    j["wall_s"] = wall;
+    j["max_tilt_deg"] = r.max_tilt * 180.0 / kPi;
+    j["max_slip_m"] = r.max_slip;
+    j["max_overlap_m"] = r.max_overlap;
+    j["ended_at_rest"] = r.ended_at_rest;
+    j["finite"] = r.finite;
+    if (!block2d) j["effects"] = effects_json(r.effects);
+    std::printf("%s\n", io::json_line(j).c_str());
   } else {
     std::printf("%s after %.3f s simulated (%ld steps of %.3g s, %.3f s wall)\n",
                 r.overturned ? "OVERTURNED" : "survived", r.simulated, r.steps, r.dt, wall);

@@ -9,6 +9,7 @@
 #include "rigid/core/error.hpp"
 #include "rigid/io/at2.hpp"
 #include "rigid/io/job_file.hpp"
+#include "rigid/io/json.hpp"
 #include "rigid/scenario/rocking_parameters.hpp"
 
 #if !defined(RIGID_VERSION) || !defined(RIGID_GIT_HASH)
@@ -19,29 +20,6 @@ namespace rigid::campaign {
 namespace {
 
 namespace fs = std::filesystem;
-
-// An object's full physics and run settings as one JSON object: its own contact model and law,
-// density, failure rule and the time step its runs take, with the job's run settings.
-std::string physics_json(const scenario::Scene& scene, const scenario::Job& job) {
-  const auto& law = scene.law;
-  const bool tilt = scene.failure.kind == scenario::FailureRule::Kind::tilt;
-  char physics[1536];
-  std::snprintf(physics, sizeof physics,
-                "{\"contact\": \"%s\", \"restitution\": %.17g, \"normal_stiffness\": %.17g, \"shear_stiffness\": %.17g, \"friction\": %.17g, "
-                "\"damping\": %.17g, \"density\": %.17g, \"failure_rule\": \"%s\", \"failure_tilt_deg\": %.17g, "
-                "\"step_s\": %.17g, \"dt_s\": %.17g, \"safety\": %.17g, \"integrator\": \"%s\", "
-                "\"duration_s\": %.17g, \"free_time_s\": %.17g, \"stop_after\": %d, \"accuracy\": \"%s\", "
-                "\"rest_speed_m_s\": %.17g, \"rest_angular_speed_rad_s\": %.17g, \"rest_time_s\": %.17g, "
-                "\"effects\": \"%s\"}",
-                contact::contact_model_name(law.model), law.restitution, law.normal_stiffness,
-                law.shear_stiffness, law.friction, law.damping, scene.density, tilt ? "tilt" : "below",
-                tilt ? scene.failure.tilt_angle * 180.0 / kPi : 0.0, dynamics::time_step(scene.bodies, law, job.run.step),
-                job.run.step.dt, job.run.step.safety,
-                job.run.step.rotation == dynamics::RotationIntegrator::rk4 ? "rk4" : "splitting",
-                job.run.duration, job.run.free_time, job.stop_after, job.accuracy.c_str(), job.run.rest_speed,
-                job.run.rest_angular_speed, job.run.rest_time, job.run.select_effects ? "auto" : "all");
-  return physics;
-}
 
 InputError changed_file(const std::string& file) {
   return InputError(file, 0, "changed since the campaign started (resume refused; --force starts anew)");
@@ -118,7 +96,7 @@ io::Cube make_cube(const CampaignContext& context, const Plan& plan) {
   cube.job_hash = job.hash;
   cube.software_version = RIGID_VERSION " (" RIGID_GIT_HASH ")";
   cube.seed = job.seed;
-  cube.physics_json = physics_json(model.scene(0), job);  // object 0's, as before per-object records
+  cube.physics_json = io::physics_json(model.scene(0), job);  // object 0's, as before per-object records
   const std::vector<std::int8_t> outcome = plan.final_outcomes();
   const std::vector<bool> kept = plan.kept_mask();
   const long per_object = long(job.records.size()) * long(job.scales_g.size()) * job.rotations;
@@ -128,7 +106,7 @@ io::Cube make_cube(const CampaignContext& context, const Plan& plan) {
     oc.name = job.objects[o].name;
     oc.scene = job.objects[o].scene;
     oc.inputs = io::format_digests(inputs.objects[o]);
-    oc.physics_json = physics_json(model.scene(int(o)), job);
+    oc.physics_json = io::physics_json(model.scene(int(o)), job);
     if (const auto rocking = scenario::rocking_parameters(model.scene(int(o)))) {
       oc.alpha_rad = rocking->alpha;
       oc.p_rad_s = rocking->p;

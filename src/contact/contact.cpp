@@ -1,6 +1,7 @@
 #include "rigid/contact/contact.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <limits>
 
@@ -180,6 +181,9 @@ CommonPlane find_common_plane(const PlacedHull& a, const PlacedHull& b, const Ve
     if (settled) break;
   }
   n = snap_to_face(a, b, n, hints);
+  // invariant (debug builds): the common plane's normal is a unit vector (or NaN from a
+  // non-finite input, which the run reports as such)
+  assert(!n.allFinite() || std::abs(n.norm() - 1.0) < 1e-9);
   cp.normal = n;
   cp.overlap = overlap_along(a, b, n, hints);
   if (!link.overlapping) {
@@ -356,6 +360,13 @@ void collect_subcontacts(const PlacedHull& a, const PlacedHull& b, const CommonP
   if (out.size() == first && plane.overlap > 0) {
     out.push_back({kEdgeSubcontact, 0.5 * (plane.point_a + plane.point_b), plane.overlap});
   }
+#ifndef NDEBUG
+  // invariant (debug builds): a pair's subcontact keys are distinct (the shear springs carried
+  // from step to step are matched by key), meshes being below 2^20 vertices
+  for (std::size_t i = first; i < out.size(); ++i) {
+    for (std::size_t k = first; k < i; ++k) assert(out[i].key != out[k].key);
+  }
+#endif
 }
 
 Vec3 subcontact_force(const ContactLaw& law, const Vec3& normal, double overlap, double overlap_rate,

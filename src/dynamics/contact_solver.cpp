@@ -1,6 +1,7 @@
 #include "rigid/dynamics/contact_solver.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 
 #include <Eigen/LU>
@@ -134,6 +135,9 @@ SolverResult solve_velocities(std::vector<SolverBody>& bodies, std::vector<Conta
   for (int iteration = 0; iteration < settings.max_iterations; ++iteration) {
     scratch = bodies;
     for (auto& p : patches) {
+      // invariant (debug builds): a patch names two bodies and a range of rows that exist
+      assert(p.a >= 0 && p.b >= 0 && std::size_t(p.a) < bodies.size() && std::size_t(p.b) < bodies.size());
+      assert(p.first_row >= 0 && p.row_count >= 0 && std::size_t(p.first_row + p.row_count) <= rows.size());
       SolverBody& a = bodies[p.a];
       SolverBody& b = bodies[p.b];
       double total = 0;
@@ -159,6 +163,8 @@ SolverResult solve_velocities(std::vector<SolverBody>& bodies, std::vector<Conta
       break;
     }
   }
+  // invariant (debug builds): contacts push, never pull (Signorini: p_n >= 0)
+  for ([[maybe_unused]] const auto& r : rows) assert(r.normal_impulse >= 0);
   return result;
 }
 

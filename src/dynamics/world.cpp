@@ -1,6 +1,7 @@
 #include "rigid/dynamics/world.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -54,6 +55,8 @@ World::World(std::vector<BodyDef> bodies, const contact::ContactLaw& law,
   for (std::size_t i = 0; i < n; ++i) {
     const auto& d = defs_[i];
     auto& s = states_[i];
+    // invariant (debug builds): a free block has positive mass and principal moments
+    assert(d.fixed || (d.shape.mass > 0 && (d.shape.inertia.array() > 0).all()));
     s.position = d.position;
     s.orientation = d.orientation.normalized();
     s.velocity = d.velocity;
@@ -169,6 +172,13 @@ void World::step(double dt, const Vec3& ground_velocity_start, const Vec3& groun
   } else {
     step_penalty(dt, ground_velocity_start, ground_velocity_end);
   }
+#ifndef NDEBUG
+  // invariant (debug builds): every block's attitude stays a unit quaternion (a non-finite state is
+  // an outcome the run reports, not a broken invariant)
+  for (const auto& s : states_) {
+    assert(!s.orientation.coeffs().allFinite() || std::abs(s.orientation.norm() - 1.0) < 1e-9);
+  }
+#endif
 }
 
 void World::move_pedestals(double dt, const Vec3& ground_velocity) {

@@ -1,5 +1,6 @@
 /// Volume, centroid and inertia tensor of a homogeneous closed triangle mesh (physics.md §7).
 #include <Eigen/Eigenvalues>
+#include <cassert>
 #include <cmath>
 #include <stdexcept>
 
@@ -92,6 +93,11 @@ MassProperties mass_properties(const ClosedMesh& mesh, double density) {
   }
   if (axes.determinant() < 0) axes.col(2) = -axes.col(2);
   p.principal_axes = axes;
+  // invariants (debug builds): a closed mesh of positive volume has positive mass and principal
+  // moments that are non-negative up to rounding, and a proper rotation as its principal axes
+  assert(p.mass > 0 && p.volume > 0);
+  assert(p.principal_moments.minCoeff() >= -1e-12 * p.principal_moments.cwiseAbs().maxCoeff());
+  assert(std::abs(p.principal_axes.determinant() - 1.0) < 1e-9);
   return p;
 }
 

@@ -12,6 +12,7 @@
 
 #include "rigid/core/error.hpp"
 #include "rigid/core/types.hpp"
+#include "rigid/io/json.hpp"
 
 namespace rigid::io {
 
@@ -525,7 +526,7 @@ std::string motion_info_report(const std::string& spec, const SetReadOptions& re
                                const std::vector<double>& sa_periods, bool json) {
   const motion::GroundMotion m = read_motion_set(spec, read);
   const motion::MotionInfo info = motion::motion_info(m, measures, sa_periods);
-  return json ? motion::to_json(info) : motion::to_text(info);
+  return json ? motion_info_json(info) : motion::to_text(info);
 }
 
 }  // namespace rigid::io

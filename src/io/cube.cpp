@@ -62,6 +62,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "hdf5_handle.hpp"
 #include "rigid/core/error.hpp"
 
 namespace rigid::io {
@@ -209,6 +210,23 @@ std::vector<double> overturn_probability(const Cube& cube, const ObjectCube& obj
   return p;
 }
 
+std::vector<double> mean_overturn_probability(const Cube& cube, const ObjectCube& object) {
+  const std::vector<double> p = overturn_probability(cube, object);
+  const std::size_t R = cube.records.size(), S = cube.scales_g.size();
+  std::vector<double> mean(S, kNaN);
+  for (std::size_t s = 0; s < S; ++s) {
+    double sum = 0.0;
+    int known = 0;
+    for (std::size_t r = 0; r < R; ++r) {
+      if (std::isnan(p[r * S + s])) continue;
+      sum += p[r * S + s];
+      ++known;
+    }
+    if (known > 0) mean[s] = sum / known;
+  }
+  return mean;
+}
+
 FragilitySurface fragility_surface(const Cube& cube, const ObjectCube& object) {
   const std::vector<double> p = overturn_probability(cube, object);
   FragilitySurface f;
@@ -237,54 +255,6 @@ FragilitySurface fragility_surface(const Cube& cube, const ObjectCube& object) {
 // HDF5 plumbing: RAII handles, errors with the path and HDF5's own explanation.
 
 namespace {
-
-/// Owns one hid_t and closes it with the matching H5?close.
-class Hid {
- public:
-  using Closer = herr_t (*)(hid_t);
-  Hid() = default;
-  Hid(hid_t id, Closer close) : id_(id), close_(close) {}
-  Hid(const Hid&) = delete;
-  Hid& operator=(const Hid&) = delete;
-  Hid(Hid&& o) noexcept : id_(std::exchange(o.id_, H5I_INVALID_HID)), close_(o.close_) {}
-  Hid& operator=(Hid&& o) noexcept {
-    if (this != &o) {
-      close();
-      id_ = std::exchange(o.id_, H5I_INVALID_HID);
-      close_ = o.close_;
-    }
-    return *this;
-  }
-  ~Hid() { close(); }
-  operator hid_t() const { return id_; }
-  /// Closes now; the status matters for the file, whose close writes the last metadata.
-  herr_t close() {
-    const herr_t status = id_ >= 0 && close_ ? close_(id_) : 0;
-    id_ = H5I_INVALID_HID;
-    return status;
-  }
-
- private:
-  hid_t id_ = H5I_INVALID_HID;
-  Closer close_ = nullptr;
-};
-
-/// Silences HDF5's automatic printing of its error stack (our messages carry the stack's gist)
-/// and restores the previous handler afterwards.
-class QuietErrors {
- public:
-  QuietErrors() {
-    H5Eget_auto2(H5E_DEFAULT, &func_, &data_);
-    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-  }
-  ~QuietErrors() { H5Eset_auto2(H5E_DEFAULT, func_, data_); }
-  QuietErrors(const QuietErrors&) = delete;
-  QuietErrors& operator=(const QuietErrors&) = delete;
-
- private:
-  H5E_auto2_t func_ = nullptr;
-  void* data_ = nullptr;
-};
 
 herr_t collect_error(unsigned, const H5E_error2_t* e, void* out) {
   if (e->desc != nullptr && e->desc[0] != '\0')

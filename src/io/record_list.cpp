@@ -11,6 +11,7 @@
 
 #include "rigid/core/error.hpp"
 #include "rigid/core/types.hpp"
+#include "rigid/io/json.hpp"
 #include "rigid/motion/measures.hpp"
 
 namespace rigid::io {
@@ -221,34 +222,25 @@ RecordCheck check_record(const RecordEntry& entry, const SetReadOptions& options
 }
 
 std::string to_json(const RecordCheck& c) {
-  auto n = [](double v) {
-    if (!std::isfinite(v)) return std::string("null");
-    char b[40];
-    std::snprintf(b, sizeof b, "%.6g", v);
-    return std::string(b);
-  };
-  auto s = [](const std::string& v) {
-    std::string o = "\"";
-    for (char ch : v) {
-      if (ch == '"' || ch == '\\') o += '\\';
-      if (static_cast<unsigned char>(ch) >= 0x20) o += ch;
-    }
-    return o + "\"";
-  };
-  return "{\"file\":" + s(c.entry.file) + ",\"spec\":" + s(c.spec) +
-         ",\"npts\":" + std::to_string(c.npts) + ",\"dt_s\":" + n(c.dt) +
-         ",\"start_s\":" + n(c.entry.start) + ",\"end_s\":" + n(c.entry.end) +
-         ",\"window_clamped\":" + (c.window_clamped ? "true" : "false") +
-         ",\"listed_gmroti50_pga_g\":" + n(c.entry.gmroti_pga_g) +
-         ",\"listed_gmroti50_pgv_cm_s\":" + n(c.entry.gmroti_pgv_cm_s) +
-         ",\"gmroti50_pga_g\":" + n(c.gmroti_pga_g) +
-         ",\"gmroti50_pgv_cm_s\":" + n(c.gmroti_pgv_cm_s) +
-         ",\"gmrotd50_pga_g\":" + n(c.gmrotd_pga_g) +
-         ",\"gmrotd50_pgv_cm_s\":" + n(c.gmrotd_pgv_cm_s) +
-         ",\"window_gmroti50_pga_g\":" + n(c.window_gmroti_pga_g) +
-         ",\"window_gmroti50_pgv_cm_s\":" + n(c.window_gmroti_pgv_cm_s) +
-         ",\"pga_rel_diff\":" + n(c.pga_rel_diff) + ",\"pgv_rel_diff\":" + n(c.pgv_rel_diff) +
-         "}";
+  Json j;
+  j["file"] = c.entry.file;
+  j["spec"] = c.spec;
+  j["npts"] = c.npts;
+  j["dt_s"] = c.dt;
+  j["start_s"] = c.entry.start;
+  j["end_s"] = c.entry.end;
+  j["window_clamped"] = c.window_clamped;
+  j["listed_gmroti50_pga_g"] = c.entry.gmroti_pga_g;
+  j["listed_gmroti50_pgv_cm_s"] = c.entry.gmroti_pgv_cm_s;
+  j["gmroti50_pga_g"] = c.gmroti_pga_g;
+  j["gmroti50_pgv_cm_s"] = c.gmroti_pgv_cm_s;
+  j["gmrotd50_pga_g"] = c.gmrotd_pga_g;
+  j["gmrotd50_pgv_cm_s"] = c.gmrotd_pgv_cm_s;
+  j["window_gmroti50_pga_g"] = c.window_gmroti_pga_g;
+  j["window_gmroti50_pgv_cm_s"] = c.window_gmroti_pgv_cm_s;
+  j["pga_rel_diff"] = c.pga_rel_diff;
+  j["pgv_rel_diff"] = c.pgv_rel_diff;
+  return json_line(j);
 }
 
 }  // namespace rigid::io

@@ -1,11 +1,10 @@
 #include "rigid/io/trajectory.hpp"
 
-#include <hdf5.h>
-
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 
+#include "hdf5_handle.hpp"
 #include "rigid/core/error.hpp"
 
 namespace rigid::io {
@@ -13,23 +12,14 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// closes an HDF5 handle with the matching function
-struct Handle {
-  hid_t id;
-  herr_t (*close)(hid_t);
-  ~Handle() {
-    if (id >= 0) close(id);
-  }
-};
-
 void write_dataset(hid_t parent, const std::string& name, hid_t type, const void* data,
                    std::initializer_list<hsize_t> dims, const std::string& file) {
   const std::vector<hsize_t> d(dims);
-  Handle space{H5Screate_simple(int(d.size()), d.data(), nullptr), H5Sclose};
-  Handle lcpl{H5Pcreate(H5P_LINK_CREATE), H5Pclose};
-  H5Pset_create_intermediate_group(lcpl.id, 1);
-  Handle set{H5Dcreate2(parent, name.c_str(), type, space.id, lcpl.id, H5P_DEFAULT, H5P_DEFAULT), H5Dclose};
-  if (set.id < 0 || H5Dwrite(set.id, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0) {
+  const Hid space(H5Screate_simple(int(d.size()), d.data(), nullptr), H5Sclose);
+  const Hid lcpl(H5Pcreate(H5P_LINK_CREATE), H5Pclose);
+  H5Pset_create_intermediate_group(lcpl, 1);
+  const Hid set(H5Dcreate2(parent, name.c_str(), type, space, lcpl, H5P_DEFAULT, H5P_DEFAULT), H5Dclose);
+  if (set < 0 || H5Dwrite(set, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0) {
     throw InputError(file, 0, "cannot write dataset " + name);
   }
 }
@@ -68,17 +58,17 @@ void TrajectoryRecorder::write(const std::string& xdmf_path) const {
     fs::create_directories(h5_path.parent_path(), ec);
   }
   const std::string h5_name = h5_path.filename().string();
-  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
   {
-    Handle file{H5Fcreate(h5_path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose};
-    if (file.id < 0) throw InputError(h5_path.string(), 0, "cannot create trajectory file");
-    write_dataset(file.id, "time", H5T_NATIVE_DOUBLE, times_.data(), {times_.size()}, h5_path.string());
+    const QuietErrors quiet;
+    const Hid file(H5Fcreate(h5_path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
+    if (file < 0) throw InputError(h5_path.string(), 0, "cannot create trajectory file");
+    write_dataset(file, "time", H5T_NATIVE_DOUBLE, times_.data(), {times_.size()}, h5_path.string());
     for (std::size_t b = 0; b < names_.size(); ++b) {
       const std::string g = "block" + std::to_string(b);
-      write_dataset(file.id, g + "/triangles", H5T_NATIVE_INT, triangles_[b].data(),
+      write_dataset(file, g + "/triangles", H5T_NATIVE_INT, triangles_[b].data(),
                     {triangles_[b].size() / 3, 3}, h5_path.string());
       for (std::size_t f = 0; f < times_.size(); ++f) {
-        write_dataset(file.id, g + "/xyz/" + std::to_string(f), H5T_NATIVE_DOUBLE, xyz_[f][b].data(),
+        write_dataset(file, g + "/xyz/" + std::to_string(f), H5T_NATIVE_DOUBLE, xyz_[f][b].data(),
                       {xyz_[f][b].size() / 3, 3}, h5_path.string());
       }
     }

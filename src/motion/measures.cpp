@@ -247,81 +247,9 @@ MotionInfo motion_info(const GroundMotion& m, const MeasureOptions& options,
 
 namespace {
 
-std::string jnum(double v, int digits = 7) {
-  if (!std::isfinite(v)) return "null";
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.*g", digits, v);
-  return buf;
-}
-
-std::string jstr(const std::string& s) {
-  std::string o = "\"";
-  for (unsigned char c : s) {
-    switch (c) {
-      case '"': o += "\\\""; break;
-      case '\\': o += "\\\\"; break;
-      case '\n': o += "\\n"; break;
-      case '\r': o += "\\r"; break;
-      case '\t': o += "\\t"; break;
-      default:
-        if (c < 0x20) {
-          char b[8];
-          std::snprintf(b, sizeof b, "\\u%04x", c);
-          o += b;
-        } else {
-          o += char(c);
-        }
-    }
-  }
-  return o + "\"";
-}
-
 constexpr double kCm = 100.0;
 
 }  // namespace
-
-std::string to_json(const MotionInfo& info) {
-  const double g = kGravity;
-  std::string o = "{\"name\":" + jstr(info.name) + ",\"sources\":[";
-  for (std::size_t i = 0; i < info.sources.size(); ++i) {
-    if (i) o += ',';
-    o += jstr(info.sources[i]);
-  }
-  o += "],\"alignment\":" + jstr(info.alignment) + ",\"npts\":" + std::to_string(info.npts) + ",\"dt_s\":" + jnum(info.dt, 10) +
-       ",\"duration_s\":" + jnum(info.duration, 10) + ",\"components\":[";
-  for (std::size_t i = 0; i < info.axes.size(); ++i) {
-    const auto& a = info.axes[i];
-    o += std::string(i ? "," : "") + "{\"axis\":\"" + a.axis + "\",\"label\":" + jstr(a.label) +
-         ",\"pga_g\":" + jnum(a.peaks.pga / g) + ",\"pgv_cm_s\":" + jnum(a.peaks.pgv * kCm) +
-         ",\"pgd_cm\":" + jnum(a.peaks.pgd * kCm) + "}";
-  }
-  o += "]";
-  if (info.two_horizontals) {
-    const auto& h = info.horizontal;
-    o += ",\"gmrotd50_pga_g\":" + jnum(h.gmrotd50_pga / g) +
-         ",\"gmrotd50_pgv_cm_s\":" + jnum(h.gmrotd50_pgv * kCm) +
-         ",\"gmroti50_pga_g\":" + jnum(h.gmroti50_pga / g) +
-         ",\"gmroti50_pgv_cm_s\":" + jnum(h.gmroti50_pgv * kCm) +
-         ",\"gmroti50_angle_deg\":" + jnum(h.gmroti50_angle_deg) +
-         ",\"rotd50_pga_g\":" + jnum(h.rotd50_pga / g) +
-         ",\"rotd100_pga_g\":" + jnum(h.rotd100_pga / g);
-  }
-  o += ",\"pgv_pga_s\":" + jnum(info.pgv_pga);
-  if (!info.spectrum.empty()) {
-    o += ",\"sa\":[";
-    for (std::size_t i = 0; i < info.spectrum.size(); ++i) {
-      const auto& s = info.spectrum[i];
-      o += std::string(i ? "," : "") + "{\"period_s\":" + jnum(s.period);
-      for (std::size_t k = 0; k < s.per_axis.size() && k < info.axes.size(); ++k)
-        o += std::string(",\"") + info.axes[k].axis + "_g\":" + jnum(s.per_axis[k] / g);
-      if (info.two_horizontals)
-        o += ",\"gmrotd50_g\":" + jnum(s.gmrotd50 / g) + ",\"rotd50_g\":" + jnum(s.rotd50 / g);
-      o += "}";
-    }
-    o += "]";
-  }
-  return o + "}";
-}
 
 std::string to_text(const MotionInfo& info) {
   const double g = kGravity;

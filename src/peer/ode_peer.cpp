@@ -7,6 +7,7 @@
 // moved by the ground (as in Rigid); ground acceleration a(t) = A sin(2 pi t / T) along x for
 // 0 <= t <= T = 0.5 s, zero after. Overturn: the block's centroid below the pedestal's lowest
 // point (z = -0.2), Rigid's default failure rule; the run stops there, otherwise at 15 s.
+#include <nlohmann/json.hpp>
 #include <ode/ode.h>
 
 #include <algorithm>
@@ -242,6 +243,17 @@ Options parse(int argc, char** argv) {
   return o;
 }
 
+// The keys every --json line starts with: engine, solver and its settings.
+nlohmann::ordered_json peer_json(const Options& o, const char* solver) {
+  nlohmann::ordered_json j;
+  j["engine"] = std::string("ODE ") + RIGID_ODE_VERSION;
+  j["solver"] = solver;
+  j["dt_s"] = o.dt;
+  j["erp"] = o.erp;
+  j["cfm"] = o.cfm;
+  return j;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -260,14 +272,21 @@ int main(int argc, char** argv) {
     const double wall = median(times.wall), stepping = median(times.stepping), cpu = median(times.cpu);
     char verdict[48] = "no";
     if (r.overturned) std::snprintf(verdict, sizeof verdict, "yes at %.4g s", r.failure_time);
-    if (o.json)
-      std::printf("{\"engine\": \"ODE %s\", \"solver\": \"%s\", \"dt_s\": %g, \"erp\": %g, \"cfm\": %g, "
-                  "\"amplitude_g\": %g, \"overturned\": %s, \"failure_time_s\": %g, \"steps\": %ld, "
-                  "\"wall_s_median\": %.6f, \"stepping_s_median\": %.6f, \"stepping_cpu_s_median\": %.6f, "
-                  "\"max_tilt_rad\": %.6g, \"max_drift_m\": %.3g, \"solver_messages\": %d, \"repeat\": %d}\n",
-                  RIGID_ODE_VERSION, solver, o.dt, o.erp, o.cfm, o.amplitude, r.overturned ? "true" : "false",
-                  r.overturned ? r.failure_time : -1.0, r.steps, wall, stepping, cpu, r.max_tilt, r.max_drift,
-                  r.solver_messages, o.repeat);
+    if (o.json) {
+      nlohmann::ordered_json j = peer_json(o, solver);
+      j["amplitude_g"] = o.amplitude;
+      j["overturned"] = r.overturned;
+      j["failure_time_s"] = r.overturned ? r.failure_time : -1.0;
+      j["steps"] = r.steps;
+      j["wall_s_median"] = wall;
+      j["stepping_s_median"] = stepping;
+      j["stepping_cpu_s_median"] = cpu;
+      j["max_tilt_rad"] = r.max_tilt;
+      j["max_drift_m"] = r.max_drift;
+      j["solver_messages"] = r.solver_messages;
+      j["repeat"] = o.repeat;
+      std::printf("%s\n", j.dump().c_str());
+    }
     else
       std::printf("ODE %s, %s, dt %g s, ERP %g, CFM %g, one-sine %g g, T 0.5 s: overturned %s, %ld steps, "
                   "%.4f s wall (stepping %.4f s wall, %.4f s CPU), max tilt %.4g rad, max drift %.3g m, "
@@ -280,13 +299,18 @@ int main(int argc, char** argv) {
     int messages = 0;
     for (int i = 0; i < o.repeat; ++i) messages += (t = threshold(o, times)).solver_messages;
     const double wall = median(times.wall), stepping = median(times.stepping), cpu = median(times.cpu);
-    if (o.json)
-      std::printf("{\"engine\": \"ODE %s\", \"solver\": \"%s\", \"dt_s\": %g, \"erp\": %g, \"cfm\": %g, "
-                  "\"threshold_g\": %.5f, \"tolerance_g\": %g, \"runs\": %d, \"wall_s_per_run_median\": %.6f, "
-                  "\"stepping_s_per_run_median\": %.6f, \"stepping_cpu_s_per_run_median\": %.6f, "
-                  "\"solver_messages\": %d, \"repeat\": %d}\n",
-                  RIGID_ODE_VERSION, solver, o.dt, o.erp, o.cfm, t.g, o.tolerance, t.runs, wall, stepping, cpu,
-                  messages, o.repeat);
+    if (o.json) {
+      nlohmann::ordered_json j = peer_json(o, solver);
+      j["threshold_g"] = t.g;
+      j["tolerance_g"] = o.tolerance;
+      j["runs"] = t.runs;
+      j["wall_s_per_run_median"] = wall;
+      j["stepping_s_per_run_median"] = stepping;
+      j["stepping_cpu_s_per_run_median"] = cpu;
+      j["solver_messages"] = messages;
+      j["repeat"] = o.repeat;
+      std::printf("%s\n", j.dump().c_str());
+    }
     else
       std::printf("ODE %s, %s, dt %g s, ERP %g, CFM %g: overturning threshold %.4f g (bisected to %g g; 2D Housner "
                   "0.2975 g); %d runs, %.4f s wall per run (stepping %.4f s wall, %.4f s CPU), %d solver "

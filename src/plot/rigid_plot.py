@@ -306,9 +306,19 @@ def pgv_pga_bin(edges, v):
     return -1
 
 
-def probability_from_outcome(outcome):
+def overturned_and_known(outcome):
+    """(overturned, known) cells per (record, scale) over the rotations: the one Python copy of the
+    rule of the cube's `probability` (io::overturn_probability, src/io/cube.cpp): overturned and
+    inferred count as overturned, survived as not, not-run and failed cells are left out."""
     over = np.sum((outcome == OVERTURNED) | (outcome == INFERRED), axis=2)
     known = over + np.sum(outcome == SURVIVED, axis=2)
+    return over, known
+
+
+def probability_from_outcome(outcome):
+    """The cube's `probability` for cubes that do not store it (written by io::overturn_probability
+    since schema 1; Cube reads the stored one when it is there)."""
+    over, known = overturned_and_known(outcome)
     with np.errstate(invalid="ignore", divide="ignore"):
         return np.where(known > 0, over / np.maximum(known, 1), np.nan)
 
@@ -392,10 +402,9 @@ class Normalisation:
 
 def fit_object(cube, obj, norm, mu_degree, sigma_degree):
     """Binomial rows (u, x, k, n) of one object and its fit; None fit if too little data."""
-    known = (obj.outcome == SURVIVED) | (obj.outcome == OVERTURNED) | (obj.outcome == INFERRED)
-    over = (obj.outcome == OVERTURNED) | (obj.outcome == INFERRED)
-    n = known.sum(axis=2).astype(float)          # [R, S]
-    k = over.sum(axis=2).astype(float)
+    over, known = overturned_and_known(obj.outcome)
+    n = known.astype(float)          # [R, S]
+    k = over.astype(float)
     R, S = n.shape
     rec_ok = np.isfinite(cube.pgv_pga) & (cube.pgv_pga > 0)
     rows = [(r, s) for r in range(R) for s in range(S) if n[r, s] > 0 and rec_ok[r] and cube.scales[s] > 0]

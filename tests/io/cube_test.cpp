@@ -212,6 +212,20 @@ TEST(CubeDerived, ProbabilityCountsOverturnedAndInferredAndLeavesOutFailed) {
     }
 }
 
+TEST(CubeDerived, MeanProbabilityPerScaleAveragesKnownRecords) {
+  const Cube c = synthetic();
+  const std::vector<double> m = mean_overturn_probability(c, c.objects[0]);
+  ASSERT_EQ(m.size(), 4u);
+  // the per-record values of ProbabilityCountsOverturnedAndInferredAndLeavesOutFailed by column
+  EXPECT_EQ(m[0], 0.0);                    // 0, NaN, 0
+  EXPECT_EQ(m[1], (0.5 + 0.0 + 1.0) / 3);
+  EXPECT_EQ(m[2], (1.0 + 1.0 + 0.5) / 3);
+  EXPECT_EQ(m[3], 1.0);                    // 1, NaN, 1
+  Cube bad = c;
+  bad.objects[1].wall_s.pop_back();
+  EXPECT_THROW(mean_overturn_probability(bad, bad.objects[1]), std::invalid_argument);
+}
+
 TEST(CubeDerived, FragilityAveragesKnownRecordsPerBin) {
   const Cube c = synthetic();  // pgv_pga_s 0.068, 0.0693 (default bin 1) and 0.5 (bin 8)
   const FragilitySurface f = fragility_surface(c, c.objects[0]);

@@ -161,22 +161,5 @@ TEST(Sdof, ZeroPeriodGivesPga) {
   EXPECT_DOUBLE_EQ(response_spectrum({0.0, -3.0, 1.0}, 0.01, {0.0})[0], 3.0);
 }
 
-TEST(MotionInfoTest, JsonHasTheIssueKeys) {
-  const SinePair s(1.0, 0.5, 0.3);
-  GroundMotion m = make_ground_motion("p", {{s.a1, 5e-4, "1"}, {s.a2, 5e-4, "2"}});
-  const std::string j = to_json(motion_info(m, {}, {1.0}));
-  for (const char* key : {"\"npts\":", "\"dt_s\":", "\"duration_s\":", "\"pga_g\":",
-                          "\"pgv_cm_s\":", "\"gmrotd50_pga_g\":", "\"gmrotd50_pgv_cm_s\":",
-                          "\"gmroti50_pga_g\":", "\"gmroti50_pgv_cm_s\":", "\"rotd50_pga_g\":",
-                          "\"pgv_pga_s\":", "\"sa\":"})
-    EXPECT_NE(j.find(key), std::string::npos) << key;
-  EXPECT_EQ(j.find('\n'), std::string::npos);
-  // one horizontal: no orientation-independent keys
-  GroundMotion one = make_ground_motion("o", {{s.a1, 5e-4, "1"}});
-  const std::string j1 = to_json(motion_info(one));
-  EXPECT_EQ(j1.find("gmroti50"), std::string::npos);
-  EXPECT_NE(j1.find("\"pgv_pga_s\":"), std::string::npos);
-}
-
 }  // namespace
 }  // namespace rigid::motion

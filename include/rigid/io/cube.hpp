@@ -105,6 +105,11 @@ std::string cube_problem(const Cube& cube);
 /// inconsistent (the checks of cube_problem).
 std::vector<double> overturn_probability(const Cube& cube, const ObjectCube& object);
 
+/// Overturning probability of one object per scale (scales_g.size() values): the mean, in record
+/// order, of overturn_probability over the records whose probability at that scale is known; NaN
+/// where none is (the campaign summary's table). Throws like overturn_probability.
+std::vector<double> mean_overturn_probability(const Cube& cube, const ObjectCube& object);
+
 /// The binned fragility surface P(overturn | PGA, PGV/PGA) of one object (physics.md §11).
 struct FragilitySurface {
   std::vector<double> edges_s;        ///< PGV/PGA bin edges used (unit: s); bins() = size - 1

@@ -122,12 +122,6 @@ struct MotionInfo {
 MotionInfo motion_info(const GroundMotion& m, const MeasureOptions& options = {},
                        const std::vector<double>& sa_periods = {});
 
-/// One-line JSON object (keys in g, cm/s, cm, s as named: npts, dt_s, duration_s, components
-/// [{axis,label,pga_g,pgv_cm_s,pgd_cm}], and with two horizontals gmrotd50_pga_g,
-/// gmrotd50_pgv_cm_s, gmroti50_pga_g, gmroti50_pgv_cm_s, gmroti50_angle_deg, rotd50_pga_g,
-/// rotd100_pga_g; always pgv_pga_s), no trailing newline.
-std::string to_json(const MotionInfo& info);
-
 /// Human-readable multi-line summary (ends with a newline).
 std::string to_text(const MotionInfo& info);
 

@@ -1,0 +1,157 @@
+#!/usr/bin/env python3
+"""Layering check (CTest `layering`): no module includes a header of a layer above it.
+
+Reads every `#include "..."` and `#include <...>` line of src/<module>/ and include/rigid/<module>/
+and checks it against the dependencies src/CMakeLists.txt declares (read from its rigid_module()
+calls and the `rigid` executable's link line; README, "Layout and architecture"), today:
+
+  core <- geometry <- contact <- dynamics;  core <- motion, rocking;
+  scenario <- dynamics, motion, rocking;  study <- scenario;  io <- scenario;  campaign <- io;
+  app <- campaign, study
+
+(a module may include its own headers and those of every module below it, transitively), and the
+third-party rules: the engine core (geometry .. scenario, study) includes only Eigen and the standard
+library; only io includes HDF5, toml++ and nettle; nlohmann-json is io's and above (io/json.hpp);
+only campaign includes MPI and zlib; only app includes CLI11; POSIX headers (unistd.h, sys/...)
+only io, campaign and app. A quoted include that is not "rigid/..." must be a private header of
+the module's own src/<module>/ folder.
+
+usage: layering_test.py SOURCE_DIR    exit 0 clean, 1 with one line per violation.
+"""
+import os
+import re
+import sys
+
+
+
+def module_graph(root):
+    """Direct dependencies of each module as src/CMakeLists.txt declares them: the DEPS of every
+    rigid_module() call and the libraries the `rigid` executable (app) links."""
+    with open(os.path.join(root, "src", "CMakeLists.txt"), encoding="utf-8") as f:
+        text = f.read()
+    graph = {"core": []}
+    for name, deps in re.findall(r"^rigid_module\((\w+)\s+DEPS([^)]*)\)", text, re.M):
+        graph[name] = re.findall(r"\brigid_(\w+)", deps)
+    app = re.search(r"^target_link_libraries\(rigid\s+PRIVATE([^)]*)\)", text, re.M)
+    graph["app"] = re.findall(r"\brigid_(\w+)", app.group(1)) if app else []
+    return graph
+
+
+DIRECT = {}  # module -> its direct dependencies (main() reads them)
+ENGINE = {"core", "geometry", "contact", "dynamics", "motion", "rocking", "scenario", "study"}
+
+# third-party family -> the modules that may include it
+THIRD_PARTY = {
+    "eigen": None,  # every module
+    "std": None,
+    "posix": {"io", "campaign", "app"},
+    "hdf5": {"io"},
+    "toml": {"io"},
+    "nettle": {"io"},
+    "json": {"io", "campaign", "app"},
+    "mpi": {"campaign"},
+    "zlib": {"campaign"},
+    "cli11": {"app"},
+}
+
+# Deliberate exceptions: (module, included header) -> reason. Empty today.
+ALLOWED_EXCEPTIONS = {}
+
+POSIX = {"unistd.h", "fcntl.h", "signal.h", "errno.h", "pthread.h", "dirent.h"}
+
+
+def family(header):
+    if header.startswith("Eigen/"):
+        return "eigen"
+    if header.startswith("hdf5"):
+        return "hdf5"
+    if header.startswith("toml++/"):
+        return "toml"
+    if header.startswith("nettle/"):
+        return "nettle"
+    if header.startswith("nlohmann/"):
+        return "json"
+    if header in ("mpi.h",):
+        return "mpi"
+    if header in ("zlib.h",):
+        return "zlib"
+    if header.startswith("CLI/"):
+        return "cli11"
+    if header in POSIX or header.startswith("sys/"):
+        return "posix"
+    if re.fullmatch(r"[a-z_]+", header):  # <vector>, <cmath>, <string_view>: the C++ library
+        return "std"
+    return None
+
+
+def closure(module):
+    seen, todo = set(), [module]
+    while todo:
+        m = todo.pop()
+        if m not in seen:
+            seen.add(m)
+            todo.extend(DIRECT[m])
+    return seen
+
+
+INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]')
+
+
+def check(root):
+    problems = []
+    checked = 0
+    for module in DIRECT:
+        allowed = closure(module)
+        folders = [os.path.join(root, "src", module), os.path.join(root, "include", "rigid", module)]
+        for folder in folders:
+            if not os.path.isdir(folder):
+                continue
+            for name in sorted(os.listdir(folder)):
+                if not name.endswith((".cpp", ".hpp", ".h")):
+                    continue
+                path = os.path.join(folder, name)
+                rel = os.path.relpath(path, root)
+                with open(path, encoding="utf-8", errors="replace") as f:
+                    for line_no, line in enumerate(f, 1):
+                        m = INCLUDE.match(line)
+                        if not m:
+                            continue
+                        checked += 1
+                        kind, header = m.groups()
+                        if (module, header) in ALLOWED_EXCEPTIONS:
+                            continue
+                        where = f"{rel}:{line_no}: {module} includes {kind}{header}{'>' if kind == '<' else kind}"
+                        if kind == '"':
+                            r = re.match(r"rigid/([a-z0-9_]+)/", header)
+                            if r:
+                                target = r.group(1)
+                                if target not in DIRECT:
+                                    problems.append(f"{where}: unknown module {target}")
+                                elif target not in allowed:
+                                    problems.append(f"{where}: {target} is not below {module} "
+                                                    f"(allowed: {', '.join(sorted(allowed))})")
+                            elif not os.path.isfile(os.path.join(root, "src", module, header)):
+                                problems.append(f"{where}: not a private header of src/{module}/")
+                        else:
+                            fam = family(header)
+                            if fam is None:
+                                problems.append(f"{where}: unknown third-party header (classify it in "
+                                                f"tests/layering/layering_test.py)")
+                            elif THIRD_PARTY[fam] is not None and module not in THIRD_PARTY[fam]:
+                                who = ", ".join(sorted(THIRD_PARTY[fam]))
+                                problems.append(f"{where}: {fam} is for {who} only")
+    return problems, checked
+
+
+def main():
+    root = sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), "..", "..")
+    DIRECT.update(module_graph(root))
+    problems, checked = check(os.path.abspath(root))
+    for p in problems:
+        print(p)
+    print(f"layering: {checked} includes checked, {len(problems)} violations")
+    return 1 if problems else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
