@@ -110,7 +110,7 @@ import json, sys, h5py
 with h5py.File(sys.argv[1]) as f:
     for name in f["objects"]:
         p = json.loads(f["objects"][name].attrs["physics_json"])
-        print(name, p["friction"], p["contact"], p["density"], p["failure_rule"], p["step_s"] > 0)
+        print(name, f"{p['friction']:g}", p["contact"], f"{p['density']:g}", p["failure_rule"], p["step_s"] > 0)
 PY
   check "object block_a02: friction 0.6, rigid contact" grep -q "^block_a02 0.6 rigid 2600 below True" "$work/phys.txt"
   check "object other: friction 0.9, penalty contact" grep -q "^other 0.9 penalty 2600 below True" "$work/phys.txt"
