@@ -52,6 +52,8 @@ struct ObjectCube {
   std::vector<double> max_slip_m;       ///< NaN when not simulated (unit: m)
   std::vector<double> wall_s;           ///< wall time of the simulation, NaN when none (unit: s)
   std::vector<std::int32_t> failure_reason;  ///< scenario::FailureReason codes
+  /// The error's text of each failed cell, "" elsewhere; empty vector: none stored (older cubes)
+  std::vector<std::string> failure_message;
 };
 
 /// Everything written to the file.
