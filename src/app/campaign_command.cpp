@@ -63,7 +63,10 @@ void register_campaign_command(CLI::App& app) {
     attach_progress(options, command->progress, command->log_interval);
     options.on_dry_run = print_dry_run;
     const campaign::CampaignResult result = campaign::run_campaign(*g_argc, *g_argv, options);
-    if (result.cube) print_summary(*result.cube, result.output);
+    if (result.cube) {
+      print_summary(*result.cube, result.output);
+      print_failures(*result.cube);
+    }
     if (result.status != 0) std::exit(result.status);
   });
 }

@@ -77,6 +77,24 @@ void print_summary(const io::Cube& cube, const std::string& output) {
   }
 }
 
+void print_failures(const io::Cube& cube) {
+  const std::size_t S = cube.scales_g.size(), A = std::size_t(cube.rotations);
+  constexpr int kListed = 10;
+  int failed = 0;
+  for (const auto& oc : cube.objects) {
+    for (std::size_t i = 0; i < oc.outcome.size(); ++i) {
+      if (static_cast<scenario::CellOutcome>(oc.outcome[i]) != scenario::CellOutcome::failed) continue;
+      if (++failed == 1) std::printf("\nfailed cells (not counted above; the cube keeps failure_reason and failure_message):\n");
+      if (failed > kListed) continue;
+      const std::size_t r = i / (S * A), s = (i / A) % S, a = i % A;
+      const std::string message = i < oc.failure_message.size() ? oc.failure_message[i] : std::string();
+      std::printf("  %s, record %s, %.3g g, rotation %zu: %s\n", oc.name.c_str(), cube.records[r].name.c_str(),
+                  cube.scales_g[s], a, message.empty() ? "(no message)" : message.c_str());
+    }
+  }
+  if (failed > kListed) std::printf("  ... and %d more (rigid export cells lists every cell)\n", failed - kListed);
+}
+
 int print_dry_run(const scenario::Job& job, const scenario::Model& model) {
   const long cells = long(job.objects.size()) * long(job.records.size()) * long(job.scales_g.size()) * job.rotations;
   double per_object_sim = 0;  // simulated time of one object's tasks

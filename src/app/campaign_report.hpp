@@ -15,6 +15,9 @@ void attach_progress(campaign::CampaignOptions& options, const std::string& mode
 /// The overturning probability per object and scale (mean over records), at most 16 columns.
 void print_summary(const io::Cube& cube, const std::string& output);
 
+/// The failed cells with their error text, the first few of them.
+void print_failures(const io::Cube& cube);
+
 /// Task count and an estimate of the work: every object's first record at its smallest scale is
 /// simulated for a few seconds to measure this machine's cost per step.
 int print_dry_run(const scenario::Job& job, const scenario::Model& model);

@@ -4,20 +4,31 @@
 #include <zlib.h>
 
 #include <cerrno>
+#include <cstddef>
 #include <cstdint>
 #include <cstring>
 #include <memory>
+#include <vector>
 
 #include "rigid/core/error.hpp"
 
 namespace rigid::campaign {
 namespace {
 
-constexpr char kMagic[8] = {'R', 'I', 'G', 'I', 'D', 'J', '0', '2'};
+// A journal format: its magic and how many bytes of each TaskResult a record stores.
+struct Format {
+  char magic[8];
+  std::size_t result_bytes;
+  constexpr std::size_t record_bytes() const { return result_bytes + 8 + 4; }
+};
+// RIGIDJ03 carries failed tasks' messages; RIGIDJ02 (no message, a prefix of TaskResult) is
+// still read, so a resume across the upgrade keeps every journalled result.
+constexpr Format kCurrent{{'R', 'I', 'G', 'I', 'D', 'J', '0', '3'}, sizeof(TaskResult)};
+constexpr Format kWithoutMessages{{'R', 'I', 'G', 'I', 'D', 'J', '0', '2'}, offsetof(TaskResult, message)};
 constexpr char kOldMagic[8] = {'R', 'I', 'G', 'I', 'D', 'J', '0', '1'};
 constexpr std::size_t kKeyBytes = 64;
-constexpr std::size_t kHeaderBytes = sizeof kMagic + kKeyBytes + 4;
-constexpr std::size_t kRecordBytes = sizeof(TaskResult) + 8 + 4;
+constexpr std::size_t kHeaderBytes = sizeof kCurrent.magic + kKeyBytes + 4;
+constexpr std::size_t kRecordBytes = kCurrent.record_bytes();
 
 std::uint32_t crc(const unsigned char* data, std::size_t n) {
   return static_cast<std::uint32_t>(crc32(crc32(0L, Z_NULL, 0), data, static_cast<uInt>(n)));
@@ -36,9 +47,9 @@ std::uint64_t fingerprint(const std::string& key) {
   return (std::uint64_t{crc(p, 32)} << 32) | crc(p + 32, 32);
 }
 
-void encode_header(unsigned char* out, const std::string& key) {
-  std::memcpy(out, kMagic, sizeof kMagic);
-  std::memcpy(out + sizeof kMagic, padded_key(key).data(), kKeyBytes);
+void encode_header(unsigned char* out, const std::string& key, const Format& format = kCurrent) {
+  std::memcpy(out, format.magic, sizeof format.magic);
+  std::memcpy(out + sizeof format.magic, padded_key(key).data(), kKeyBytes);
   const std::uint32_t c = crc(out, kHeaderBytes - 4);
   std::memcpy(out + kHeaderBytes - 4, &c, 4);
 }
@@ -113,8 +124,10 @@ JournalContents read_journal(const std::string& path, const std::string& key, lo
     return out;
   }
   if (got < sizeof header) return out;  // killed while the header was written: nothing in it
+  // the format by its magic; a damaged header is read as the current one
+  const Format& format = std::memcmp(header, kWithoutMessages.magic, sizeof kWithoutMessages.magic) == 0 ? kWithoutMessages : kCurrent;
   unsigned char expected[kHeaderBytes];
-  encode_header(expected, key);
+  encode_header(expected, key, format);
   std::uint32_t stored;
   std::memcpy(&stored, header + kHeaderBytes - 4, 4);
   if (stored != crc(header, kHeaderBytes - 4)) {
@@ -124,30 +137,32 @@ JournalContents read_journal(const std::string& path, const std::string& key, lo
     return out;
   }
   const std::uint64_t print = fingerprint(key);
-  unsigned char buf[kRecordBytes];
+  const std::size_t record_bytes = format.record_bytes();
+  std::vector<unsigned char> buf(record_bytes);
   long index = 0, skipped = 0;
-  for (; std::fread(buf, 1, sizeof buf, f.get()) == sizeof buf; ++index) {
+  for (; std::fread(buf.data(), 1, record_bytes, f.get()) == record_bytes; ++index) {
     std::uint32_t c;
     std::uint64_t p;
     TaskResult r;
-    std::memcpy(&c, buf + kRecordBytes - 4, 4);
-    std::memcpy(&p, buf + sizeof(TaskResult), 8);
-    std::memcpy(&r, buf, sizeof(TaskResult));
+    std::memcpy(&c, buf.data() + record_bytes - 4, 4);
+    std::memcpy(&p, buf.data() + format.result_bytes, 8);
+    std::memcpy(&r, buf.data(), format.result_bytes);
     std::string why;
-    if (c != crc(buf, kRecordBytes - 4)) {
+    if (c != crc(buf.data(), record_bytes - 4)) {
       why = "bad checksum";
     } else if (p != print) {
       why = "written for other inputs";
     } else if (r.task < 0 || r.task >= tasks) {
       why = "task " + std::to_string(r.task) + " out of range";
     } else {
+      r.message[kTaskMessageBytes - 1] = '\0';  // a message is text whatever the file holds
       out.results.push_back(r);
       continue;
     }
     // one line per bad record, up to a few; a summary beyond
     if (++skipped <= 5) {
       out.problems.push_back(path + ": record " + std::to_string(index) + " (byte " +
-                             std::to_string(kHeaderBytes + std::size_t(index) * kRecordBytes) + "): " + why +
+                             std::to_string(kHeaderBytes + std::size_t(index) * record_bytes) + "): " + why +
                              ", skipped (its cell is simulated again)");
     }
   }

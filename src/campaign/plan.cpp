@@ -1,6 +1,7 @@
 #include "rigid/campaign/plan.hpp"
 
 #include <algorithm>
+#include <cstring>
 #include <numeric>
 #include <stdexcept>
 
@@ -53,6 +54,14 @@ Plan::Plan(int objects, int records, int scales, int rotations, int stop_after,
     return a < b;
   });
 }
+
+void set_message(TaskResult& r, std::string_view text) {
+  const std::size_t n = std::min(text.size(), kTaskMessageBytes - 1);
+  std::memcpy(r.message, text.data(), n);
+  std::memset(r.message + n, 0, kTaskMessageBytes - n);
+}
+
+std::string message_of(const TaskResult& r) { return std::string(r.message, strnlen(r.message, kTaskMessageBytes)); }
 
 Cell cell_of(long t, int records, int scales, int rotations) {
   Cell c;

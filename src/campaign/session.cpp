@@ -121,6 +121,7 @@ io::Cube make_cube(const CampaignContext& context, const Plan& plan) {
       oc.max_slip_m.push_back(kept[t] ? r.max_slip_m : nan);
       oc.wall_s.push_back(kept[t] ? r.wall_s : nan);
       oc.failure_reason.push_back(kept[t] ? r.reason : 0);
+      oc.failure_message.push_back(kept[t] ? message_of(r) : std::string());
     }
     cube.objects.push_back(std::move(oc));
   }
@@ -149,6 +150,7 @@ std::vector<TaskResult> restore(const std::string& output, const scenario::Job& 
         r.task = long(o) * per_object + i;
         r.outcome = oc.outcome[i];
         r.reason = oc.failure_reason[i];
+        if (i < long(oc.failure_message.size())) set_message(r, oc.failure_message[i]);
         r.failure_time_s = oc.failure_time_s[i];
         r.max_tilt_deg = oc.max_tilt_deg[i];
         r.max_slip_m = oc.max_slip_m[i];

@@ -24,6 +24,7 @@ TaskResult run_task(const scenario::Job& job, const scenario::Model& model, std:
   const scenario::CaseOutcome c = scenario::simulate(model, case_of(job, cell));
   out.outcome = static_cast<std::int32_t>(c.outcome);
   out.reason = static_cast<std::int32_t>(c.reason);
+  set_message(out, c.message);
   if (c.outcome != scenario::CellOutcome::failed) {
     if (c.run.failure_time) out.failure_time_s = *c.run.failure_time;
     out.max_tilt_deg = c.run.max_tilt * 180.0 / kPi;

@@ -3,9 +3,10 @@
 /// kill between two cube checkpoints loses nothing; on resume the cube is read and the journal's
 /// valid records are replayed. After each cube checkpoint the journal starts over.
 ///
-/// Format (host byte order): a header of magic "RIGIDJ02", the 64-character key (the campaign's
-/// combined input digest) and a CRC-32 of both; then fixed-size records of a TaskResult, an
-/// 8-byte fingerprint of the key and a CRC-32 (zlib) of both. Records are checked one by one: a
+/// Format (host byte order): a header of magic "RIGIDJ03", the 64-character key (the campaign's
+/// combined input digest) and a CRC-32 of both; then fixed-size records of a TaskResult (with
+/// its failure message), an 8-byte fingerprint of the key and a CRC-32 (zlib) of both. Journals
+/// of the previous format RIGIDJ02 (records without the message) are read too. Records are checked one by one: a
 /// bad one is reported and skipped, the others kept; the fingerprint lets records be trusted
 /// even when the header is damaged.
 #include <cstdio>

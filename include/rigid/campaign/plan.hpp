@@ -5,6 +5,8 @@
 /// so results never depend on dispatch order, rank count or restarts. No I/O, no MPI.
 #include <cstdint>
 #include <optional>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "rigid/scenario/case.hpp"
@@ -17,6 +19,10 @@ struct Cell {
   int object = 0, record = 0, scale = 0, rotation = 0;
 };
 
+/// Bytes kept of a failed task's error text (with its terminating NUL): the text travels in the
+/// fixed-size TaskResult, so a longer message is cut.
+inline constexpr std::size_t kTaskMessageBytes = 232;
+
 /// Result of one task, as sent between ranks and written to the journal (plain data).
 struct TaskResult {
   std::int64_t task = -1;
@@ -26,7 +32,15 @@ struct TaskResult {
   double max_tilt_deg = 0;
   double max_slip_m = 0;
   double wall_s = 0;
+  /// A failed task's error text, NUL-terminated; last so that the journal's older format (which
+  /// had no message) is a prefix of this one.
+  char message[kTaskMessageBytes] = {};
 };
+
+/// Stores `text` in r.message, cut to fit.
+void set_message(TaskResult& r, std::string_view text);
+/// The text of r.message.
+std::string message_of(const TaskResult& r);
 
 /// The cell of a task index in a grid of (objects x) records x scales x rotations, row-major.
 Cell cell_of(long task, int records, int scales, int rotations);
