@@ -202,13 +202,20 @@ struct Master {
     }
   }
 
-  void notice_stop_signal() {
-    if (!stop_signal() || stopping) return;
-    std::lock_guard<std::mutex> lock(mutex);
-    stopping = true;
-    stop_since = Clock::now();
-    std::fprintf(stderr, "\nrigid campaign: signal %d: no new tasks; waiting up to %g s for %ld in flight\n",
-                 stop_signal(), grace, plan->in_flight());
+  // A stop signal: no new tasks, and a checkpoint at once. mpirun and batch systems follow a
+  // SIGTERM with a SIGKILL within seconds, often before the in-flight tasks could finish; what
+  // they finish in the grace period goes into the final checkpoint.
+  // True when a checkpoint was written here.
+  bool notice_stop_signal() {
+    if (!stop_signal() || stopping) return false;
+    {
+      std::lock_guard<std::mutex> lock(mutex);
+      stopping = true;
+      stop_since = Clock::now();
+      std::fprintf(stderr, "\nrigid campaign: signal %d: no new tasks; checkpoint now, then up to %g s for %ld in flight\n",
+                   stop_signal(), grace, plan->in_flight());
+    }
+    return checkpoint();
   }
 
   // caller holds the mutex
@@ -268,7 +275,7 @@ struct Master {
     const double checkpoint_interval = options.checkpoint_interval > 0 ? options.checkpoint_interval : job.checkpoint_interval;
     for (;;) {
       const bool busy = receive_results(waiting);
-      notice_stop_signal();
+      if (notice_stop_signal()) last_checkpoint = Clock::now();
       answer_requests(waiting);
       {
         std::lock_guard<std::mutex> lock(mutex);
