@@ -227,6 +227,7 @@ scenario::Job load_job(const std::string& path) {
       r.earthquake = e.earthquake;
       r.listed_pga_g = std::isfinite(e.gmroti_pga_g) ? e.gmroti_pga_g : 0.0;
       r.listed_pgv_cm_s = std::isfinite(e.gmroti_pgv_cm_s) ? e.gmroti_pgv_cm_s : 0.0;
+      r.resample = e.resample;
       job.records.push_back(r);
     }
   } else {

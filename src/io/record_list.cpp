@@ -110,8 +110,8 @@ RecordList parse_record_table(std::string_view text, const std::string& name) {
       throw InputError(name, number, "expected 9 tab-separated columns (earthquake, year, "
                                      "magnitude, file, start, end, PGA, PGV, PGV/PGA), got " +
                                          std::to_string(f.size()));
-    if (f.size() > 9)
-      throw InputError(name, number, "more than 9 tab-separated columns");
+    if (f.size() > 10)
+      throw InputError(name, number, "more than 10 tab-separated columns (the 10th, optional: align)");
     RecordEntry e;
     e.line = number;
     e.earthquake = std::string(trim(f[0]));
@@ -126,6 +126,13 @@ RecordList parse_record_table(std::string_view text, const std::string& name) {
     if (f.size() > 6) e.gmroti_pga_g = field(f[6], name, number, "GMRotI PGA", true);
     if (f.size() > 7) e.gmroti_pgv_cm_s = field(f[7], name, number, "GMRotI PGV", true);
     if (f.size() > 8) e.pgv_pga_s = field(f[8], name, number, "PGV/PGA", true);
+    if (f.size() > 9) {
+      const std::string_view align = trim(f[9]);
+      if (!align.empty() && align != "auto" && align != "resample")
+        throw InputError(name, number, "align must be empty, auto (pad lengths within 1 %) or resample, not \"" +
+                                           std::string(align) + "\"");
+      e.resample = align == "resample";
+    }
     list.records.push_back(std::move(e));
   }
   return list;

@@ -66,6 +66,26 @@ TEST(RecordTable, MalformedLinesNameTheLine) {
   EXPECT_EQ(resolve_set(l.records[0].file).z, "RSN1_V.AT2");
 }
 
+TEST(RecordTable, OptionalAlignColumn) {
+  const RecordList l = parse_record_table(
+      "A\t1999\t7\tx.AT2\t0\t10\t\t\t\tresample\n"
+      "B\t1999\t7\ty.AT2\t0\t10\t\t\t\tauto\n"
+      "C\t1999\t7\tz.AT2\t0\t10\n",
+      "t.tsv");
+  ASSERT_EQ(l.records.size(), 3u);
+  EXPECT_TRUE(l.records[0].resample);
+  EXPECT_FALSE(l.records[1].resample);
+  EXPECT_FALSE(l.records[2].resample);
+  try {
+    parse_record_table("A\t1999\t7\tx.AT2\t0\t10\t\t\t\tstretch\n", "t.tsv");
+    ADD_FAILURE();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.line(), 1);
+    EXPECT_NE(std::string(e.what()).find("align"), std::string::npos);
+  }
+  EXPECT_THROW(parse_record_table("A\t1999\t7\tx.AT2\t0\t10\t\t\t\t\textra\n", "t.tsv"), InputError);
+}
+
 TEST(RecordAbf, ParsesScalesDeprecatedZeroAndRecords) {
   const RecordList l = parse_abf(
       "0.1 0.2, 0.3\r\n0\r\nCHY028-X.AT2\r\n# comment\r\nA.AT2,B.AT2 1.5 12.25\r\n", "b.abf");

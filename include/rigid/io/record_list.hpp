@@ -25,6 +25,9 @@ struct RecordEntry {
   double gmroti_pga_g = std::numeric_limits<double>::quiet_NaN();     ///< listed (unit: g)
   double gmroti_pgv_cm_s = std::numeric_limits<double>::quiet_NaN();  ///< listed (unit: cm/s)
   double pgv_pga_s = std::numeric_limits<double>::quiet_NaN();        ///< listed (unit: s)
+  /// align column "resample": components of unequal dt or length resampled and padded (as a job's
+  /// [[record]] align = "resample"); empty or "auto": only lengths within 1 % padded
+  bool resample = false;
 };
 
 /// A parsed list.
@@ -37,7 +40,7 @@ struct RecordList {
 
 /// Parses the table format: one record per line, 9 tab-separated columns: earthquake, year,
 /// magnitude, file, start s, end s, GMRotI PGA g, GMRotI PGV cm/s, PGV/PGA s (the last three
-/// may be empty; earthquake may be empty). Blank lines, `#` comments and a header line (second
+/// may be empty; earthquake may be empty), and an optional 10th, align (empty, auto or resample). Blank lines, `#` comments and a header line (second
 /// column not a number) are skipped. InputError(name, line) for malformed lines.
 RecordList parse_record_table(std::string_view text, const std::string& name);
 
