@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "rigid/campaign/log.hpp"
 #include "rigid/dynamics/world.hpp"
 
 namespace rigid::app {
@@ -38,9 +39,8 @@ void print_progress(const campaign::ProgressReport& p, bool bar) {
                  format_duration(eta).c_str(), p.failures);
     if (p.final) std::fprintf(stderr, "\n");
   } else {
-    std::fprintf(stderr,
-                 "rigid campaign: %ld/%ld tasks done (%ld of the %ld cells left to simulate), %.2f sim/s, ETA %s, failures %ld\n",
-                 p.done, shown_total, p.remaining, p.total, rate, format_duration(eta).c_str(), p.failures);
+    campaign::log_status("{}/{} tasks done ({} of the {} cells left to simulate), {:.2f} sim/s, ETA {}, failures {}", p.done,
+                         shown_total, p.remaining, p.total, rate, format_duration(eta), p.failures);
   }
   std::fflush(stderr);
 }

@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "rigid/campaign/journal.hpp"
+#include "rigid/campaign/log.hpp"
 #include "rigid/campaign/stop_signal.hpp"
 #include "rigid/campaign/task.hpp"
 #include "rigid/campaign/transport.hpp"
@@ -212,8 +213,9 @@ struct Master {
       std::lock_guard<std::mutex> lock(mutex);
       stopping = true;
       stop_since = Clock::now();
-      std::fprintf(stderr, "\nrigid campaign: signal %d: no new tasks; checkpoint now, then up to %g s for %ld in flight\n",
-                   stop_signal(), grace, plan->in_flight());
+      std::fprintf(stderr, "\n");  // after a progress bar
+      log_status("signal {}: no new tasks; checkpoint now, then up to {:g} s for {} in flight", stop_signal(), grace,
+                 plan->in_flight());
     }
     return checkpoint();
   }
@@ -246,7 +248,7 @@ struct Master {
     const bool written = checkpoint();
     {
       std::lock_guard<std::mutex> lock(mutex);  // the local thread may still be recording
-      std::fprintf(stderr, "rigid campaign: grace period over; %ld tasks abandoned (redone on resume)\n", plan->in_flight());
+      log_status("grace period over; {} tasks abandoned (redone on resume)", plan->in_flight());
       if (!written) std::fprintf(stderr, "rigid: error: %s\n", failure.c_str());
     }
     std::fflush(stderr);
@@ -266,8 +268,7 @@ struct Master {
     // the restored results go into the cube at once, which also proves the output writable; on a
     // failure the loop below only tells the workers to stop
     if (checkpoint()) {
-      std::fprintf(stderr, "rigid campaign: %ld tasks, %ld already done, %d ranks, output %s\n", plan->size(),
-                   plan->done(), ranks, output.c_str());
+      log_status("{} tasks, {} already done, {} ranks, output {}", plan->size(), plan->done(), ranks, output);
     }
     std::thread local([this] { local_worker(); });
     std::vector<int> waiting;  // worker ranks whose request is unanswered
@@ -310,12 +311,11 @@ struct Master {
       result.cube = make_cube(context, *plan);
     }
     if (ranks > 1) {
-      std::fprintf(stderr, "rigid campaign: %ld tasks sent to %d worker ranks in %ld messages (%.0f tasks/s over %.2f s)\n",
-                   remote_tasks, ranks - 1, remote_messages, double(remote_tasks) / seconds_since(started), seconds_since(started));
+      log_status("{} tasks sent to {} worker ranks in {} messages ({:.0f} tasks/s over {:.2f} s)", remote_tasks, ranks - 1,
+                 remote_messages, double(remote_tasks) / seconds_since(started), seconds_since(started));
     }
     if (stopping) {
-      std::fprintf(stderr, "rigid campaign: stopped; checkpoint written to %s; run the same command to resume\n",
-                   output.c_str());
+      log_status("stopped; checkpoint written to {}; run the same command to resume", output);
       result.status = kExitInterrupted;
       result.cube.reset();
       return result;

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstring>
 
+#include "rigid/campaign/log.hpp"
 #include "rigid/core/error.hpp"
 
 namespace rigid::campaign {
@@ -25,8 +26,7 @@ OutputLock::OutputLock(const std::string& output) : path_(output + ".lock") {
                                        " (it holds this lock); wait for it to end or use another --out");
       }
       if (err == EINTR) continue;
-      std::fprintf(stderr, "rigid campaign: warning: %s: no file locking here (%s); nothing stops a second "
-                   "campaign on this output\n", path_.c_str(), std::strerror(err));
+      log_warning(path_ + ": no file locking here (" + std::strerror(err) + "); nothing stops a second campaign on this output");
       return;
     }
     // the holder before us may have removed the file after we opened it: then our lock is on a

@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "rigid/campaign/journal.hpp"
+#include "rigid/campaign/log.hpp"
 #include "rigid/core/error.hpp"
 #include "rigid/io/at2.hpp"
 #include "rigid/io/job_file.hpp"
@@ -38,8 +39,7 @@ std::optional<InputError> input_change(const io::Cube& old, const scenario::Job&
                           "); use --force to start a new campaign over it, or another --out");
   }
   if (old.inputs_sha256.empty()) {
-    std::fprintf(stderr, "rigid campaign: warning: %s was written before input hashes were stored; its scenes and "
-                 "records are not checked for changes\n", job.output.c_str());
+    log_warning(job.output + " was written before input hashes were stored; its scenes and records are not checked for changes");
     return std::nullopt;
   }
   if (old.inputs_sha256 == now.combined) return std::nullopt;
@@ -167,7 +167,7 @@ std::vector<TaskResult> restore(const std::string& output, const scenario::Job& 
     if (!have_cube) throw changed_file(journal);
     kept.problems.push_back(journal + ": written for other inputs; ignored");
   }
-  for (const std::string& p : kept.problems) std::fprintf(stderr, "rigid campaign: warning: %s\n", p.c_str());
+  for (const std::string& p : kept.problems) log_warning(p);
   for (const TaskResult& r : kept.results) plan.restore(r);
   return std::move(kept.results);
 }

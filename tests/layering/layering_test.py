@@ -12,7 +12,7 @@ calls and the `rigid` executable's link line; README, "Layout and architecture")
 (a module may include its own headers and those of every module below it, transitively), and the
 third-party rules: the engine core (geometry .. scenario, study) includes only Eigen and the standard
 library; only io includes HDF5, toml++ and nettle; nlohmann-json is io's and above (io/json.hpp);
-only campaign includes MPI and zlib; only app includes CLI11; POSIX headers (unistd.h, sys/...)
+only campaign includes MPI and zlib; spdlog is campaign's and app's (campaign/log.hpp); only app includes CLI11; POSIX headers (unistd.h, sys/...)
 only io, campaign and app. A quoted include that is not "rigid/..." must be a private header of
 the module's own src/<module>/ folder.
 
@@ -51,6 +51,7 @@ THIRD_PARTY = {
     "json": {"io", "campaign", "app"},
     "mpi": {"campaign"},
     "zlib": {"campaign"},
+    "spdlog": {"campaign", "app"},
     "cli11": {"app"},
 }
 
@@ -75,6 +76,8 @@ def family(header):
         return "mpi"
     if header in ("zlib.h",):
         return "zlib"
+    if header.startswith("spdlog/"):
+        return "spdlog"
     if header.startswith("CLI/"):
         return "cli11"
     if header in POSIX or header.startswith("sys/"):
