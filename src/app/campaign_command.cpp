@@ -4,6 +4,7 @@
 
 #include "campaign_report.hpp"
 #include "commands.hpp"
+#include "number_checks.hpp"
 #include "rigid/campaign/driver.hpp"
 
 namespace rigid::app {
@@ -55,9 +56,12 @@ void register_campaign_command(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::IsMember({"auto", "bar", "log", "none"}));
   cmd->add_option("--log-interval", command->log_interval, "Seconds between progress log lines when not on a terminal (s)")
-      ->capture_default_str();
-  cmd->add_option("--checkpoint-interval", o->checkpoint_interval, "Seconds between cube checkpoints; default: the job's (30 s)");
-  cmd->add_option("--grace", o->grace, "Seconds in-flight tasks get after a stop signal; default: the job's (30 s)");
+      ->capture_default_str()
+      ->check(positive_number());
+  cmd->add_option("--checkpoint-interval", o->checkpoint_interval, "Seconds between cube checkpoints; default: the job's (30 s)")
+      ->check(positive_number());
+  cmd->add_option("--grace", o->grace, "Seconds in-flight tasks get after a stop signal; default: the job's (30 s)")
+      ->check(non_negative_number());
   cmd->callback([command] {
     campaign::CampaignOptions& options = command->options;
     attach_progress(options, command->progress, command->log_interval);

@@ -5,6 +5,7 @@
 #include "commands.hpp"
 #include "rigid/io/json.hpp"
 #include "rigid/io/scene_file.hpp"
+#include "scene_input.hpp"
 
 namespace rigid::app {
 namespace {
@@ -13,7 +14,7 @@ io::Json vec_json(const Vec3& v) { return io::Json::array({v.x(), v.y(), v.z()})
 
 void inspect(const std::string& path, bool json) {
   // loading runs every mesh check (closed, oriented, convex); a failure throws before this point
-  const scenario::Scene scene = io::load_scene(path);
+  const scenario::Scene scene = load_scene_with_warnings(path);
   for (const auto& b : scene.bodies) {
     const auto& s = b.shape;
     if (json) {

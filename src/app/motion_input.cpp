@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "number_checks.hpp"
 #include "rigid/core/error.hpp"
 #include "rigid/core/types.hpp"
 #include "rigid/io/at2.hpp"
@@ -13,26 +14,38 @@ void add_motion_options(CLI::App& cmd, MotionOptions& o) {
   cmd.add_option("--motion", o.path,
                  "Ground motion: NAME-X.AT2 (NAME-Y.AT2 and NAME-Z.AT2 join when present) or "
                  "H1.AT2,H2.AT2[,V.AT2]; PEER AT2 files in g");
-  cmd.add_option("--factor", o.factor, "Multiply every component by this (unit: 1)")->capture_default_str();
+  cmd.add_option("--factor", o.factor, "Multiply every component by this (unit: 1)")
+      ->capture_default_str()
+      ->check(finite_number());
   cmd.add_option("--target-pga", o.target_pga_g,
-                 "Scale so the GMRotI50 PGA equals this (unit: g; with one horizontal, its PGA)");
-  cmd.add_option("--start", o.start, "Start of the time window (s)")->capture_default_str();
-  cmd.add_option("--end", o.end, "End of the time window (s); default: end of the record");
+                 "Scale so the GMRotI50 PGA equals this (unit: g; with one horizontal, its PGA)")
+      ->check(positive_number());
+  cmd.add_option("--start", o.start, "Start of the time window (s)")->capture_default_str()->check(non_negative_number());
+  cmd.add_option("--end", o.end, "End of the time window (s); default: end of the record")->check(positive_number());
   cmd.add_option("--rotation", o.rotation_deg,
-                 "Rotate the horizontal components about z, counter-clockwise from above (deg)")
-      ->capture_default_str();
+                 "Rotate the horizontal components about z, counter-clockwise from above (deg; |angle| <= 1e6)")
+      ->capture_default_str()
+      ->check(angle_deg());
 }
 
-motion::GroundMotion load_motion(const MotionOptions& o) {
-  if (!std::isfinite(o.factor)) throw InputError("", 0, "--factor must be finite");
-  if (!std::isfinite(o.rotation_deg)) throw InputError("", 0, "--rotation must be finite");
-  if (o.target_pga_g < 0 || !std::isfinite(o.target_pga_g)) {
-    throw InputError("", 0, "--target-pga must be positive (g)");
+namespace {
+
+// The --start/--end window of the record; a window outside it is an error of those options.
+motion::GroundMotion windowed_record(const motion::GroundMotion& record, double start, double end) {
+  if (start == 0 && !std::isfinite(end)) return record;  // no window asked for
+  try {
+    return motion::windowed(record, start, end);
+  } catch (const InputError& e) {
+    throw InputError("", 0, "--start/--end: " + e.problem() + " (" + record.name + ")");
   }
-  const motion::GroundMotion record = io::read_motion_set(o.path);
+}
+
+}  // namespace
+
+motion::GroundMotion load_motion(const MotionOptions& o) {
+  // the options' validators have refused non-finite and out-of-range values
+  const motion::GroundMotion record = windowed_record(io::read_motion_set(o.path), o.start, o.end);
   motion::MotionTransform t;
-  t.start = o.start;
-  t.end = o.end;
   t.factor = o.factor;
   t.target_pga_g = o.target_pga_g;
   t.rotation = o.rotation_deg * kPi / 180.0;

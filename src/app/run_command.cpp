@@ -7,6 +7,8 @@
 
 #include "commands.hpp"
 #include "motion_input.hpp"
+#include "number_checks.hpp"
+#include "scene_input.hpp"
 #include "rigid/core/error.hpp"
 #include "rigid/io/json.hpp"
 #include "rigid/io/scene_file.hpp"
@@ -36,10 +38,6 @@ struct RunOptions {
   double trajectory_interval = 0.02;
   bool json = false;
 };
-
-void check_positive_option(double v, const char* name) {
-  if (!(v > 0) || !std::isfinite(v)) throw InputError("", 0, std::string(name) + " must be positive");
-}
 
 const char* end_name(scenario::ActiveEffects::End end) {
   switch (end) {
@@ -82,8 +80,20 @@ std::string effects_line(const scenario::ActiveEffects& e) {
   return buf;
 }
 
+// The run's bounds (scenario/run_bounds.hpp) broken by a command-line value: the error names it.
+scenario::Model checked_model(scenario::ModelKind kind, scenario::Scene scene, motion::GroundMotion m,
+                              scenario::RunSettings settings, const RunOptions& o) {
+  try {
+    return scenario::Model(kind, {std::move(scene)}, {std::move(m)}, std::move(settings));
+  } catch (const InputError& e) {
+    if (!e.file().empty()) throw;
+    const char* option = o.dt != 0 ? "--dt" : o.safety != 0 ? "--safety" : o.duration != 0 ? "--duration" : "";
+    throw InputError("", 0, (*option ? std::string(option) + ": " : std::string()) + e.problem());
+  }
+}
+
 void run(const RunOptions& o) {
-  scenario::Scene scene = io::load_scene(o.scene);
+  scenario::Scene scene = load_scene_with_warnings(o.scene);
   if (!o.state.empty()) io::apply_state(o.state, scene);
   if (!o.contact.empty() && !contact::parse_contact_model(o.contact, scene.law.model)) {
     throw InputError("", 0, "--contact must be rigid or penalty");
@@ -93,22 +103,15 @@ void run(const RunOptions& o) {
   const scenario::AccuracyPreset* preset = scenario::find_accuracy_preset(o.accuracy);
   if (!preset) throw InputError("", 0, "--accuracy must be " + scenario::accuracy_preset_list());
   scenario::AccuracyOverrides overrides;
-  if (o.dt != 0) {
-    check_positive_option(o.dt, "--dt");
-    overrides.dt = o.dt;
-  }
-  if (o.safety != 0) {
-    check_positive_option(o.safety, "--safety");
-    overrides.safety = o.safety;
-  }
+  // 0 = the option was not given (its validator refuses 0)
+  if (o.dt != 0) overrides.dt = o.dt;
+  if (o.safety != 0) overrides.safety = o.safety;
   if (!o.integrator.empty()) {
     overrides.rotation = scenario::parse_integrator(o.integrator);
     if (!overrides.rotation) throw InputError("", 0, "--integrator must be splitting or rk4");
   }
   scenario::apply_accuracy(*preset, overrides, settings);
-  if (o.duration != 0) check_positive_option(o.duration, "--duration");
   settings.duration = o.duration;
-  if (o.free_time < 0) throw InputError("", 0, "--free-time must not be negative");
   settings.free_time = o.free_time;
   if (o.effects != "auto" && o.effects != "all") throw InputError("", 0, "--effects must be auto or all");
   settings.select_effects = o.effects == "auto";
@@ -122,12 +125,11 @@ void run(const RunOptions& o) {
 
   io::TrajectoryRecorder recorder;
   if (!o.trajectory.empty() && !block2d) {
-    if (!(o.trajectory_interval > 0)) throw InputError("", 0, "--trajectory-interval must be positive");
     settings.observer = [&recorder](const dynamics::World& w) { recorder.record(w); };
     settings.observe_interval = o.trajectory_interval;
   }
   // the motion is already windowed, scaled and rotated (load_motion): the case takes it as it is
-  const scenario::Model model(*kind, {std::move(scene)}, {std::move(m)}, std::move(settings));
+  const scenario::Model model = checked_model(*kind, std::move(scene), std::move(m), std::move(settings), o);
   const auto start = std::chrono::steady_clock::now();
   const scenario::CaseOutcome outcome = scenario::simulate(model, scenario::Case{});
   if (outcome.error) std::rethrow_exception(outcome.error);
@@ -169,11 +171,18 @@ void register_run_command(CLI::App& app) {
   cmd->add_option("scene", o->scene, "Scene: a Rigid model file or a .toml scene file")->required();
   add_motion_options(*cmd, o->motion);
   cmd->add_option("--state", o->state, "Start from this saved equilibrium state (TOML from `rigid settle`)");
-  cmd->add_option("--duration", o->duration, "Simulated time (s); default: motion duration + --free-time");
+  cmd->add_option("--duration", o->duration, "Simulated time (s); default: motion duration + --free-time")
+      ->check(positive_number());
   cmd->add_option("--free-time", o->free_time, "Time left to rock after the motion ends, when --duration is not given (s)")
-      ->capture_default_str();
-  cmd->add_option("--dt", o->dt, "Time step (s); default: automatic from block masses and contact stiffness");
-  cmd->add_option("--safety", o->safety, "Safety factor on the critical time step for the automatic step (default: the preset's)");
+      ->capture_default_str()
+      ->check(non_negative_number());
+  cmd->add_option("--dt", o->dt,
+                  "Time step (s); default: automatic from block masses and contact stiffness; at most the automatic "
+                  "step at safety 1")
+      ->check(positive_number());
+  cmd->add_option("--safety", o->safety,
+                  "Safety factor on the critical time step for the automatic step (default: the preset's; at most 1)")
+      ->check(positive_number());
   cmd->add_option("--integrator", o->integrator, "Rotation integrator: splitting (symplectic) or rk4 (default: the preset's)");
   cmd->add_option("--accuracy", o->accuracy,
                   "Accuracy preset: fast, balanced or reference (time-step safety, integrator, at-rest stop; "
@@ -189,7 +198,8 @@ void register_run_command(CLI::App& app) {
   cmd->add_option("--trajectory", o->trajectory,
                   "Write block poses over time to this .xdmf (with a .h5 beside it) for ParaView (dem3d only)");
   cmd->add_option("--trajectory-interval", o->trajectory_interval, "Time between trajectory frames (s)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(positive_number());
   cmd->add_option("--effects", o->effects,
                   "auto: simulate only the effects the scene and motion call for (sleeping on a quiet "
                   "pedestal, pair culling, no vertical work without a vertical component, early end); "
@@ -204,9 +214,9 @@ void register_run_command(CLI::App& app) {
   CLI::App* settle = app.add_subcommand("settle", "Settle a scene with no ground motion (local damping) and save its equilibrium state");
   settle->add_option("scene", *settle_scene, "Scene: a Rigid model file or a .toml scene file")->required();
   settle->add_option("--out", *settle_out, "State file to write (TOML)")->required();
-  settle->add_option("--max-time", *settle_time, "Longest settling time (s)")->capture_default_str();
+  settle->add_option("--max-time", *settle_time, "Longest settling time (s)")->capture_default_str()->check(positive_number());
   settle->callback([settle_scene, settle_out, settle_time] {
-    const scenario::Scene scene = io::load_scene(*settle_scene);
+    const scenario::Scene scene = load_scene_with_warnings(*settle_scene);
     const scenario::Scene settled = scenario::equilibrate(scene, dynamics::StepSettings{}, *settle_time);
     io::save_state(*settle_out, settled);
     std::printf("equilibrium state written to %s\n", settle_out->c_str());

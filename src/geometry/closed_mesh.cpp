@@ -1,6 +1,7 @@
 /// Triangle soup -> checked closed mesh: welding, adjacency, closedness, orientation, convexity.
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -144,11 +145,22 @@ std::vector<int> weld(const TriangleSoup& soup, const Vec3& lo, double diag, dou
                    static_cast<std::int64_t>(std::floor((p.z() - lo.z()) / cell))};
   };
   std::unordered_map<CellKey, std::vector<int>, CellHash> grid;
+  // a point equal to a kept vertex welds to it (distance 0 cannot be beaten): one lookup instead
+  // of 27 grid cells, for the common case of a mesh whose facets share exact corners
+  std::unordered_map<CellKey, int, CellHash> exact;
+  auto bits_of = [](const Vec3& p) {
+    return CellKey{std::bit_cast<std::int64_t>(p.x()), std::bit_cast<std::int64_t>(p.y()),
+                   std::bit_cast<std::int64_t>(p.z())};
+  };
   std::vector<int> index;
   index.reserve(soup.size() * 3);
   const double eps2 = eps * eps;
   for (const Triangle& t : soup) {
     for (const Vec3* p : {&t.a, &t.b, &t.c}) {
+      if (const auto same = exact.find(bits_of(*p)); same != exact.end()) {
+        index.push_back(same->second);
+        continue;
+      }
       const CellKey k = cell_of(*p);
       int best = -1;
       double best_d2 = 0;
@@ -172,6 +184,7 @@ std::vector<int> weld(const TriangleSoup& soup, const Vec3& lo, double diag, dou
         best = static_cast<int>(vertices.size());
         vertices.push_back(*p);
         grid[k].push_back(best);
+        exact.emplace(bits_of(*p), best);
       }
       index.push_back(best);
     }
@@ -193,6 +206,93 @@ std::pair<double, double> signed_volume(const std::vector<Vec3>& v,
     six_abs += std::abs(det);
   }
   return {six_v / 6.0, six_abs / 6.0};
+}
+
+// Vertex adjacency of a closed triangle mesh in compressed rows: the neighbours of vertex x are
+// list[first[x]] .. list[first[x + 1] - 1] (each twice: once per facet of the edge).
+struct VertexNeighbors {
+  std::vector<int> first, list;
+};
+
+VertexNeighbors vertex_neighbors(const std::vector<std::array<int, 3>>& tris, std::size_t vertices) {
+  VertexNeighbors n;
+  n.first.assign(vertices + 1, 0);
+  for (const auto& t : tris) {
+    for (int x : t) n.first[static_cast<std::size_t>(x) + 1] += 2;
+  }
+  for (std::size_t x = 0; x < vertices; ++x) n.first[x + 1] += n.first[x];
+  n.list.resize(static_cast<std::size_t>(n.first[vertices]));
+  std::vector<int> fill(n.first.begin(), n.first.end() - 1);
+  for (const auto& t : tris) {
+    for (int i = 0; i < 3; ++i) {
+      n.list[static_cast<std::size_t>(fill[t[i]]++)] = t[(i + 1) % 3];
+      n.list[static_cast<std::size_t>(fill[t[i]]++)] = t[(i + 2) % 3];
+    }
+  }
+  return n;
+}
+
+// The highest vertex in direction n reachable uphill from `start` (each step to a strictly higher
+// neighbour). On a convex mesh it is the global maximum; a dent is climbed out of to its rim.
+int climb(const std::vector<Vec3>& v, const VertexNeighbors& nb, const Vec3& n, int start) {
+  int at = start;
+  double height = n.dot(v[at]);
+  for (bool moved = true; moved;) {
+    moved = false;
+    for (int k = nb.first[at]; k < nb.first[at + 1]; ++k) {
+      const int w = nb.list[static_cast<std::size_t>(k)];
+      if (n.dot(v[w]) > height) {
+        at = w;
+        height = n.dot(v[w]);
+        moved = true;
+      }
+    }
+  }
+  return at;
+}
+
+// Solid angle of triangle (a, b, c) seen from the origin, signed by its orientation (Van Oosterom
+// and Strackee 1983).
+double solid_angle(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const double la = a.norm(), lb = b.norm(), lc = c.norm();
+  const double below = la * lb * lc + a.dot(b) * lc + a.dot(c) * lb + b.dot(c) * la;
+  return 2.0 * std::atan2(a.dot(b.cross(c)), below);
+}
+
+// Convexity without the literal O(facets x vertices) test (a million-facet scan would take
+// hours): (1) no vertex lies above a facet's plane by more than the tolerance, where the highest
+// vertex is found by climbing the vertex graph from the facet (a few steps on a convex mesh: the
+// facet's own vertices are the top), and (2) every facet faces away from the vertex mean and the
+// surface wraps it exactly once (solid angles sum to 4 pi), so the surface is embedded and no
+// far part can hide above a facet where no climb leads. Throws naming the first facet that fails.
+void check_convex(const ClosedMesh& mesh, double tolerance, const std::string& source) {
+  const auto& v = mesh.vertices;
+  const VertexNeighbors nb = vertex_neighbors(mesh.triangles, v.size());
+  Vec3 centre = Vec3::Zero();
+  for (const Vec3& x : v) centre += x;
+  centre /= double(v.size());
+  double wrapped = 0;
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+    const auto& t = mesh.triangles[f];
+    const Vec3 a = v[t[0]] - centre, b = v[t[1]] - centre, c = v[t[2]] - centre;
+    const Vec3 n = triangle_normal(a, b, c);
+    if (!(n.dot(a) > 0)) {
+      fail(source, f, "faces toward the mesh's centre " + fmt(centre) + ": the mesh is not convex");
+    }
+    const double limit = (n.dot(a) + n.dot(b) + n.dot(c)) / 3.0 + tolerance;
+    const int top = climb(v, nb, n, t[0]);
+    const double height = n.dot(v[top] - centre);
+    if (height > limit) {
+      fail(source, f,
+           "vertex " + fmt(v[top]) + " lies " + fmt(height - limit + tolerance) +
+               " m outside the plane of this facet (tolerance " + fmt(tolerance) + " m): the mesh is not convex");
+    }
+    wrapped += solid_angle(a, b, c);
+  }
+  const double turns = wrapped / (4.0 * kPi);
+  if (std::lround(turns) != 1) {
+    fail_mesh(source, "the surface wraps its centre " + fmt(turns) + " times, not once: the mesh is not convex");
+  }
 }
 
 }  // namespace
@@ -380,31 +480,7 @@ ClosedMesh make_closed_mesh(const TriangleSoup& soup, const MeshOptions& options
                             " facets were oriented inconsistently; flipped to face outward");
   }
 
-  // convexity: no vertex above any facet plane by more than the tolerance. This is the literal
-  // O(facets * vertices) test; coordinates are stored per axis so the inner loop vectorises.
-  const double conv_tol = options.convexity_tolerance * diag;
-  Eigen::ArrayXd xs(v.size()), ys(v.size()), zs(v.size());
-  for (std::size_t x = 0; x < v.size(); ++x) {
-    const auto i = static_cast<Eigen::Index>(x);
-    xs[i] = v[x].x() - lo.x();
-    ys[i] = v[x].y() - lo.y();
-    zs[i] = v[x].z() - lo.z();
-  }
-  for (std::size_t f = 0; f < nf; ++f) {
-    const auto& t = mesh.triangles[f];
-    const Vec3 a = v[t[0]] - lo, b = v[t[1]] - lo, c = v[t[2]] - lo;
-    const Vec3 n = triangle_normal(a, b, c);
-    const double limit = (n.dot(a) + n.dot(b) + n.dot(c)) / 3.0 + conv_tol;
-    const double nx = n.x(), ny = n.y(), nz = n.z();
-    const double top = (nx * xs + ny * ys + nz * zs).maxCoeff();
-    if (top <= limit) continue;
-    Eigen::Index worst = 0;  // the highest vertex, for the message
-    (nx * xs + ny * ys + nz * zs).maxCoeff(&worst);
-    fail(source, f,
-         "vertex " + fmt(v[static_cast<std::size_t>(worst)]) + " lies " +
-             fmt(top - limit + conv_tol) + " m outside the plane of this facet " + "(tolerance " +
-             fmt(conv_tol) + " m): the mesh is not convex");
-  }
+  check_convex(mesh, options.convexity_tolerance * diag, source);
   return mesh;
 }
 

@@ -1,6 +1,8 @@
 // PEER .AT2 reader and writer, three-component sets (physics.md §6).
 #include "rigid/io/at2.hpp"
 
+#include "input_file.hpp"
+
 #include <algorithm>
 #include <cctype>
 #include <charconv>
@@ -330,17 +332,7 @@ At2Record parse_at2(std::string_view text, const std::string& name,
 }
 
 At2Record read_at2(const std::string& path, const At2ReadOptions& options) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail(path, 0, "cannot open file");
-  in.seekg(0, std::ios::end);
-  const std::streamoff size = in.tellg();
-  if (size < 0) fail(path, 0, "cannot read file");
-  if (size > (std::streamoff(256) << 20)) fail(path, 0, "file larger than 256 MB");
-  in.seekg(0);
-  std::string text(std::size_t(size), '\0');
-  in.read(text.data(), size);
-  if (!in) fail(path, 0, "cannot read file");
-  return parse_at2(text, path, options);
+  return parse_at2(read_input_file(path, kMaxBulkFileBytes), path, options);
 }
 
 std::string format_at2(const motion::Component& c, const At2WriteOptions& options) {

@@ -9,9 +9,11 @@
 
 #include <toml++/toml.h>
 
+#include "input_file.hpp"
 #include "rigid/core/error.hpp"
 #include "rigid/io/at2.hpp"
 #include "rigid/io/record_list.hpp"
+#include "toml_values.hpp"
 
 namespace rigid::io {
 namespace fs = std::filesystem;
@@ -29,35 +31,15 @@ std::string text_hash(const std::string& text) {
 
 namespace {
 
-long line_of(const toml::node& n) { return static_cast<long>(n.source().begin.line); }
-
-void reject_unknown(const toml::table& t, const std::set<std::string>& allowed, const std::string& src,
-                    const std::string& where) {
-  for (const auto& [key, node] : t) {
-    if (!allowed.count(std::string(key.str()))) {
-      throw InputError(src, line_of(node), "unknown key '" + std::string(key.str()) + "' in " + where);
-    }
-  }
-}
-
 double number(const toml::node& n, const std::string& src, const std::string& what) {
   const auto v = n.value<double>();
   if (!v || !std::isfinite(*v)) throw InputError(src, line_of(n), what + " must be a finite number");
   return *v;
 }
 
-double optional_number(const toml::table& t, const char* key, double fallback, const std::string& src) {
-  const toml::node* n = t.get(key);
-  return n ? number(*n, src, key) : fallback;
-}
-
-std::string text_of(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, 0, "cannot open job file");
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+// Most cells one job may have: a cell's plan entry, result and journal record cost some
+// hundred bytes, so 1e7 cells is about a gigabyte (and years of simulation).
+constexpr double kMaxCells = 1e7;
 
 std::vector<double> parse_scales(const toml::node& n, const std::string& src) {
   std::vector<double> out;
@@ -116,20 +98,27 @@ std::string resolve_spec(const std::string& spec, const fs::path& base) {
   return out;
 }
 
+// Refuses a job too large to plan (the plan and results live in memory) before anything is allocated.
+void check_cell_count(const scenario::Job& job, long campaign_line) {
+  const double cells = double(job.objects.size()) * double(job.records.size()) * double(job.scales_g.size()) *
+                       double(job.rotations);
+  if (cells > kMaxCells) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "the job has %.3g cells (objects x records x scales x rotations), more than 1e7",
+                  cells);
+    throw InputError(job.path, campaign_line, buf);
+  }
+}
+
 }  // namespace
 
 scenario::Job load_job(const std::string& path) {
   scenario::Job job;
   job.path = path;
   if (!fs::exists(path)) throw InputError(path, 0, "job file not found");
-  job.text = text_of(path);
+  job.text = read_input_file(path, kMaxTextFileBytes);
   job.hash = text_hash(job.text);
-  toml::table root;
-  try {
-    root = toml::parse(job.text, path);
-  } catch (const toml::parse_error& e) {
-    throw InputError(path, static_cast<long>(e.source().begin.line), std::string(e.description()));
-  }
+  const toml::table root = parse_toml(job.text, path);
   const fs::path base = fs::path(path).parent_path();
   reject_unknown(root, {"campaign", "object", "record", "records", "run"}, path, "the job");
 
@@ -137,6 +126,7 @@ scenario::Job load_job(const std::string& path) {
   if (!c) throw InputError(path, 0, "missing [campaign] table");
   reject_unknown(*c, {"name", "seed", "output", "scales", "rotations", "rotation_angles_deg", "stop_after", "checkpoint_interval_s", "grace_s"},
                  path, "[campaign]");
+  optional_string(*c, "name", "", path);  // a label for people: type-checked, not used
   if (const auto* o = c->get("output")) {
     const auto s = o->value<std::string>();
     if (!s || s->empty()) throw InputError(path, line_of(*o), "output must be a file name");
@@ -191,15 +181,16 @@ scenario::Job load_job(const std::string& path) {
     if (!t) throw InputError(path, line_of(node), "each [[object]] must be a table");
     reject_unknown(*t, {"name", "scene", "state"}, path, "[[object]]");
     scenario::JobObject o;
-    const auto scene = (*t)["scene"].value<std::string>();
-    if (!scene) throw InputError(path, line_of(node), "[[object]] needs scene = \"FILE\"");
-    o.scene = (base / *scene).lexically_normal().string();
+    const std::string scene = optional_string(*t, "scene", "", path);
+    if (scene.empty()) throw InputError(path, line_of(node), "[[object]] needs scene = \"FILE\"");
+    o.scene = (base / scene).lexically_normal().string();
     if (!fs::exists(o.scene)) throw InputError(path, line_of(node), "scene file not found: " + o.scene);
-    if (const auto state = (*t)["state"].value<std::string>()) {
-      o.state = (base / *state).lexically_normal().string();
+    const std::string state = optional_string(*t, "state", "", path);
+    if (!state.empty()) {
+      o.state = (base / state).lexically_normal().string();
       if (!fs::exists(o.state)) throw InputError(path, line_of(node), "state file not found: " + o.state);
     }
-    o.name = (*t)["name"].value_or(fs::path(*scene).stem().string());
+    o.name = optional_string(*t, "name", fs::path(scene).stem().string(), path);
     if (o.name.empty() || o.name.find('/') != std::string::npos) {
       throw InputError(path, line_of(node), "object name must be non-empty and contain no '/'");
     }
@@ -222,6 +213,8 @@ scenario::Job load_job(const std::string& path) {
       scenario::JobRecord r;
       r.spec = resolve_spec(e.file, fs::path(rl.base_dir));
       r.name = record_name(e.file);
+      r.origin_file = job.record_list;
+      r.origin_line = e.line;
       r.start = e.start;
       r.end = e.end;
       r.earthquake = e.earthquake;
@@ -238,13 +231,15 @@ scenario::Job load_job(const std::string& path) {
       if (!t) throw InputError(path, line_of(node), "each [[record]] must be a table");
       reject_unknown(*t, {"name", "motion", "start", "end", "earthquake", "align"}, path, "[[record]]");
       scenario::JobRecord r;
-      const auto motion = (*t)["motion"].value<std::string>();
-      if (!motion) throw InputError(path, line_of(node), "[[record]] needs motion = \"NAME-X.AT2\" or \"H1.AT2,H2.AT2\"");
-      r.spec = resolve_spec(*motion, base);
-      r.name = (*t)["name"].value_or(record_name(*motion));
+      const std::string motion = optional_string(*t, "motion", "", path);
+      if (motion.empty()) throw InputError(path, line_of(node), "[[record]] needs motion = \"NAME-X.AT2\" or \"H1.AT2,H2.AT2\"");
+      r.spec = resolve_spec(motion, base);
+      r.name = optional_string(*t, "name", record_name(motion), path);
+      r.origin_file = path;
+      r.origin_line = line_of(node);
       r.start = optional_number(*t, "start", 0.0, path);
       r.end = optional_number(*t, "end", std::numeric_limits<double>::infinity(), path);
-      r.earthquake = (*t)["earthquake"].value_or(std::string());
+      r.earthquake = optional_string(*t, "earthquake", "", path);
       if (const auto* align = t->get("align")) {
         const auto value = align->value<std::string>();
         if (!value || (*value != "resample" && *value != "auto"))
@@ -263,9 +258,13 @@ scenario::Job load_job(const std::string& path) {
     while (std::getline(parts, part, ',')) {
       const auto eq = part.find('=');
       const std::string file = eq == std::string::npos ? part : part.substr(eq + 1);
-      if (!fs::exists(file)) throw InputError(path, 0, "record " + r.name + ": motion file not found: " + file);
+      if (!fs::exists(file)) {
+        throw InputError(r.origin_file, r.origin_line, "record " + r.name + ": motion file not found: " + file);
+      }
     }
-    if (!(r.start >= 0) || !(r.end > r.start)) throw InputError(path, 0, "record " + r.name + ": window needs 0 <= start < end");
+    if (!(r.start >= 0) || !(r.end > r.start)) {
+      throw InputError(r.origin_file, r.origin_line, "record " + r.name + ": window needs 0 <= start < end");
+    }
     std::string unique = r.name;
     for (int k = 2; !record_names.insert(unique).second; ++k) unique = r.name + "_" + std::to_string(k);
     r.name = unique;
@@ -282,7 +281,7 @@ scenario::Job load_job(const std::string& path) {
       }
       job.contact = *name;
     }
-    const std::string model = (*run)["model"].value_or(std::string("dem3d"));
+    const std::string model = optional_string(*run, "model", "dem3d", path);
     const std::optional<scenario::ModelKind> kind = scenario::parse_model_kind(model);
     if (!kind) {
       throw InputError(path, line_of(*run), "model must be \"dem3d\" or \"rocking2d\", not \"" + model + "\"");
@@ -295,7 +294,7 @@ scenario::Job load_job(const std::string& path) {
     if (job.run.duration < 0 || job.run.free_time < 0 || job.run.step.dt < 0 || !(job.run.step.safety > 0)) {
       throw InputError(path, line_of(*run), "durations and dt must not be negative, safety must be positive");
     }
-    const std::string integrator = (*run)["integrator"].value_or(std::string("splitting"));
+    const std::string integrator = optional_string(*run, "integrator", "splitting", path);
     if (integrator == "rk4") {
       job.run.step.rotation = dynamics::RotationIntegrator::rk4;
     } else if (integrator != "splitting") {
@@ -322,7 +321,10 @@ scenario::Job load_job(const std::string& path) {
     if (run->contains("dt_s")) job.accuracy_overrides.dt = job.run.step.dt;
     if (run->contains("safety")) job.accuracy_overrides.safety = job.run.step.safety;
     if (run->contains("integrator")) job.accuracy_overrides.rotation = job.run.step.rotation;
+    const toml::node* step_key = run->contains("dt_s") ? run->get("dt_s") : run->get("safety");
+    job.run_line = line_of(step_key ? *step_key : *run);
   }
+  check_cell_count(job, line_of(*c));
   scenario::apply_accuracy(*scenario::find_accuracy_preset(job.accuracy), job.accuracy_overrides, job.run);
   job.hash = job_hash(job);
   return job;

@@ -1,10 +1,23 @@
 #include "rigid/io/job_model.hpp"
 
+#include "rigid/core/error.hpp"
 #include "rigid/io/at2.hpp"
 #include "rigid/io/scene_file.hpp"
 #include "rigid/motion/measures.hpp"
 
 namespace rigid::io {
+namespace {
+
+// The record's window, a window error naming where the record is given (job file or list, line).
+motion::GroundMotion windowed_record(const scenario::JobRecord& r, const motion::GroundMotion& m) {
+  try {
+    return motion::windowed(m, r.start, r.end);
+  } catch (const InputError& e) {
+    throw InputError(r.origin_file, r.origin_line, "record " + r.name + ": " + e.problem());
+  }
+}
+
+}  // namespace
 
 scenario::Model load_model(const scenario::Job& job) {
   std::vector<scenario::Scene> scenes;
@@ -19,11 +32,17 @@ scenario::Model load_model(const scenario::Job& job) {
   for (const auto& r : job.records) {
     SetReadOptions read;
     read.align.resample = r.resample;
-    records.push_back(motion::windowed(read_motion_set(r.spec, read), r.start, r.end));
+    records.push_back(windowed_record(r, read_motion_set(r.spec, read)));
     // once per record: every case scales this record, and the GMRotI50 measure is costly
     per_g.push_back(motion::target_pga_factor(records.back(), 1.0));
   }
-  return scenario::Model(job.model, std::move(scenes), std::move(records), job.run, std::move(per_g));
+  try {
+    return scenario::Model(job.model, std::move(scenes), std::move(records), job.run, std::move(per_g));
+  } catch (const InputError& e) {
+    // the run bounds name no file: the job's [run] settings (or its records' lengths) broke them
+    if (!e.file().empty()) throw;
+    throw InputError(job.path, job.run_line, e.what());
+  }
 }
 
 std::vector<RecordMeta> record_metadata(const scenario::Job& job, const scenario::Model& model) {

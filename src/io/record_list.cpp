@@ -1,6 +1,8 @@
 // Record lists (study table TSV, Rigid .ABF) and the listed-vs-computed GMRotI comparison.
 #include "rigid/io/record_list.hpp"
 
+#include "input_file.hpp"
+
 #include <algorithm>
 #include <cctype>
 #include <charconv>
@@ -182,9 +184,7 @@ RecordList parse_abf(std::string_view text, const std::string& name) {
 }
 
 RecordList read_record_list(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, 0, "cannot open file");
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string text = read_input_file(path, kMaxTextFileBytes);
   std::string ext = std::filesystem::path(path).extension().string();
   for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
   RecordList list = ext == ".abf" ? parse_abf(text, path) : parse_record_table(text, path);

@@ -1,5 +1,6 @@
 #include "rigid/io/scene_file.hpp"
 
+#include <cstdio>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -8,8 +9,11 @@
 
 #include <toml++/toml.h>
 
+#include "input_file.hpp"
 #include "rigid/core/error.hpp"
 #include "rigid/io/stl.hpp"
+#include "rigid/scenario/run_bounds.hpp"
+#include "toml_values.hpp"
 
 namespace rigid::io {
 namespace fs = std::filesystem;
@@ -59,8 +63,19 @@ void check_positive(double v, const std::string& source, long line, const char* 
   }
 }
 
+// Densities outside this range are no material (unit: kg/m^3): air is 1.2, osmium 22 600.
+constexpr double kMinDensity = 1.0;
+constexpr double kMaxDensity = 1e5;
+// Block sizes (bounding radius) outside this range are no rock and make the step vanish or the
+// numbers overflow (unit: m).
+constexpr double kMinBlockRadius = 1e-3;
+constexpr double kMaxBlockRadius = 1e3;
+
 void validate_law(const scenario::Scene& s, const std::string& source, long line) {
   check_positive(s.density, source, line, "density");
+  if (!(s.density >= kMinDensity && s.density <= kMaxDensity)) {
+    throw InputError(source, line, "density must be between 1 and 1e5 kg/m^3");
+  }
   check_positive(s.law.normal_stiffness, source, line, "normal stiffness K_N");
   check_positive(s.law.shear_stiffness, source, line, "shear stiffness K_S");
   if (!(s.law.friction >= 0) || !std::isfinite(s.law.friction)) {
@@ -71,6 +86,18 @@ void validate_law(const scenario::Scene& s, const std::string& source, long line
   }
 }
 
+// Tolerance on the norm of a saved orientation quaternion (unit: 1).
+constexpr double kUnitQuaternionTolerance = 1e-3;
+
+// Blocks deep inside each other at the start (a bad state or model) are refused, naming `file`.
+void check_overlap(const scenario::Scene& scene, const std::string& file) {
+  try {
+    scenario::check_start_overlap(scene);
+  } catch (const InputError& e) {
+    throw InputError(file, 0, e.what());
+  }
+}
+
 struct BlockSpec {
   std::string stl;
   bool fixed = false;
@@ -78,10 +105,31 @@ struct BlockSpec {
   long line = 0;
 };
 
+// Two blocks from one STL sit in the same place: refused at the second one's line.
+void reject_repeated_stl(const std::vector<BlockSpec>& blocks, const std::string& base_dir, const std::string& source) {
+  std::set<std::string> seen;
+  for (const auto& b : blocks) {
+    const std::string path = (fs::path(base_dir) / b.stl).lexically_normal().string();
+    if (!seen.insert(path).second) {
+      throw InputError(source, b.line, b.stl + " is listed twice: both blocks would fill the same space");
+    }
+  }
+}
+
+void check_block_size(const dynamics::BodyDef& body, const std::string& stl) {
+  const double r = body.shape.bounding_radius;
+  if (!(r >= kMinBlockRadius && r <= kMaxBlockRadius)) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.3g m", r);
+    throw InputError(stl, 0, std::string("block radius ") + buf + " is outside 1 mm to 1 km (is the unit m?)");
+  }
+}
+
 void build_bodies(scenario::Scene& scene, const std::vector<BlockSpec>& blocks,
                   const std::string& base_dir) {
   if (blocks.empty()) throw InputError(scene.source, 0, "the scene has no blocks");
-  bool any_free = false;
+  reject_repeated_stl(blocks, base_dir, scene.source);
+  bool any_free = false, any_fixed = false;
   for (const auto& b : blocks) {
     const fs::path path = fs::path(base_dir) / b.stl;
     if (!fs::exists(path)) {
@@ -91,15 +139,22 @@ void build_bodies(scenario::Scene& scene, const std::vector<BlockSpec>& blocks,
     scene.files.push_back(path.lexically_normal().string());
     dynamics::BodyDef body;
     body.name = fs::path(b.stl).stem().string();
-    body.shape = geometry::build_block(soup, scene.density, geometry::MeshOptions{}, path.string());
+    std::vector<std::string> mesh_warnings;
+    body.shape = geometry::build_block(soup, scene.density, geometry::MeshOptions{}, path.string(), &mesh_warnings);
+    for (const auto& w : mesh_warnings) scene.warnings.push_back(path.string() + ": " + w);
+    check_block_size(body, path.string());
     body.fixed = b.fixed;
     body.position = body.shape.translation;
     body.orientation = body.shape.rotation;
     body.velocity = b.velocity;
     any_free |= !b.fixed;
+    any_fixed |= b.fixed;
     scene.bodies.push_back(std::move(body));
   }
   if (!any_free) throw InputError(scene.source, 0, "the scene has no free block (all FIXED = 1)");
+  if (!any_fixed) {
+    throw InputError(scene.source, 0, "the scene has no fixed block (FIXED = 1): nothing carries the ground motion");
+  }
 }
 
 void parse_model_tokens(const std::vector<Token>& tokens, std::size_t& i, scenario::Scene& scene,
@@ -157,42 +212,8 @@ scenario::Scene parse_model_text(const std::string& text, const std::string& bas
 
 namespace {
 
-long line_of(const toml::node& n) { return static_cast<long>(n.source().begin.line); }
-
-void reject_unknown(const toml::table& t, const std::set<std::string>& allowed,
-                    const std::string& source, const std::string& where) {
-  for (const auto& [key, node] : t) {
-    if (!allowed.count(std::string(key.str()))) {
-      throw InputError(source, line_of(node), "unknown key '" + std::string(key.str()) + "' in " + where);
-    }
-  }
-}
-
-double get_number(const toml::table& t, const char* key, double fallback, const std::string& source) {
-  const toml::node* n = t.get(key);
-  if (!n) return fallback;
-  if (auto v = n->value<double>()) {
-    if (!std::isfinite(*v)) throw InputError(source, line_of(*n), std::string(key) + " is not finite");
-    return *v;
-  }
-  throw InputError(source, line_of(*n), std::string(key) + " must be a number");
-}
-
-std::string read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, 0, "cannot open file");
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 scenario::Scene load_toml_scene(const std::string& path) {
-  toml::table root;
-  try {
-    root = toml::parse_file(path);
-  } catch (const toml::parse_error& e) {
-    throw InputError(path, static_cast<long>(e.source().begin.line), std::string(e.description()));
-  }
+  const toml::table root = parse_toml(read_input_file(path, kMaxTextFileBytes), path);
   const std::string base = fs::path(path).parent_path().string();
   reject_unknown(root, {"model", "model_text", "state", "physics", "failure", "block"}, path, "scene");
 
@@ -207,15 +228,15 @@ scenario::Scene load_toml_scene(const std::string& path) {
         throw InputError(path, line_of(*c), "contact must be \"rigid\" or \"penalty\"");
       }
     }
-    physics_only.law.restitution = get_number(*p, "restitution", physics_only.law.restitution, path);
+    physics_only.law.restitution = optional_number(*p, "restitution", physics_only.law.restitution, path);
     if (!(physics_only.law.restitution >= 0 && physics_only.law.restitution <= 1)) {
       throw InputError(path, line_of(*p->get("restitution")), "restitution must be in [0, 1]");
     }
-    physics_only.density = get_number(*p, "density", physics_only.density, path);
-    physics_only.law.normal_stiffness = get_number(*p, "normal_stiffness", physics_only.law.normal_stiffness, path);
-    physics_only.law.shear_stiffness = get_number(*p, "shear_stiffness", physics_only.law.shear_stiffness, path);
-    physics_only.law.friction = get_number(*p, "friction", physics_only.law.friction, path);
-    physics_only.law.damping = get_number(*p, "damping", physics_only.law.damping, path);
+    physics_only.density = optional_number(*p, "density", physics_only.density, path);
+    physics_only.law.normal_stiffness = optional_number(*p, "normal_stiffness", physics_only.law.normal_stiffness, path);
+    physics_only.law.shear_stiffness = optional_number(*p, "shear_stiffness", physics_only.law.shear_stiffness, path);
+    physics_only.law.friction = optional_number(*p, "friction", physics_only.law.friction, path);
+    physics_only.law.damping = optional_number(*p, "damping", physics_only.law.damping, path);
     validate_law(physics_only, path, line_of(*p));
   }
 
@@ -233,7 +254,7 @@ scenario::Scene load_toml_scene(const std::string& path) {
     if (!name) throw InputError(path, line_of(*m), "model must be a file name");
     const fs::path model_path = fs::path(base) / *name;
     if (!fs::exists(model_path)) throw InputError(path, line_of(*m), "model file not found: " + model_path.string());
-    model_text = read_file(model_path.string());
+    model_text = read_input_file(model_path.string(), kMaxTextFileBytes);
     model_source = model_path.string();
   } else if (const auto* m = root.get("model_text")) {
     const auto text = m->value<std::string>();
@@ -252,7 +273,7 @@ scenario::Scene load_toml_scene(const std::string& path) {
       const auto stl = (*t)["stl"].value<std::string>();
       if (!stl) throw InputError(path, b.line, "[[block]] needs stl = \"FILE.stl\"");
       b.stl = *stl;
-      b.fixed = (*t)["fixed"].value_or(false);
+      b.fixed = optional_bool(*t, "fixed", false, path);
       if (const auto* v = (*t)["velocity"].as_array()) {
         if (v->size() != 3) throw InputError(path, line_of(*v), "velocity must have 3 components (m/s)");
         for (int k = 0; k < 3; ++k) {
@@ -293,7 +314,7 @@ scenario::Scene load_toml_scene(const std::string& path) {
 
   if (const auto* f = root["failure"].as_table()) {
     reject_unknown(*f, {"rule", "tilt_deg"}, path, "[failure]");
-    const std::string rule = (*f)["rule"].value_or(std::string("below"));
+    const std::string rule = optional_string(*f, "rule", "below", path);
     if (rule == "below") {
       scene.failure.kind = scenario::FailureRule::Kind::below;
     } else if (rule == "tilt") {
@@ -301,7 +322,7 @@ scenario::Scene load_toml_scene(const std::string& path) {
     } else {
       throw InputError(path, line_of(*f), "failure rule must be \"below\" or \"tilt\", not \"" + rule + "\"");
     }
-    const double deg = get_number(*f, "tilt_deg", 90.0, path);
+    const double deg = optional_number(*f, "tilt_deg", 90.0, path);
     if (!(deg > 0 && deg <= 180)) throw InputError(path, line_of(*f), "tilt_deg must be in (0, 180]");
     scene.failure.tilt_angle = deg * kPi / 180.0;
   }
@@ -319,9 +340,15 @@ scenario::Scene load_toml_scene(const std::string& path) {
 
 scenario::Scene load_scene(const std::string& path) {
   if (!fs::exists(path)) throw InputError(path, 0, "file not found");
-  if (fs::path(path).extension() == ".toml") return load_toml_scene(path);
-  scenario::Scene scene = parse_model_text(read_file(path), fs::path(path).parent_path().string(), path);
+  if (fs::path(path).extension() == ".toml") {
+    scenario::Scene scene = load_toml_scene(path);
+    check_overlap(scene, path);
+    return scene;
+  }
+  scenario::Scene scene =
+      parse_model_text(read_input_file(path, kMaxTextFileBytes), fs::path(path).parent_path().string(), path);
   scene.files.insert(scene.files.begin(), path);
+  check_overlap(scene, path);
   return scene;
 }
 
@@ -353,12 +380,7 @@ void save_state(const std::string& path, const scenario::Scene& scene) {
 }
 
 void apply_state(const std::string& path, scenario::Scene& scene) {
-  toml::table root;
-  try {
-    root = toml::parse_file(path);
-  } catch (const toml::parse_error& e) {
-    throw InputError(path, static_cast<long>(e.source().begin.line), std::string(e.description()));
-  }
+  const toml::table root = parse_toml(read_input_file(path, kMaxTextFileBytes), path);
   const auto* arr = root["body"].as_array();
   if (!arr) throw InputError(path, 0, "no [[body]] entries");
   if (arr->size() != scene.bodies.size()) {
@@ -369,7 +391,7 @@ void apply_state(const std::string& path, scenario::Scene& scene) {
     const auto* t = (*arr)[i].as_table();
     const long line = line_of((*arr)[i]);
     if (!t) throw InputError(path, line, "each [[body]] must be a table");
-    const std::string name = (*t)["name"].value_or(std::string());
+    const std::string name = optional_string(*t, "name", "", path);
     if (name != scene.bodies[i].name) {
       throw InputError(path, line, "body " + std::to_string(i) + " is '" + name + "', the scene has '" +
                                        scene.bodies[i].name + "'");
@@ -385,10 +407,17 @@ void apply_state(const std::string& path, scenario::Scene& scene) {
     for (double x : v) {
       if (!std::isfinite(x)) throw InputError(path, line, "non-finite or non-numeric pose value");
     }
+    const Quat orientation(v[3], v[4], v[5], v[6]);
+    // a saved state holds unit quaternions to 1e-16; a zero or wild one is no orientation
+    if (!(std::abs(orientation.norm() - 1.0) <= kUnitQuaternionTolerance)) {
+      throw InputError(path, line, "orientation must be a unit quaternion w x y z (its norm is " +
+                                       std::to_string(orientation.norm()) + ")");
+    }
     scene.bodies[i].position = Vec3(v[0], v[1], v[2]);
-    scene.bodies[i].orientation = Quat(v[3], v[4], v[5], v[6]).normalized();
+    scene.bodies[i].orientation = orientation.normalized();
   }
   scene.files.push_back(fs::path(path).lexically_normal().string());
+  check_overlap(scene, path);
 }
 
 }  // namespace rigid::io

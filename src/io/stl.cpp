@@ -1,6 +1,8 @@
 /// STL reader and writers (ASCII and binary).
 #include "rigid/io/stl.hpp"
 
+#include "input_file.hpp"
+
 #include <bit>
 #include <cerrno>
 #include <charconv>
@@ -331,17 +333,7 @@ geometry::TriangleSoup read_stl_from_memory(std::string_view bytes, const std::s
 }
 
 geometry::TriangleSoup read_stl(const std::string& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) fail(path, 0, "is a directory, not an STL file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail(path, 0, std::string("cannot open file: ") + std::strerror(errno));
-  std::string data;
-  char buf[1 << 16];
-  while (in.read(buf, sizeof buf) || in.gcount() > 0) {
-    data.append(buf, static_cast<std::size_t>(in.gcount()));
-  }
-  if (in.bad()) fail(path, 0, "read error");
-  return read_stl_from_memory(data, path);
+  return read_stl_from_memory(read_input_file(path, kMaxBulkFileBytes), path);
 }
 
 void write_stl_binary(const std::string& path, const geometry::TriangleSoup& soup) {

@@ -1,8 +1,12 @@
 #include "rigid/scenario/case.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <exception>
 
+#include "rigid/core/error.hpp"
 #include "rigid/scenario/rocking2d.hpp"
+#include "rigid/scenario/run_bounds.hpp"
 
 namespace rigid::scenario {
 
@@ -25,6 +29,20 @@ Model::Model(ModelKind kind, std::vector<Scene> scenes, std::vector<motion::Grou
   if (kind_ == ModelKind::rocking2d) {
     for (const Scene& s : scenes_) blocks2d_.push_back(rocking_block_of(s));
   }
+  check_bounds();
+}
+
+void Model::check_bounds() const {
+  std::vector<double> times{run_.duration > 0 ? run_.duration : run_.free_time};  // a still pedestal
+  for (int r = 0; r < records(); ++r) times.push_back(simulated_time(r));
+  for (double t : times) {
+    if (!std::isfinite(t) || t < 0) {
+      throw InputError("", 0, "the simulated time must be finite and not negative (duration, free time)");
+    }
+  }
+  if (kind_ != ModelKind::dem3d) return;  // the 2D model steps adaptively
+  const double longest = *std::max_element(times.begin(), times.end());
+  for (const Scene& s : scenes_) check_run_bounds(s, run_.step, longest);
 }
 
 double Model::simulated_time(int r) const {

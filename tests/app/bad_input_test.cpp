@@ -36,6 +36,7 @@ class BadInput : public ::testing::Test {
     dir_ = fs::temp_directory_path() / ("rigid_bad_input_" + std::to_string(::getpid()));
     fs::create_directories(dir_);
     write("cube.stl", cube_ascii());
+    write("top.stl", cube_ascii(2.0, 1.0));  // a block standing on the cube
   }
   void TearDown() override { fs::remove_all(dir_); }
   std::string write(const std::string& name, const std::string& text) {
@@ -43,8 +44,8 @@ class BadInput : public ::testing::Test {
     std::ofstream(p, std::ios::binary) << text;
     return p.string();
   }
-  static std::string cube_ascii(double top = 1.0) {
-    const double v[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
+  static std::string cube_ascii(double top = 1.0, double bottom = 0.0) {
+    const double v[8][3] = {{0, 0, bottom}, {1, 0, bottom}, {1, 1, bottom}, {0, 1, bottom},
                             {0, 0, top}, {1, 0, top}, {1, 1, top}, {0, 1, top}};
     const int f[12][3] = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
                           {1, 2, 6}, {1, 6, 5}, {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}};
@@ -78,17 +79,17 @@ TEST_F(BadInput, MissingStlNamesModelLine) {
 }
 
 TEST_F(BadInput, MalformedModelNumber) {
-  const auto m = write("a.model", "block cube.stl\n1 0 0 0\nblock cube.stl\n0 x 0 0\n");
+  const auto m = write("a.model", "block cube.stl\n1 0 0 0\nblock top.stl\n0 x 0 0\n");
   expect_error("run " + m, {"a.model:4", "'x'"});
 }
 
 TEST_F(BadInput, NanVelocityInModel) {
-  const auto m = write("a.model", "block cube.stl\n1 0 0 0\nblock cube.stl\n0 nan 0 0\n");
+  const auto m = write("a.model", "block cube.stl\n1 0 0 0\nblock top.stl\n0 nan 0 0\n");
   expect_error("run " + m, {"a.model:4"});
 }
 
 TEST_F(BadInput, NonPositiveDensity) {
-  const auto m = write("a.model", "block cube.stl\n1 0 0 0\nblock cube.stl\n0 0 0 0\n-2600 1e8 1e8 0.6 2\n");
+  const auto m = write("a.model", "block cube.stl\n1 0 0 0\nblock top.stl\n0 0 0 0\n-2600 1e8 1e8 0.6 2\n");
   expect_error("run " + m, {"a.model:5", "density"});
 }
 
@@ -116,17 +117,17 @@ TEST_F(BadInput, OpenMeshNamesFacet) {
 }
 
 TEST_F(BadInput, UnknownTomlKey) {
-  const auto t = write("a.toml", "model_text = \"block cube.stl 1 0 0 0 block cube.stl 0 0 0 0\"\n[physics]\nfrction = 0.5\n");
+  const auto t = write("a.toml", "model_text = \"block cube.stl 1 0 0 0 block top.stl 0 0 0 0\"\n[physics]\nfrction = 0.5\n");
   expect_error("run " + t, {"a.toml:3", "frction"});
 }
 
 TEST_F(BadInput, NegativeTimeStep) {
-  const auto m = write("a.model", "block cube.stl\n1 0 0 0\nblock cube.stl\n0 0 0 0\n");
+  const auto m = write("a.model", "block cube.stl\n1 0 0 0\nblock top.stl\n0 0 0 0\n");
   expect_error("run " + m + " --dt -1", {"--dt"});
 }
 
 TEST_F(BadInput, MalformedAt2) {
-  const auto m = write("a.model", "block cube.stl\n1 0 0 0\nblock cube.stl\n0 0 0 0\n");
+  const auto m = write("a.model", "block cube.stl\n1 0 0 0\nblock top.stl\n0 0 0 0\n");
   const auto a = write("rec-X.AT2", "PEER\nx\nACCELERATION IN G\nNPTS=    3, DT=   0.01 SEC\n0.1 zz 0.3\n");
   expect_error("run " + m + " --motion " + a, {"rec-X.AT2:5"});
 }

@@ -10,9 +10,11 @@ class InputError : public std::runtime_error {
  public:
   /// line = 0 means "no particular line" (the file as a whole).
   InputError(std::string file, long line, const std::string& what)
-      : std::runtime_error(format(file, line, what)), file_(std::move(file)), line_(line) {}
+      : std::runtime_error(format(file, line, what)), file_(std::move(file)), line_(line), problem_(what) {}
   const std::string& file() const { return file_; }
   long line() const { return line_; }
+  /// The problem alone, without FILE:LINE (to re-raise it under another file or option).
+  const std::string& problem() const { return problem_; }
 
  private:
   static std::string format(const std::string& file, long line, const std::string& what) {
@@ -23,6 +25,7 @@ class InputError : public std::runtime_error {
   }
   std::string file_;
   long line_;
+  std::string problem_;
 };
 
 }  // namespace rigid

@@ -32,7 +32,8 @@ class Model {
   /// `pga_factor_per_g`: per record, motion::target_pga_factor(record, 1.0) when the caller has
   /// it (a campaign computes it once per record, since cases scale one record many times); empty
   /// or 0 = computed by each case that asks for a target PGA. Throws rigid::InputError when kind
-  /// = rocking2d and a scene is not a box block on a box pedestal.
+  /// = rocking2d and a scene is not a box block on a box pedestal, and (no file named) when a run
+  /// would break the bounds of run_bounds.hpp (step above the contact model's, too many steps).
   Model(ModelKind kind, std::vector<Scene> scenes, std::vector<motion::GroundMotion> records, RunSettings run,
         std::vector<double> pga_factor_per_g = {});
 
@@ -50,6 +51,7 @@ class Model {
   const rocking::RockingBlock& block2d(int object) const { return blocks2d_[std::size_t(object)]; }
 
  private:
+  void check_bounds() const;
   ModelKind kind_;
   std::vector<Scene> scenes_;
   std::vector<motion::GroundMotion> records_;

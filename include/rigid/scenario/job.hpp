@@ -31,6 +31,8 @@ struct JobRecord {
   /// align = "resample": components of unequal dt or length resampled to a common dt and padded
   /// (else only lengths within 1 % at equal dt are padded, motion::make_ground_motion)
   bool resample = false;
+  std::string origin_file;  ///< where the record is given (job file or record list), for messages
+  long origin_line = 0;     ///< its line there
 };
 
 struct Job {
@@ -63,6 +65,8 @@ struct Job {
   /// Contact model for every object ("rigid" or "penalty"), from [run] contact or --contact;
   /// empty: each scene's own [physics] contact.
   std::string contact;
+  /// Line of the job's dt_s (else safety, else [run]) key: where errors about the step point.
+  long run_line = 0;
   double checkpoint_interval = 30;  ///< unit: s
   double grace = 30;              ///< time in-flight tasks get after a stop signal (unit: s)
 };

@@ -35,6 +35,9 @@ struct Scene {
   /// Every file the scene was built from, in reading order (scene, model, STLs, state): what a
   /// campaign hashes to refuse a resume over changed inputs.
   std::vector<std::string> files;
+  /// What the reader repaired and the user should hear of, one line each ("FILE: what"; e.g. an
+  /// inward mesh flipped). Commands print them as `rigid: warning: ...`.
+  std::vector<std::string> warnings;
 };
 
 /// Ground velocity that drives the fixed blocks, sampled every dt from t = 0 (unit: m/s),

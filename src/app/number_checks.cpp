@@ -1,0 +1,45 @@
+#include "number_checks.hpp"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <functional>
+#include <string>
+
+namespace rigid::app {
+namespace {
+
+// A validator that parses the whole text as a double and applies `ok` to it; `wanted` names the
+// accepted values in the message.
+CLI::Validator number_where(std::function<bool(double)> ok, const std::string& wanted) {
+  return CLI::Validator(
+      [ok, wanted](std::string& text) -> std::string {
+        char* end = nullptr;
+        errno = 0;
+        const double v = std::strtod(text.c_str(), &end);
+        const bool parsed = !text.empty() && end == text.c_str() + text.size() && errno != ERANGE;
+        if (parsed && std::isfinite(v) && ok(v)) return {};
+        return "'" + text + "' is not " + wanted;
+      },
+      wanted);
+}
+
+}  // namespace
+
+CLI::Validator finite_number() {
+  return number_where([](double) { return true; }, "a finite number");
+}
+
+CLI::Validator positive_number() {
+  return number_where([](double v) { return v > 0; }, "a positive number (leave the option out for the automatic value)");
+}
+
+CLI::Validator non_negative_number() {
+  return number_where([](double v) { return v >= 0; }, "a number >= 0");
+}
+
+CLI::Validator angle_deg() {
+  return number_where([](double v) { return std::abs(v) <= kMaxAngleDeg; }, "an angle of at most 1e6 deg");
+}
+
+}  // namespace rigid::app
