@@ -48,12 +48,16 @@
 #include "rigid/io/cube.hpp"
 
 #include <algorithm>
+#include <bit>
+#include <cstdint>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <type_traits>
 #include <utility>
 
 #include "cube_hdf5.hpp"
+#include "rigid/io/provenance.hpp"
 
 namespace rigid::io {
 
@@ -129,6 +133,14 @@ std::string object_problem(const Cube& c, const ObjectCube& o) {
     if (size != n)
       return at + what + " has " + std::to_string(size) + " values, expected " + std::to_string(n) +
              " (records x scales x rotations)";
+  }
+  if (!o.failure_message.empty() && o.failure_message.size() != n)
+    return at + "failure_message has " + std::to_string(o.failure_message.size()) + " values, expected 0 or " +
+           std::to_string(n);
+  for (std::size_t i = 0; i < o.failure_message.size(); ++i) {
+    if (std::string p = nul_problem(o.failure_message[i], at + "failure_message[" + std::to_string(i) + "]");
+        !p.empty())
+      return p;
   }
   for (std::size_t i = 0; i < n; ++i) {
     if (o.outcome[i] < 0 || o.outcome[i] > static_cast<std::int8_t>(CellOutcome::failed))
@@ -241,4 +253,47 @@ FragilitySurface fragility_surface(const Cube& cube, const ObjectCube& object) {
   }
   return f;
 }
+// ------------------------------------------------------------------------------------------------
+// The checksum of an object's cell datasets (cube_hdf5.hpp), over their bytes as stored.
+
+namespace {
+
+void append_little_endian(std::string& bytes, std::uint64_t v, std::size_t width) {
+  for (std::size_t i = 0; i < width; ++i) bytes.push_back(static_cast<char>((v >> (8 * i)) & 0xFF));
+}
+
+template <class T>
+void append_numbers(std::string& bytes, const std::vector<T>& values) {
+  for (const T x : values) {
+    if constexpr (std::is_floating_point_v<T>)
+      append_little_endian(bytes, std::bit_cast<std::uint64_t>(x), sizeof x);
+    else
+      append_little_endian(bytes, static_cast<std::make_unsigned_t<T>>(x), sizeof x);
+  }
+}
+
+void append_strings(std::string& bytes, const std::vector<std::string>& values) {
+  for (const std::string& s : values) {
+    append_little_endian(bytes, s.size(), sizeof(std::uint64_t));
+    bytes += s;
+  }
+}
+
+}  // namespace
+
+std::vector<std::string> stored_failure_messages(const Cube& cube, const ObjectCube& object) {
+  if (!object.failure_message.empty()) return object.failure_message;
+  return std::vector<std::string>(cell_count(cube));
+}
+
+std::string cell_datasets_sha256(const ObjectCube& o, const std::vector<std::string>& failure_message) {
+  std::string bytes;
+  append_numbers(bytes, o.outcome);
+  for (const std::vector<double>* v : {&o.rotation_deg, &o.failure_time_s, &o.max_tilt_deg, &o.max_slip_m, &o.wall_s})
+    append_numbers(bytes, *v);
+  append_numbers(bytes, o.failure_reason);
+  append_strings(bytes, failure_message);
+  return sha256_hex(bytes);
+}
+
 }  // namespace rigid::io

@@ -34,6 +34,7 @@ class H5 {
     return status;
   }
   Hid own(hid_t id, Hid::Closer close, const std::string& what) const { return Hid(check(id, what), close); }
+  const std::string& path() const { return path_; }
 
  private:
   std::string path_;
@@ -48,6 +49,19 @@ Hid dataspace(const H5& h, const std::vector<hsize_t>& dims);
 /// File access: the file is only ever written under a private PATH.tmp name and renamed into
 /// place, so HDF5's file lock buys nothing; it fails on some Lustre/NFS mounts (style.md §5).
 Hid file_access(const H5& h);
+
+/// The failure messages as stored: the object's, or "" for every cell when it has none.
+std::vector<std::string> stored_failure_messages(const Cube& cube, const ObjectCube& object);
+
+/// What an object group's datasets_sha256 covers, in order (its attribute datasets_sha256_covers).
+inline constexpr const char* kChecksumCovers =
+    "SHA-256 over outcome rotation_deg failure_time_s max_tilt_deg max_slip_m wall_s failure_reason "
+    "failure_message, in this order: numbers as stored (little-endian), each string as its length "
+    "(uint64 little-endian) and its UTF-8 bytes";
+
+/// SHA-256 (hex) of an object's cell datasets as stored (kChecksumCovers), with `failure_message`
+/// the stored messages: what datasets_sha256 records at write and read_cube checks.
+std::string cell_datasets_sha256(const ObjectCube& object, const std::vector<std::string>& failure_message);
 
 /// Why these PGV/PGA bin edges are unusable (fewer than 2, NaN, not increasing); empty if usable.
 std::string edges_problem(const std::vector<double>& edges_s);

@@ -102,7 +102,12 @@ class Reader {
   }
 
   std::vector<std::string> strings(const std::string& path, hsize_t n) const {
-    Hid d = open_dataset(path, H5T_STRING, {n});
+    return strings(path, std::vector<hsize_t>{n});
+  }
+  std::vector<std::string> strings(const std::string& path, const std::vector<hsize_t>& dims) const {
+    Hid d = open_dataset(path, H5T_STRING, dims);
+    hsize_t n = 1;
+    for (hsize_t x : dims) n *= x;
     std::vector<char*> p(n, nullptr);
     if (n > 0) h_.check(H5Dread(d, str_, H5S_ALL, H5S_ALL, H5P_DEFAULT, p.data()), "reading dataset " + path);
     std::vector<std::string> v;
@@ -152,6 +157,16 @@ class Reader {
   hid_t file_;
   Hid str_;
 };
+
+/// A resume must not build on results altered after they were written (a flipped byte in
+/// `outcome` would pass into probability and fragility).
+void verify_checksum(const H5& h, const std::string& group, const ObjectCube& o, const std::string& stored) {
+  const std::string now = cell_datasets_sha256(o, o.failure_message);
+  if (now != stored)
+    throw InputError(h.path(), 0,
+                     group + ": datasets changed since written (checksum mismatch); datasets_sha256 is " +
+                         stored.substr(0, 12) + "..., the datasets hash to " + now.substr(0, 12) + "...");
+}
 
 Cube read_contents(const H5& h, hid_t file) {
   Reader rd(h, file);
@@ -236,6 +251,9 @@ Cube read_contents(const H5& h, hid_t file) {
     o.max_slip_m = rd.doubles(g + "/max_slip_m", rsa);
     o.wall_s = rd.doubles(g + "/wall_s", rsa);
     o.failure_reason = rd.numbers<std::int32_t>(g + "/failure_reason", H5T_INTEGER, H5T_NATIVE_INT32, rsa);
+    // absent from cubes written before them: no messages, no checksum to verify
+    if (rd.has_link(g + "/failure_message")) o.failure_message = rd.strings(g + "/failure_message", rsa);
+    if (rd.has_attribute(g, "datasets_sha256")) verify_checksum(h, g, o, rd.string_attribute(g, "datasets_sha256"));
   }
   if (std::string p = cube_problem(c); !p.empty()) h.fail("inconsistent cube: " + p);
   return c;

@@ -12,6 +12,7 @@
 #include <utility>
 
 #include "cube_hdf5.hpp"
+#include "rigid/core/types.hpp"
 
 namespace rigid::io {
 
@@ -67,7 +68,7 @@ class Writer {
     // an empty selection needs no buffer, and HDF5 rejects a null one
     if (n > 0)
       h_.check(H5Dwrite(d, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), "writing dataset " + path);
-    attribute(path, "units", units);
+    if (units != nullptr) attribute(path, "units", units);  // text has none (CF)
     attribute(path, "description", description);
     return d;
   }
@@ -79,11 +80,36 @@ class Writer {
            const char* units, const std::string& description) {
     return dataset(path, H5T_STD_I32LE, H5T_NATIVE_INT32, dims, v.data(), units, description);
   }
-  Hid strings(const std::string& path, const std::vector<std::string>& v, const std::string& description) {
+  Hid strings(const std::string& path, const std::vector<std::string>& v, const std::vector<hsize_t>& dims,
+              const char* units, const std::string& description) {
     std::vector<const char*> p;
     p.reserve(v.size());
     for (const std::string& s : v) p.push_back(s.c_str());
-    return dataset(path, str_, str_, {v.size()}, p.data(), "none", description);
+    return dataset(path, str_, str_, dims, p.data(), units, description);
+  }
+  Hid strings(const std::string& path, const std::vector<std::string>& v, const std::string& description) {
+    return strings(path, v, {v.size()}, "none", description);
+  }
+
+  void long_name(const std::string& path, const char* name) { attribute(path, "long_name", std::string(name)); }
+
+  /// Names a netCDF variable (long_name) and attaches a dimension scale to each of its dimensions.
+  void variable(Hid d, const std::string& path, const char* name,
+                const std::vector<std::pair<hid_t, const char*>>& dims) {
+    long_name(path, name);
+    for (unsigned i = 0; i < dims.size(); ++i) attach(d, path, i, dims[i].first, dims[i].second);
+  }
+
+  /// CF flag table: flag_values (of the variable's own type) and flag_meanings (space-separated).
+  void flags(const std::string& path, hid_t file_type, hid_t mem_type, const void* values, std::size_t n,
+             const char* meanings) {
+    const std::string what = "writing attribute flag_values of " + path;
+    Hid space = dataspace(h_, {n});
+    Hid a = h_.own(H5Acreate_by_name(file_, path.c_str(), "flag_values", file_type, space, H5P_DEFAULT,
+                                     H5P_DEFAULT, H5P_DEFAULT),
+                   H5Aclose, what);
+    h_.check(H5Awrite(a, mem_type, values), what);
+    attribute(path, "flag_meanings", std::string(meanings));
   }
 
   void make_scale(hid_t d, const std::string& path, const char* name) {
@@ -111,18 +137,17 @@ std::vector<T> column(const std::vector<RecordMeta>& records, F field) {
   return v;
 }
 
+std::vector<std::string> record_names(const Cube& c) {
+  return column<std::string>(c.records, [](const RecordMeta& m) { return m.name; });
+}
+
 std::vector<std::int32_t> iota32(std::size_t n) {
   std::vector<std::int32_t> v(n);
   for (std::size_t i = 0; i < n; ++i) v[i] = static_cast<std::int32_t>(i);
   return v;
 }
 
-void write_contents(const H5& h, hid_t file, const Cube& c) {
-  Writer w(h, file);
-  const std::vector<double> edges = pgv_pga_edges(c);
-  const hsize_t R = c.records.size(), S = c.scales_g.size(), A = static_cast<hsize_t>(c.rotations);
-  const hsize_t B = edges.size() - 1;
-
+void write_root_attributes(Writer& w, const Cube& c) {
   w.attribute("/", "schema_version", std::int32_t{kCubeSchemaVersion});
   w.attribute("/", "software_version", c.software_version);
   w.attribute("/", "job_text", c.job_text);
@@ -132,11 +157,16 @@ void write_contents(const H5& h, hid_t file, const Cube& c) {
   w.attribute("/", "units", std::string("SI unless the name says otherwise"));
   w.attribute("/", "job_inputs_sha256", c.job_inputs);
   w.attribute("/", "inputs_sha256", c.inputs_sha256);
+}
+
+// The legacy shared axes (/axes, read by h5py users by path) and the per-record table (/records).
+void write_axes_and_records(Writer& w, const Cube& c) {
+  const std::vector<double> edges = pgv_pga_edges(c);
+  const hsize_t R = c.records.size(), S = c.scales_g.size(), A = static_cast<hsize_t>(c.rotations);
+  const hsize_t B = edges.size() - 1;
 
   w.group("/axes");
-  Hid record =
-      w.strings("/axes/record", column<std::string>(c.records, [](const RecordMeta& m) { return m.name; }),
-                "record (set) names, in job order");
+  Hid record = w.strings("/axes/record", record_names(c), "record (set) names, in job order");
   w.make_scale(record, "/axes/record", "record");
   Hid scale = w.doubles("/axes/scale_g", c.scales_g, {S}, "g", "target GMRotI50 PGA of each scale");
   w.make_scale(scale, "/axes/scale_g", "scale_g");
@@ -151,15 +181,19 @@ void write_contents(const H5& h, hid_t file, const Cube& c) {
             "edges of the PGV/PGA bins of the fragility surface");
 
   w.group("/records");
+  // its own dimension scale: netCDF-4 cannot see one in the sibling group /axes
+  const Hid own_record = w.strings("/records/record", record_names(c), "record (set) names, in job order");
+  w.long_name("/records/record", "record (set) name");
+  w.make_scale(own_record, "/records/record", "record");
   const auto text = [&](const char* name, auto field, const char* description) {
     const std::string path = std::string("/records/") + name;
     Hid d = w.strings(path, column<std::string>(c.records, field), description);
-    w.attach(d, path, 0, record, "record");
+    w.attach(d, path, 0, own_record, "record");
   };
   const auto number = [&](const char* name, auto field, const char* units, const char* description) {
     const std::string path = std::string("/records/") + name;
     Hid d = w.doubles(path, column<double>(c.records, field), {R}, units, description);
-    w.attach(d, path, 0, record, "record");
+    w.attach(d, path, 0, own_record, "record");
   };
   text(
       "name", [](const RecordMeta& m) { return m.name; }, "record (set) name");
@@ -193,77 +227,154 @@ void write_contents(const H5& h, hid_t file, const Cube& c) {
   number(
       "listed_pgv_cm_s", [](const RecordMeta& m) { return m.listed_pgv_cm_s; }, "cm/s",
       "GMRotI PGV given by the record list, 0 if none");
+}
 
+// The coordinate variables of one object group: netCDF-4 (and so xarray) sees a dimension only
+// through a dimension scale in the variable's own group or an ancestor, so each object group
+// carries its own, named like the dimensions. /axes keeps the shared copies h5py users read.
+struct ObjectScales {
+  Hid record, scale, rotation, bin;
+};
+
+ObjectScales write_coordinates(Writer& w, const std::string& g, const Cube& c) {
+  const std::vector<double> edges = pgv_pga_edges(c);
+  const hsize_t S = c.scales_g.size(), A = static_cast<hsize_t>(c.rotations), B = edges.size() - 1;
+  ObjectScales s;
+  s.record = w.strings(g + "/record", record_names(c), {c.records.size()}, nullptr, "record (set) names, in job order");
+  w.long_name(g + "/record", "record (set) name");
+  w.make_scale(s.record, g + "/record", "record");
+  s.scale = w.doubles(g + "/scale", c.scales_g, {S}, "1",
+                      "target GMRotI50 PGA of each scale as a multiple of standard gravity; the same "
+                      "values in m s-2 are in target_pga");
+  w.long_name(g + "/scale", "target GMRotI50 PGA in units of g (standard gravity, 9.80665 m s-2)");
+  w.make_scale(s.scale, g + "/scale", "scale");
+  std::vector<double> pga(c.scales_g);
+  for (double& x : pga) x *= kGravity;
+  w.variable(w.doubles(g + "/target_pga", pga, {S}, "m s-2", "target GMRotI50 PGA of each scale"),
+                    g + "/target_pga", "target GMRotI50 PGA", {{s.scale, "scale"}});
+  s.rotation = w.ints(g + "/rotation", iota32(A), {A}, "1",
+                      "rotation index; the angle of each cell is in rotation_deg");
+  w.long_name(g + "/rotation", "rotation index");
+  w.make_scale(s.rotation, g + "/rotation", "rotation");
+  s.bin = w.ints(g + "/pgv_pga_bin", iota32(B), {B}, "1",
+                 "PGV/PGA bin index; bin i holds /axes/pgv_pga_edges_s[i] <= PGV/PGA < "
+                 "/axes/pgv_pga_edges_s[i+1] (the last bin also holds its upper edge)");
+  w.long_name(g + "/pgv_pga_bin", "PGV/PGA bin index");
+  w.make_scale(s.bin, g + "/pgv_pga_bin", "pgv_pga_bin");
+  return s;
+}
+
+/// CF names, units and flag tables of the cell variables [record, scale, rotation].
+struct CellVariable {
+  const char* name;
+  const char* units;      ///< UDUNITS-2; nullptr for text
+  const char* long_name;
+  const char* description;
+};
+
+constexpr CellVariable kOutcome{"outcome", "1", "outcome of the cell",
+                                "outcome of each cell (record, scale, rotation); see flag_values, flag_meanings"};
+constexpr CellVariable kRotationDeg{"rotation_deg", "degree", "rotation of the horizontal components about z",
+                                    "rotation of the horizontal components about z"};
+constexpr CellVariable kFailureTime{"failure_time_s", "s", "time of failure",
+                                    "time at which failure was decided; NaN when none"};
+constexpr CellVariable kMaxTilt{"max_tilt_deg", "degree", "largest tilt of a free block",
+                                "largest tilt of a free block; NaN when not simulated"};
+constexpr CellVariable kMaxSlip{"max_slip_m", "m", "largest slip of a free block",
+                                "largest slip of a free block; NaN when not simulated"};
+constexpr CellVariable kWall{"wall_s", "s", "wall-clock time of the simulation",
+                             "wall-clock time of the simulation; NaN when none; run-dependent (ignored by "
+                             "comparisons)"};
+constexpr CellVariable kFailureReason{"failure_reason", "1", "reason a cell failed",
+                                      "0 = none, else the campaign's FailureReason code; see flag_values, "
+                                      "flag_meanings"};
+constexpr CellVariable kFailureMessage{"failure_message", nullptr, "error message of a failed cell",
+                                       "the error's text of each failed cell, empty elsewhere"};
+
+// Flag tables of scenario::CellOutcome and scenario::FailureReason (include/rigid/scenario/case.hpp).
+const std::vector<std::int8_t> kOutcomeValues{0, 1, 2, 3, 4};
+constexpr const char* kOutcomeMeanings = "not_run survived overturned inferred failed";
+const std::vector<std::int32_t> kReasonValues{0, 1, 2, 3};
+constexpr const char* kReasonMeanings = "none exception non_finite worker_lost";
+
+/// The cell datasets [record, scale, rotation] of one object, with their flags and checksum.
+void write_cells(Writer& w, const std::string& g, const Cube& c, const ObjectCube& o, const ObjectScales& s) {
+  const std::vector<hsize_t> rsa{c.records.size(), c.scales_g.size(), static_cast<hsize_t>(c.rotations)};
+  const std::vector<std::pair<hid_t, const char*>> dims{{s.record, "record"}, {s.scale, "scale"}, {s.rotation, "rotation"}};
+  const auto describe = [&](Hid d, const CellVariable& v) {
+    w.variable(std::move(d), g + "/" + v.name, v.long_name, dims);
+    w.attribute(g + "/" + v.name, "coordinates", std::string("target_pga"));
+  };
+  const auto path = [&](const CellVariable& v) { return g + "/" + v.name; };
+
+  describe(w.dataset(path(kOutcome), H5T_STD_I8LE, H5T_NATIVE_INT8, rsa, o.outcome.data(), kOutcome.units,
+                     kOutcome.description),
+           kOutcome);
+  w.attribute(path(kOutcome), "legend", std::string(kLegend));
+  w.flags(path(kOutcome), H5T_STD_I8LE, H5T_NATIVE_INT8, kOutcomeValues.data(), kOutcomeValues.size(),
+          kOutcomeMeanings);
+  for (const auto& [v, values] : {std::pair{&kRotationDeg, &o.rotation_deg}, std::pair{&kFailureTime, &o.failure_time_s},
+                                  std::pair{&kMaxTilt, &o.max_tilt_deg}, std::pair{&kMaxSlip, &o.max_slip_m},
+                                  std::pair{&kWall, &o.wall_s}})
+    describe(w.doubles(path(*v), *values, rsa, v->units, v->description), *v);
+  describe(w.ints(path(kFailureReason), o.failure_reason, rsa, kFailureReason.units, kFailureReason.description),
+           kFailureReason);
+  w.flags(path(kFailureReason), H5T_STD_I32LE, H5T_NATIVE_INT32, kReasonValues.data(), kReasonValues.size(),
+          kReasonMeanings);
+  const std::vector<std::string> messages = stored_failure_messages(c, o);
+  describe(w.strings(path(kFailureMessage), messages, rsa, nullptr, kFailureMessage.description), kFailureMessage);
+
+  w.attribute(g, "datasets_sha256", cell_datasets_sha256(o, messages));
+  w.attribute(g, "datasets_sha256_covers", std::string(kChecksumCovers));
+}
+
+/// The derived products, recomputed from the cells at every write.
+void write_derived(Writer& w, const std::string& g, const Cube& c, const ObjectCube& o, const ObjectScales& s) {
+  const hsize_t R = c.records.size(), S = c.scales_g.size();
+  const std::string probability = g + "/probability";
+  w.variable(
+      w.doubles(probability, overturn_probability(c, o), {R, S}, "1",
+                "overturning probability per (record, scale): (overturned + inferred) / (overturned + "
+                "inferred + survived) over the rotations; not run and failed cells left out; NaN when "
+                "none is known"),
+      probability, "probability of overturning", {{s.record, "record"}, {s.scale, "scale"}});
+  w.attribute(probability, "coordinates", std::string("target_pga"));
+
+  const FragilitySurface f = fragility_surface(c, o);
+  const hsize_t B = f.bins();
+  const std::vector<std::pair<hid_t, const char*>> surface{{s.scale, "scale"}, {s.bin, "pgv_pga_bin"}};
+  const std::string fragility = g + "/fragility", count = g + "/fragility_count";
+  w.variable(w.doubles(fragility, f.probability, {S, B}, "1",
+                              "P(overturn | scale, PGV/PGA bin): mean of probability over the records of the "
+                              "bin whose probability is known; NaN for empty bins"),
+                    fragility, "fragility: probability of overturning per scale and PGV/PGA bin", surface);
+  w.attribute(fragility, "coordinates", std::string("target_pga"));
+  w.variable(w.ints(count, f.count, {S, B}, "1", "number of records averaged in fragility"), count,
+                    "number of records averaged in fragility", surface);
+  w.attribute(count, "coordinates", std::string("target_pga"));
+}
+
+void write_object(Writer& w, const Cube& c, std::size_t index) {
+  const ObjectCube& o = c.objects[index];
+  const std::string g = "/objects/" + o.name;
+  w.group(g);
+  w.attribute(g, "scene", o.scene);
+  w.attribute(g, "index", static_cast<std::int32_t>(index));
+  w.attribute(g, "inputs_sha256", o.inputs);
+  if (!o.physics_json.empty()) w.attribute(g, "physics_json", o.physics_json);
+  if (std::isfinite(o.alpha_rad)) w.attribute(g, "alpha_rad", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &o.alpha_rad);
+  if (std::isfinite(o.p_rad_s)) w.attribute(g, "p_rad_s", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &o.p_rad_s);
+  const ObjectScales scales = write_coordinates(w, g, c);
+  write_cells(w, g, c, o, scales);
+  write_derived(w, g, c, o, scales);
+}
+
+void write_contents(const H5& h, hid_t file, const Cube& c) {
+  Writer w(h, file);
+  write_root_attributes(w, c);
+  write_axes_and_records(w, c);
   w.group("/objects");
-  for (std::size_t i = 0; i < c.objects.size(); ++i) {
-    const ObjectCube& o = c.objects[i];
-    const std::string g = "/objects/" + o.name;
-    w.group(g);
-    w.attribute(g, "scene", o.scene);
-    w.attribute(g, "index", static_cast<std::int32_t>(i));
-    w.attribute(g, "inputs_sha256", o.inputs);
-    if (!o.physics_json.empty()) w.attribute(g, "physics_json", o.physics_json);
-    if (std::isfinite(o.alpha_rad)) w.attribute(g, "alpha_rad", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &o.alpha_rad);
-    if (std::isfinite(o.p_rad_s)) w.attribute(g, "p_rad_s", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &o.p_rad_s);
-    const auto cells = [&](Hid d, const std::string& path) {
-      w.attach(d, path, 0, record, "record");
-      w.attach(d, path, 1, scale, "scale_g");
-      w.attach(d, path, 2, rotation, "rotation");
-    };
-    const std::vector<hsize_t> rsa{R, S, A};
-    {
-      const std::string path = g + "/outcome";
-      Hid d = w.dataset(path, H5T_STD_I8LE, H5T_NATIVE_INT8, rsa, o.outcome.data(), "none",
-                        "outcome of each cell (record, scale, rotation); see legend");
-      w.attribute(path, "legend", std::string(kLegend));
-      cells(std::move(d), path);
-    }
-    const auto cell_doubles = [&](const char* name, const std::vector<double>& v, const char* units,
-                                  const char* description) {
-      const std::string path = g + "/" + name;
-      cells(w.doubles(path, v, rsa, units, description), path);
-    };
-    cell_doubles("rotation_deg", o.rotation_deg, "deg", "rotation of the horizontal components about z");
-    cell_doubles("failure_time_s", o.failure_time_s, "s", "time at which failure was decided; NaN when none");
-    cell_doubles("max_tilt_deg", o.max_tilt_deg, "deg",
-                 "largest tilt of a free block; NaN when not simulated");
-    cell_doubles("max_slip_m", o.max_slip_m, "m", "largest slip of a free block; NaN when not simulated");
-    cell_doubles("wall_s", o.wall_s, "s",
-                 "wall-clock time of the simulation; NaN when none; run-dependent (ignored by comparisons)");
-    {
-      const std::string path = g + "/failure_reason";
-      cells(w.ints(path, o.failure_reason, rsa, "none", "0 = none, else the campaign's FailureReason code"),
-            path);
-    }
-
-    // derived products, recomputed from the cells above at every write
-    {
-      const std::string path = g + "/probability";
-      Hid d =
-          w.doubles(path, overturn_probability(c, o), {R, S}, "1",
-                    "overturning probability per (record, scale): (overturned + inferred) / (overturned + "
-                    "inferred + survived) over the rotations; not run and failed cells left out; NaN when "
-                    "none is known");
-      w.attach(d, path, 0, record, "record");
-      w.attach(d, path, 1, scale, "scale_g");
-    }
-    const FragilitySurface f = fragility_surface(c, o);
-    const auto surface = [&](Hid d, const std::string& path) {
-      w.attach(d, path, 0, scale, "scale_g");
-      w.attach(d, path, 1, bin, "pgv_pga_bin");
-    };
-    {
-      const std::string path = g + "/fragility";
-      surface(w.doubles(path, f.probability, {S, B}, "1",
-                        "P(overturn | scale, PGV/PGA bin): mean of probability over the records of the bin "
-                        "whose probability is known; NaN for empty bins"),
-              path);
-    }
-    {
-      const std::string path = g + "/fragility_count";
-      surface(w.ints(path, f.count, {S, B}, "1", "number of records averaged in fragility"), path);
-    }
-  }
+  for (std::size_t i = 0; i < c.objects.size(); ++i) write_object(w, c, i);
 }
 
 // Writes bytes to a new file and fsyncs it; errors name the file and errno.
