@@ -158,6 +158,27 @@ void require_consistent(const Cube& c, const ObjectCube& o) {
 
 }  // namespace
 
+const char* outcome_name(int code) {
+  switch (static_cast<CellOutcome>(code)) {
+    case CellOutcome::not_run: return "not_run";
+    case CellOutcome::survived: return "survived";
+    case CellOutcome::overturned: return "overturned";
+    case CellOutcome::inferred: return "inferred";
+    case CellOutcome::failed: return "failed";
+  }
+  return "unknown";
+}
+
+const char* failure_reason_name(int code) {
+  switch (static_cast<scenario::FailureReason>(code)) {
+    case scenario::FailureReason::none: return "none";
+    case scenario::FailureReason::exception: return "exception";
+    case scenario::FailureReason::non_finite: return "non_finite";
+    case scenario::FailureReason::worker_lost: return "worker_lost";
+  }
+  return "unknown";
+}
+
 std::vector<double> default_pgv_pga_edges() {
   return {0.0, 0.06, 0.08, 0.10, 0.12, 0.15, 0.20, 0.25, 0.35, kInf};
 }

@@ -102,14 +102,14 @@ class Writer {
 
   /// CF flag table: flag_values (of the variable's own type) and flag_meanings (space-separated).
   void flags(const std::string& path, hid_t file_type, hid_t mem_type, const void* values, std::size_t n,
-             const char* meanings) {
+             const std::string& meanings) {
     const std::string what = "writing attribute flag_values of " + path;
     Hid space = dataspace(h_, {n});
     Hid a = h_.own(H5Acreate_by_name(file_, path.c_str(), "flag_values", file_type, space, H5P_DEFAULT,
                                      H5P_DEFAULT, H5P_DEFAULT),
                    H5Aclose, what);
     h_.check(H5Awrite(a, mem_type, values), what);
-    attribute(path, "flag_meanings", std::string(meanings));
+    attribute(path, "flag_meanings", meanings);
   }
 
   void make_scale(hid_t d, const std::string& path, const char* name) {
@@ -293,9 +293,15 @@ constexpr CellVariable kFailureMessage{"failure_message", nullptr, "error messag
 
 // Flag tables of scenario::CellOutcome and scenario::FailureReason (include/rigid/scenario/case.hpp).
 const std::vector<std::int8_t> kOutcomeValues{0, 1, 2, 3, 4};
-constexpr const char* kOutcomeMeanings = "not_run survived overturned inferred failed";
 const std::vector<std::int32_t> kReasonValues{0, 1, 2, 3};
-constexpr const char* kReasonMeanings = "none exception non_finite worker_lost";
+
+/// CF flag_meanings: the codes' names, space-separated.
+template <class T>
+std::string flag_meanings(const std::vector<T>& codes, const char* (*name)(int)) {
+  std::string s;
+  for (const T code : codes) s += (s.empty() ? "" : " ") + std::string(name(code));
+  return s;
+}
 
 /// The cell datasets [record, scale, rotation] of one object, with their flags and checksum.
 void write_cells(Writer& w, const std::string& g, const Cube& c, const ObjectCube& o, const ObjectScales& s) {
@@ -312,7 +318,7 @@ void write_cells(Writer& w, const std::string& g, const Cube& c, const ObjectCub
            kOutcome);
   w.attribute(path(kOutcome), "legend", std::string(kLegend));
   w.flags(path(kOutcome), H5T_STD_I8LE, H5T_NATIVE_INT8, kOutcomeValues.data(), kOutcomeValues.size(),
-          kOutcomeMeanings);
+          flag_meanings(kOutcomeValues, outcome_name));
   for (const auto& [v, values] : {std::pair{&kRotationDeg, &o.rotation_deg}, std::pair{&kFailureTime, &o.failure_time_s},
                                   std::pair{&kMaxTilt, &o.max_tilt_deg}, std::pair{&kMaxSlip, &o.max_slip_m},
                                   std::pair{&kWall, &o.wall_s}})
@@ -320,7 +326,7 @@ void write_cells(Writer& w, const std::string& g, const Cube& c, const ObjectCub
   describe(w.ints(path(kFailureReason), o.failure_reason, rsa, kFailureReason.units, kFailureReason.description),
            kFailureReason);
   w.flags(path(kFailureReason), H5T_STD_I32LE, H5T_NATIVE_INT32, kReasonValues.data(), kReasonValues.size(),
-          kReasonMeanings);
+          flag_meanings(kReasonValues, failure_reason_name));
   const std::vector<std::string> messages = stored_failure_messages(c, o);
   describe(w.strings(path(kFailureMessage), messages, rsa, nullptr, kFailureMessage.description), kFailureMessage);
 
