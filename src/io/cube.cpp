@@ -1,6 +1,7 @@
-// The HDF5 fragility cube (include/rigid/io/cube.hpp), written and read with the HDF5 C API. This
-// file and its test are the only HDF5 users; the derived products (probability, fragility) are
-// pure functions so the campaign summary can print them without HDF5.
+// The HDF5 fragility cube (include/rigid/io/cube.hpp): this file holds its layout, its validation
+// and the derived products (probability, fragility; pure functions, so the campaign summary prints
+// them without HDF5); cube_write.cpp and cube_read.cpp write and read it with the HDF5 C API
+// (shared plumbing: cube_hdf5.hpp).
 //
 // Layout, schema_version 1 (R records, S scales, A rotations, B = E - 1 PGV/PGA bins):
 //
@@ -20,21 +21,30 @@
 //             listed_pga_g, listed_pgv_cm_s}                          [R] float64
 //   /records/inputs_sha256                                            [R] string (sha256sum lines)
 //   /records/alignment                                                [R] string (empty: matched)
+//   /records/record                                                   [R] string dimension scale
 //   /objects/<name>/       attributes: scene (string), index (int32, position in the job),
 //                          inputs_sha256 (string, sha256sum lines: scene, model, STLs, state),
 //                          alpha_rad, p_rad_s (float64, only for single-block objects),
-//                          physics_json (string: the object's own physics and run settings)
-//       outcome            [R,S,A] int8   attribute legend = "0 not run, 1 survived, ..."
+//                          physics_json (string: the object's own physics and run settings),
+//                          datasets_sha256, datasets_sha256_covers (checksum of the cell datasets)
+//       record, scale, rotation, pgv_pga_bin   the group's own dimension scales (netCDF-4
+//                          coordinate variables): names; target PGA in g (units "1"); indices
+//       target_pga         [S]     float64 m s-2, auxiliary coordinate of scale
+//       outcome            [R,S,A] int8   flag_values/flag_meanings (CellOutcome), legend
 //       rotation_deg, failure_time_s, max_tilt_deg, max_slip_m, wall_s   [R,S,A] float64
-//       failure_reason     [R,S,A] int32  0 = none, else the campaign's FailureReason code
+//       failure_reason     [R,S,A] int32  flag_values/flag_meanings (FailureReason)
+//       failure_message    [R,S,A] string the error's text of failed cells, "" elsewhere
 //       probability        [R,S]   float64  derived: overturn_probability()
 //       fragility          [S,B]   float64  derived: fragility_surface().probability
 //       fragility_count    [S,B]   int32    derived: fragility_surface().count
 //
-// Every dataset has `units` ("1" = dimensionless number, "none" = text, codes, indices) and
-// `description` string attributes; every dimension of an indexed dataset has its scale attached
-// (H5DSattach_scale) and a label (H5DSset_label) equal to the scale's name. Strings are
-// variable-length UTF-8; numbers are stored little-endian (f64, i8, i32, u64) whatever the host.
+// Every dataset has a `description`; numbers outside the object groups `units` ("1" =
+// dimensionless, "none" = text, codes, indices). In an object group every variable has a CF
+// `long_name` and every number a UDUNITS-2 `units`, and each dimension has exactly one scale
+// attached (H5DSattach_scale), from the same group, labelled with its name: netCDF-4, and so
+// xarray, sees scales only in a variable's group or its ancestors. /axes keeps the shared scales
+// for h5py readers. Strings are variable-length UTF-8; numbers are stored little-endian (f64, i8,
+// i32, u64) whatever the host.
 //
 // Determinism: the same cube gives the same datasets and attributes, created in the same order,
 // contiguous (no chunking, no compression) and without object time stamps
