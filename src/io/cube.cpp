@@ -320,7 +320,7 @@ std::vector<std::string> stored_failure_messages(const Cube& cube, const ObjectC
 std::string cell_datasets_sha256(const ObjectCube& o, const std::vector<std::string>& failure_message) {
   std::string bytes;
   append_numbers(bytes, o.outcome);
-  for (const std::vector<double>* v : {&o.rotation_deg, &o.failure_time_s, &o.max_tilt_deg, &o.max_slip_m, &o.wall_s})
+  for (const std::vector<double>* v : {&o.rotation_deg, &o.failure_time_s, &o.max_tilt_deg, &o.max_slip_m})
     append_numbers(bytes, *v);
   append_numbers(bytes, o.failure_reason);
   append_strings(bytes, failure_message);

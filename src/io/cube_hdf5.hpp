@@ -53,9 +53,10 @@ Hid file_access(const H5& h);
 /// The failure messages as stored: the object's, or "" for every cell when it has none.
 std::vector<std::string> stored_failure_messages(const Cube& cube, const ObjectCube& object);
 
-/// What an object group's datasets_sha256 covers, in order (its attribute datasets_sha256_covers).
+/// What an object group's datasets_sha256 covers, in order (its attribute datasets_sha256_covers):
+/// every cell dataset but wall_s, which differs from run to run and would make the checksum so.
 inline constexpr const char* kChecksumCovers =
-    "SHA-256 over outcome rotation_deg failure_time_s max_tilt_deg max_slip_m wall_s failure_reason "
+    "SHA-256 over outcome rotation_deg failure_time_s max_tilt_deg max_slip_m failure_reason "
     "failure_message, in this order: numbers as stored (little-endian), each string as its length "
     "(uint64 little-endian) and its UTF-8 bytes";
 
