@@ -14,6 +14,7 @@ void add_library_subcommand(CLI::App& model_command);
 void register_campaign_command(CLI::App& app);
 void register_plot_command(CLI::App& app);
 void register_study_command(CLI::App& app);
+void register_export_command(CLI::App& app);
 /// The campaign initialises MPI, which wants main()'s arguments.
 void set_campaign_arguments(int& argc, char**& argv);
 

@@ -115,6 +115,8 @@ Cube synthetic() {
     a.max_slip_m.push_back(ran ? 1e-3 * static_cast<double>(i) : kNaN);
     a.wall_s.push_back(ran ? 0.01 * static_cast<double>(i + 1) : kNaN);
     a.failure_reason.push_back(o == O::failed ? 2 : 0);
+    // text a CSV or HDF5 string must carry intact: commas, quotes, a line break, UTF-8
+    a.failure_message.push_back(o == O::failed ? "cell " + std::to_string(i) + ": \"bad\" state, t = 1.5 s\nΔt → 0" : "");
   }
   a.max_tilt_deg[3] = payload_nan();
 
@@ -123,6 +125,7 @@ Cube synthetic() {
   b.scene = "models/rock_b.toml";
   for (std::size_t i = 0; i < n; i += 2) b.outcome[i] = static_cast<std::int8_t>(O::not_run);
   b.failure_reason[1] = -7;
+  b.failure_message.clear();  // none stored: written as "" per cell
   c.objects = {a, b};
   return c;
 }
@@ -174,6 +177,10 @@ void expect_same(const Cube& a, const Cube& b) {
     expect_same_doubles(x.max_slip_m, y.max_slip_m, x.name + " max_slip_m");
     expect_same_doubles(x.wall_s, y.wall_s, x.name + " wall_s");
     EXPECT_EQ(x.failure_reason, y.failure_reason);
+    // an object without messages is stored with "" for every cell
+    const std::vector<std::string> stored =
+        x.failure_message.empty() ? std::vector<std::string>(x.outcome.size()) : x.failure_message;
+    EXPECT_EQ(stored, y.failure_message) << x.name;
   }
 }
 
@@ -341,6 +348,7 @@ TEST_F(CubeFile, WritesOverAnExistingFileAndLeavesNoTemporary) {
       v->resize(16);
     o.outcome.resize(16);
     o.failure_reason.resize(16);
+    if (!o.failure_message.empty()) o.failure_message.resize(16);
   }
   c.objects.pop_back();
   write_cube(p, c);
@@ -434,31 +442,88 @@ TEST_F(CubeFile, DimensionScalesAreAttached) {
   write_cube(p, synthetic());
   const hid_t f = H5Fopen(p.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
   ASSERT_GE(f, 0);
-  const auto open = [&](const char* name) { return H5Dopen2(f, name, H5P_DEFAULT); };
-  const hid_t record = open("/axes/record"), scale = open("/axes/scale_g"), rotation = open("/axes/rotation"),
-              bin = open("/axes/pgv_pga_bin");
-  for (hid_t s : {record, scale, rotation, bin}) EXPECT_GT(H5DSis_scale(s), 0);
+  const auto open = [&](const std::string& name) { return H5Dopen2(f, name.c_str(), H5P_DEFAULT); };
+  for (const char* axis : {"/axes/record", "/axes/scale_g", "/axes/rotation", "/axes/pgv_pga_bin"}) {
+    const hid_t s = open(axis);
+    EXPECT_GT(H5DSis_scale(s), 0) << axis;
+    H5Dclose(s);
+  }
   const auto expect_scales = [&](const std::string& name, std::vector<hid_t> scales) {
-    const hid_t d = open(name.c_str());
+    const hid_t d = open(name);
     ASSERT_GE(d, 0) << name;
-    for (unsigned i = 0; i < scales.size(); ++i)
+    for (unsigned i = 0; i < scales.size(); ++i) {
       EXPECT_GT(H5DSis_attached(d, scales[i], i), 0) << name << " dim " << i;
+      EXPECT_EQ(H5DSget_num_scales(d, i), 1) << name << " dim " << i;  // netCDF-4 wants exactly one
+    }
     char label[32] = {};
     EXPECT_GT(H5DSget_label(d, 0, label, sizeof label), 0);
     EXPECT_STRNE(label, "");
     H5Dclose(d);
   };
-  for (const char* obj : {"/objects/rock a/", "/objects/rock_b/"}) {
+  // netCDF-4 sees a dimension scale only in the variable's own group or an ancestor
+  for (const std::string obj : {"/objects/rock a/", "/objects/rock_b/"}) {
+    const hid_t record = open(obj + "record"), scale = open(obj + "scale"), rotation = open(obj + "rotation"),
+                bin = open(obj + "pgv_pga_bin");
+    for (hid_t s : {record, scale, rotation, bin}) EXPECT_GT(H5DSis_scale(s), 0) << obj;
     for (const char* ds : {"outcome", "rotation_deg", "failure_time_s", "max_tilt_deg", "max_slip_m",
-                           "wall_s", "failure_reason"})
-      expect_scales(std::string(obj) + ds, {record, scale, rotation});
-    expect_scales(std::string(obj) + "probability", {record, scale});
-    expect_scales(std::string(obj) + "fragility", {scale, bin});
-    expect_scales(std::string(obj) + "fragility_count", {scale, bin});
+                           "wall_s", "failure_reason", "failure_message"})
+      expect_scales(obj + ds, {record, scale, rotation});
+    expect_scales(obj + "probability", {record, scale});
+    expect_scales(obj + "fragility", {scale, bin});
+    expect_scales(obj + "fragility_count", {scale, bin});
+    expect_scales(obj + "target_pga", {scale});
+    for (hid_t s : {record, scale, rotation, bin}) H5Dclose(s);
   }
+  const hid_t record = open("/records/record");
   expect_scales("/records/pgv_pga_s", {record});
-  for (hid_t s : {record, scale, rotation, bin}) H5Dclose(s);
+  H5Dclose(record);
   H5Fclose(f);
+}
+
+/// Overwrites one cell of an int8 dataset in place, as a damaged or tampered file would have it.
+void overwrite_cell(const std::string& file, const char* dataset, std::int8_t value) {
+  const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  ASSERT_GE(f, 0);
+  const hid_t d = H5Dopen2(f, dataset, H5P_DEFAULT);
+  ASSERT_GE(d, 0);
+  const hid_t space = H5Dget_space(d);
+  const hsize_t cell[3] = {1, 2, 1}, one[3] = {1, 1, 1};
+  ASSERT_GE(H5Sselect_hyperslab(space, H5S_SELECT_SET, cell, nullptr, one, nullptr), 0);
+  const hid_t mem = H5Screate_simple(3, one, nullptr);
+  ASSERT_GE(H5Dwrite(d, H5T_NATIVE_INT8, mem, space, H5P_DEFAULT, &value), 0);
+  H5Sclose(mem);
+  H5Sclose(space);
+  H5Dclose(d);
+  H5Fclose(f);
+}
+
+TEST_F(CubeFile, AChangedOutcomeFailsTheChecksum) {
+  const std::string p = path("cube.h5");
+  const Cube c = synthetic();
+  write_cube(p, c);
+  const std::int8_t was = c.objects[1].outcome[(1 * 4 + 2) * 2 + 1];
+  overwrite_cell(p, "/objects/rock_b/outcome", static_cast<std::int8_t>(was ^ 1));  // one bit
+  expect_input_error([&] { read_cube(p); }, p,
+                     "/objects/rock_b: datasets changed since written (checksum mismatch)");
+  EXPECT_EQ(H5Fget_obj_count(H5F_OBJ_ALL, H5F_OBJ_ALL), 0);
+
+  overwrite_cell(p, "/objects/rock_b/outcome", was);  // restored: reads again
+  expect_same(c, read_cube(p));
+}
+
+TEST_F(CubeFile, CubesFromBeforeMessagesAndChecksumsStillRead) {
+  const std::string p = path("cube.h5");
+  write_cube(p, synthetic());
+  const hid_t f = H5Fopen(p.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  ASSERT_GE(f, 0);
+  for (const char* g : {"/objects/rock a", "/objects/rock_b"}) {
+    ASSERT_GE(H5Ldelete(f, (std::string(g) + "/failure_message").c_str(), H5P_DEFAULT), 0);
+    ASSERT_GE(H5Adelete_by_name(f, g, "datasets_sha256", H5P_DEFAULT), 0);
+  }
+  H5Fclose(f);
+  const Cube back = read_cube(p);
+  for (const ObjectCube& o : back.objects) EXPECT_TRUE(o.failure_message.empty()) << o.name;
+  EXPECT_EQ(back.objects[0].outcome, synthetic().objects[0].outcome);
 }
 
 TEST_F(CubeFile, AKillAtAnyInstantLeavesAValidFile) {
@@ -479,6 +544,7 @@ TEST_F(CubeFile, AKillAtAnyInstantLeavesAValidFile) {
     for (auto* v : {&o.rotation_deg, &o.failure_time_s, &o.max_tilt_deg, &o.max_slip_m, &o.wall_s})
       v->resize(n, 1.0);
     o.outcome.resize(n, static_cast<std::int8_t>(O::survived));
+    if (!o.failure_message.empty()) o.failure_message.resize(n);
     o.failure_reason.resize(n, 0);
   }
   write_cube(p, small);

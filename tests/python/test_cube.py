@@ -30,14 +30,16 @@ FIXTURE = None  # set from argv
 
 NAN = float("nan")
 CELL_DATASETS = {  # name: (dtype, units)
-    "outcome": ("int8", "none"),
-    "rotation_deg": ("float64", "deg"),
+    "outcome": ("int8", "1"),
+    "rotation_deg": ("float64", "degree"),
     "failure_time_s": ("float64", "s"),
-    "max_tilt_deg": ("float64", "deg"),
+    "max_tilt_deg": ("float64", "degree"),
     "max_slip_m": ("float64", "m"),
     "wall_s": ("float64", "s"),
-    "failure_reason": ("int32", "none"),
+    "failure_reason": ("int32", "1"),
 }
+# each object group's own coordinate variables (netCDF-4 dimension scales), name: units
+COORDINATES = {"record": None, "scale": "1", "target_pga": "m s-2", "rotation": "1", "pgv_pga_bin": "1"}
 
 
 def same(a, b):
@@ -97,13 +99,14 @@ class CubeFile(unittest.TestCase):
         units = {"start_s": "s", "end_s": "s", "gmroti_pga_g": "g", "gmroti_pgv_cm_s": "cm/s",
                  "pgv_pga_s": "s", "listed_pga_g": "g", "listed_pgv_cm_s": "cm/s",
                  "name": "none", "source": "none", "earthquake": "none", "inputs_sha256": "none",
-                 "alignment": "none"}
+                 "alignment": "none", "record": "none"}
         self.assertEqual(set(r), set(units))
         for name, unit in units.items():
             self.assertEqual(r[name].shape, (3,), name)
             self.assertEqual(r[name].attrs["units"], unit, name)
-            self.assertEqual(r[name].dims[0].label, "record", name)
-            self.assertEqual(r[name].dims[0][0].name, "/axes/record", name)
+            if name != "record":  # the scale itself
+                self.assertEqual(r[name].dims[0].label, "record", name)
+                self.assertEqual(r[name].dims[0][0].name, "/records/record", name)
 
     def test_objects(self):
         objs = self.f["objects"]
@@ -112,25 +115,39 @@ class CubeFile(unittest.TestCase):
         self.assertEqual(int(objs["rock a"].attrs["index"]), 0)
         self.assertEqual(int(objs["rock_b"].attrs["index"]), 1)
         for g in objs.values():
-            self.assertEqual(set(g), set(CELL_DATASETS) | {"probability", "fragility", "fragility_count"})
+            self.assertEqual(set(g), set(CELL_DATASETS) | set(COORDINATES)
+                             | {"failure_message", "probability", "fragility", "fragility_count"})
+            for name, unit in COORDINATES.items():
+                self.assertEqual(g[name].attrs.get("units"), unit, name)
+                self.assertTrue(g[name].attrs["long_name"], name)
+            self.assertEqual(list(g["scale"][()]), list(self.f["axes/scale_g"][()]))
+            self.assertTrue(np.allclose(g["target_pga"][()], 9.80665 * g["scale"][()], rtol=1e-15))
+            self.assertEqual(list(g["record"].asstr()[()]), list(self.f["axes/record"].asstr()[()]))
+            self.assertEqual(len(g.attrs["datasets_sha256"]), 64)
+            self.assertEqual(g["failure_message"].shape, (3, 4, 2))
+            self.assertEqual(list(g["outcome"].attrs["flag_values"]), [0, 1, 2, 3, 4])
+            self.assertEqual(g["outcome"].attrs["flag_values"].dtype, np.int8)
+            self.assertEqual(g["outcome"].attrs["flag_meanings"], "not_run survived overturned inferred failed")
+            self.assertEqual(g["failure_reason"].attrs["flag_meanings"], "none exception non_finite worker_lost")
             for name, (dtype, unit) in CELL_DATASETS.items():
                 d = g[name]
                 self.assertEqual(d.shape, (3, 4, 2), d.name)
                 self.assertEqual(d.dtype, np.dtype(dtype), d.name)
                 self.assertEqual(d.attrs["units"], unit, d.name)
                 self.assertTrue(d.attrs["description"], d.name)
-                self.assertEqual([d.dims[i].label for i in range(3)], ["record", "scale_g", "rotation"])
+                self.assertTrue(d.attrs["long_name"], d.name)
+                self.assertEqual([d.dims[i].label for i in range(3)], ["record", "scale", "rotation"])
                 self.assertEqual([d.dims[i][0].name for i in range(3)],
-                                 ["/axes/record", "/axes/scale_g", "/axes/rotation"])
+                                 [f"{g.name}/record", f"{g.name}/scale", f"{g.name}/rotation"])
                 self.assertFalse(d.chunks or d.compression, "contiguous, uncompressed")
             self.assertEqual(g["outcome"].attrs["legend"],
                              "0 not run, 1 survived, 2 overturned, 3 inferred, 4 failed")
             self.assertEqual(g["probability"].shape, (3, 4))
-            self.assertEqual([g["probability"].dims[i][0].name for i in range(2)], ["/axes/record", "/axes/scale_g"])
+            self.assertEqual([g["probability"].dims[i][0].name for i in range(2)], [f"{g.name}/record", f"{g.name}/scale"])
             for name in ("fragility", "fragility_count"):
                 self.assertEqual(g[name].shape, (4, 9))
-                self.assertEqual([g[name].dims[i].label for i in range(2)], ["scale_g", "pgv_pga_bin"])
-                self.assertEqual([g[name].dims[i][0].name for i in range(2)], ["/axes/scale_g", "/axes/pgv_pga_bin"])
+                self.assertEqual([g[name].dims[i].label for i in range(2)], ["scale", "pgv_pga_bin"])
+                self.assertEqual([g[name].dims[i][0].name for i in range(2)], [f"{g.name}/scale", f"{g.name}/pgv_pga_bin"])
             self.assertEqual(g["fragility_count"].dtype, np.int32)
 
         a = objs["rock a"]
@@ -160,9 +177,13 @@ class CubeFile(unittest.TestCase):
 
         def visit(name, obj):
             if isinstance(obj, h5py.Dataset):
-                for attr in ("units", "description"):
+                # text in the object groups has no units (CF); every number has
+                text = name.startswith("objects/") and obj.dtype.kind == "O"
+                for attr in ("description",) if text else ("units", "description"):
                     if attr not in obj.attrs:
                         missing.append(f"{name}@{attr}")
+                if name.startswith("objects/") and "long_name" not in obj.attrs:
+                    missing.append(f"{name}@long_name")
         self.f.visititems(visit)
         self.assertEqual(missing, [])
 

@@ -82,6 +82,14 @@ struct Cube {
 /// layout is described at the top of src/io/cube.cpp). read_cube rejects newer versions.
 inline constexpr int kCubeSchemaVersion = 1;
 
+/// Name of an `outcome` code as in the cube's flag_meanings ("not_run", "survived", "overturned",
+/// "inferred", "failed"); "unknown" for any other code.
+const char* outcome_name(int code);
+
+/// Name of a `failure_reason` code as in the cube's flag_meanings ("none", "exception",
+/// "non_finite", "worker_lost"); "unknown" for any other code.
+const char* failure_reason_name(int code);
+
 /// The default PGV/PGA bin edges (unit: s), used when Cube::pgv_pga_edges_s is empty: ten edges,
 /// nine bins, {0, 0.06, 0.08, 0.10, 0.12, 0.15, 0.20, 0.25, 0.35, inf}. Round numbers chosen so
 /// that the study's 154 records (PGV/PGA 0.033-0.50 s, docs/table3_6_records.tsv) fall 13-24 per

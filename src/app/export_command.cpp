@@ -1,0 +1,45 @@
+// `rigid export cells`: a cube's cells as a CSV table (io/cells_csv.hpp).
+#include <fstream>
+#include <iostream>
+#include <memory>
+
+#include "commands.hpp"
+#include "rigid/core/error.hpp"
+#include "rigid/io/cells_csv.hpp"
+#include "rigid/io/cube.hpp"
+
+namespace rigid::app {
+namespace {
+
+void export_cells(const std::string& cube_path, const std::string& out_path) {
+  const io::Cube cube = io::read_cube(cube_path);  // checks the file before any output is made
+  if (out_path.empty() || out_path == "-") {
+    io::write_cells_csv(std::cout, cube);
+    std::cout.flush();
+    if (!std::cout) throw InputError("(stdout)", 0, "cannot write the table");
+    return;
+  }
+  std::ofstream out(out_path, std::ios::binary);
+  if (!out) throw InputError(out_path, 0, "cannot create the table");
+  io::write_cells_csv(out, cube);
+  out.close();
+  if (!out) throw InputError(out_path, 0, "cannot write the table");
+}
+
+}  // namespace
+
+void register_export_command(CLI::App& app) {
+  CLI::App* cmd = app.add_subcommand("export", "Export a fragility cube's contents as tables");
+  cmd->require_subcommand(1);
+  auto cube = std::make_shared<std::string>();
+  auto out = std::make_shared<std::string>();
+  auto csv = std::make_shared<bool>(false);
+  CLI::App* cells = cmd->add_subcommand("cells", "One CSV row per cell (object, record, scale, rotation) with "
+                                                 "its outcome, failure time, tilt, slip and failure reason");
+  cells->add_option("cube", *cube, "Fragility cube (.h5) written by rigid campaign")->required();
+  cells->add_flag("--csv", *csv, "CSV (RFC 4180 quoting), the only format so far")->required();
+  cells->add_option("--out", *out, "Output file (default: standard output)");
+  cells->callback([cube, out] { export_cells(*cube, *out); });
+}
+
+}  // namespace rigid::app

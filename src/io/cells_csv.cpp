@@ -1,0 +1,59 @@
+// The cube's cells as CSV (include/rigid/io/cells_csv.hpp).
+#include "rigid/io/cells_csv.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <string>
+
+namespace rigid::io {
+namespace {
+
+/// RFC 4180: a field holding a comma, a quote or a line break goes in quotes, its quotes doubled.
+std::string csv_field(const std::string& s) {
+  if (s.find_first_of(",\"\r\n") == std::string::npos) return s;
+  std::string q = "\"";
+  for (const char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+/// The shortest text that reads back as the same double; NaN (nothing known) as an empty field.
+std::string csv_number(double x) {
+  if (std::isnan(x)) return {};
+  char buf[32];
+  const auto end = std::to_chars(buf, buf + sizeof buf, x).ptr;
+  return std::string(buf, end);
+}
+
+void write_row(std::ostream& out, std::initializer_list<std::string> fields) {
+  bool first = true;
+  for (const std::string& f : fields) {
+    if (!first) out << ',';
+    out << csv_field(f);
+    first = false;
+  }
+  out << "\r\n";
+}
+
+}  // namespace
+
+void write_cells_csv(std::ostream& out, const Cube& cube) {
+  write_row(out, {"object", "record", "scale_g", "rotation", "rotation_deg", "outcome", "failure_time_s",
+                  "max_tilt_deg", "max_slip_m", "failure_reason", "failure_message"});
+  const std::size_t S = cube.scales_g.size(), A = static_cast<std::size_t>(cube.rotations);
+  for (const ObjectCube& o : cube.objects) {
+    for (std::size_t r = 0; r < cube.records.size(); ++r) {
+      for (std::size_t s = 0; s < S; ++s) {
+        for (std::size_t a = 0; a < A; ++a) {
+          const std::size_t i = (r * S + s) * A + a;
+          write_row(out, {o.name, cube.records[r].name, csv_number(cube.scales_g[s]), std::to_string(a),
+                          csv_number(o.rotation_deg[i]), outcome_name(o.outcome[i]),
+                          csv_number(o.failure_time_s[i]), csv_number(o.max_tilt_deg[i]),
+                          csv_number(o.max_slip_m[i]), failure_reason_name(o.failure_reason[i]),
+                          o.failure_message.empty() ? std::string() : o.failure_message[i]});
+        }
+      }
+    }
+  }
+}
+
+}  // namespace rigid::io

@@ -1,0 +1,465 @@
+// Writing the fragility cube (layout: the top of cube.cpp): built in memory with HDF5's core
+// driver, then written to PATH.tmp, fsynced and renamed over PATH.
+#include <fcntl.h>
+#include <hdf5.h>
+#include <hdf5_hl.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <utility>
+
+#include "cube_hdf5.hpp"
+#include "rigid/core/types.hpp"
+
+namespace rigid::io {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr const char* kLegend = "0 not run, 1 survived, 2 overturned, 3 inferred, 4 failed";
+
+class Writer {
+ public:
+  Writer(const H5& h, hid_t file) : h_(h), file_(file), str_(string_type(h)) {
+    dcpl_ = h.own(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, "creating a dataset creation property list");
+    h.check(H5Pset_obj_track_times(dcpl_, false), "switching off dataset time stamps");
+    gcpl_ = h.own(H5Pcreate(H5P_GROUP_CREATE), H5Pclose, "creating a group creation property list");
+    h.check(H5Pset_obj_track_times(gcpl_, false), "switching off group time stamps");
+  }
+
+  void group(const std::string& path) {
+    h_.own(H5Gcreate2(file_, path.c_str(), H5P_DEFAULT, gcpl_, H5P_DEFAULT), H5Gclose,
+           "creating group " + path);
+  }
+
+  /// Scalar attribute `name` on the object at `path`.
+  void attribute(const std::string& path, const char* name, hid_t file_type, hid_t mem_type,
+                 const void* value) {
+    const std::string what = "writing attribute " + std::string(name) + " of " + path;
+    Hid space = dataspace(h_, {});
+    Hid a = h_.own(
+        H5Acreate_by_name(file_, path.c_str(), name, file_type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+        H5Aclose, what);
+    h_.check(H5Awrite(a, mem_type, value), what);
+  }
+  void attribute(const std::string& path, const char* name, const std::string& value) {
+    const char* p = value.c_str();
+    attribute(path, name, str_, str_, &p);
+  }
+  void attribute(const std::string& path, const char* name, std::int32_t value) {
+    attribute(path, name, H5T_STD_I32LE, H5T_NATIVE_INT32, &value);
+  }
+  void attribute(const std::string& path, const char* name, std::uint64_t value) {
+    attribute(path, name, H5T_STD_U64LE, H5T_NATIVE_UINT64, &value);
+  }
+
+  /// A dataset with its units and description; returned open for dimension scales.
+  Hid dataset(const std::string& path, hid_t file_type, hid_t mem_type, const std::vector<hsize_t>& dims,
+              const void* data, const char* units, const std::string& description) {
+    Hid space = dataspace(h_, dims);
+    Hid d = h_.own(H5Dcreate2(file_, path.c_str(), file_type, space, H5P_DEFAULT, dcpl_, H5P_DEFAULT),
+                   H5Dclose, "creating dataset " + path);
+    hsize_t n = 1;
+    for (hsize_t x : dims) n *= x;
+    // an empty selection needs no buffer, and HDF5 rejects a null one
+    if (n > 0)
+      h_.check(H5Dwrite(d, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), "writing dataset " + path);
+    if (units != nullptr) attribute(path, "units", units);  // text has none (CF)
+    attribute(path, "description", description);
+    return d;
+  }
+  Hid doubles(const std::string& path, const std::vector<double>& v, const std::vector<hsize_t>& dims,
+              const char* units, const std::string& description) {
+    return dataset(path, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, dims, v.data(), units, description);
+  }
+  Hid ints(const std::string& path, const std::vector<std::int32_t>& v, const std::vector<hsize_t>& dims,
+           const char* units, const std::string& description) {
+    return dataset(path, H5T_STD_I32LE, H5T_NATIVE_INT32, dims, v.data(), units, description);
+  }
+  Hid strings(const std::string& path, const std::vector<std::string>& v, const std::vector<hsize_t>& dims,
+              const char* units, const std::string& description) {
+    std::vector<const char*> p;
+    p.reserve(v.size());
+    for (const std::string& s : v) p.push_back(s.c_str());
+    return dataset(path, str_, str_, dims, p.data(), units, description);
+  }
+  Hid strings(const std::string& path, const std::vector<std::string>& v, const std::string& description) {
+    return strings(path, v, {v.size()}, "none", description);
+  }
+
+  void long_name(const std::string& path, const char* name) { attribute(path, "long_name", std::string(name)); }
+
+  /// Names a netCDF variable (long_name) and attaches a dimension scale to each of its dimensions.
+  void variable(Hid d, const std::string& path, const char* name,
+                const std::vector<std::pair<hid_t, const char*>>& dims) {
+    long_name(path, name);
+    for (unsigned i = 0; i < dims.size(); ++i) attach(d, path, i, dims[i].first, dims[i].second);
+  }
+
+  /// CF flag table: flag_values (of the variable's own type) and flag_meanings (space-separated).
+  void flags(const std::string& path, hid_t file_type, hid_t mem_type, const void* values, std::size_t n,
+             const std::string& meanings) {
+    const std::string what = "writing attribute flag_values of " + path;
+    Hid space = dataspace(h_, {n});
+    Hid a = h_.own(H5Acreate_by_name(file_, path.c_str(), "flag_values", file_type, space, H5P_DEFAULT,
+                                     H5P_DEFAULT, H5P_DEFAULT),
+                   H5Aclose, what);
+    h_.check(H5Awrite(a, mem_type, values), what);
+    attribute(path, "flag_meanings", meanings);
+  }
+
+  void make_scale(hid_t d, const std::string& path, const char* name) {
+    h_.check(H5DSset_scale(d, name), "making " + path + " a dimension scale");
+  }
+  void attach(hid_t d, const std::string& path, unsigned dim, hid_t scale, const char* label) {
+    const std::string what = "attaching dimension scale " + std::string(label) + " to " + path;
+    h_.check(H5DSattach_scale(d, scale, dim), what);
+    h_.check(H5DSset_label(d, dim, label), what);
+  }
+
+ private:
+  const H5& h_;
+  hid_t file_;
+  Hid str_;
+  Hid dcpl_;
+  Hid gcpl_;
+};
+
+template <class T, class F>
+std::vector<T> column(const std::vector<RecordMeta>& records, F field) {
+  std::vector<T> v;
+  v.reserve(records.size());
+  for (const RecordMeta& m : records) v.push_back(field(m));
+  return v;
+}
+
+std::vector<std::string> record_names(const Cube& c) {
+  return column<std::string>(c.records, [](const RecordMeta& m) { return m.name; });
+}
+
+std::vector<std::int32_t> iota32(std::size_t n) {
+  std::vector<std::int32_t> v(n);
+  for (std::size_t i = 0; i < n; ++i) v[i] = static_cast<std::int32_t>(i);
+  return v;
+}
+
+void write_root_attributes(Writer& w, const Cube& c) {
+  w.attribute("/", "schema_version", std::int32_t{kCubeSchemaVersion});
+  w.attribute("/", "software_version", c.software_version);
+  w.attribute("/", "job_text", c.job_text);
+  w.attribute("/", "job_hash", c.job_hash);
+  w.attribute("/", "physics_json", c.physics_json);
+  w.attribute("/", "seed", std::uint64_t{c.seed});
+  w.attribute("/", "units", std::string("SI unless the name says otherwise"));
+  w.attribute("/", "job_inputs_sha256", c.job_inputs);
+  w.attribute("/", "inputs_sha256", c.inputs_sha256);
+}
+
+// The legacy shared axes (/axes, read by h5py users by path) and the per-record table (/records).
+void write_axes_and_records(Writer& w, const Cube& c) {
+  const std::vector<double> edges = pgv_pga_edges(c);
+  const hsize_t R = c.records.size(), S = c.scales_g.size(), A = static_cast<hsize_t>(c.rotations);
+  const hsize_t B = edges.size() - 1;
+
+  w.group("/axes");
+  Hid record = w.strings("/axes/record", record_names(c), "record (set) names, in job order");
+  w.make_scale(record, "/axes/record", "record");
+  Hid scale = w.doubles("/axes/scale_g", c.scales_g, {S}, "g", "target GMRotI50 PGA of each scale");
+  w.make_scale(scale, "/axes/scale_g", "scale_g");
+  Hid rotation = w.ints("/axes/rotation", iota32(A), {A}, "none",
+                        "rotation index; the angle of each cell is in rotation_deg");
+  w.make_scale(rotation, "/axes/rotation", "rotation");
+  Hid bin = w.ints("/axes/pgv_pga_bin", iota32(B), {B}, "none",
+                   "PGV/PGA bin index; bin i holds pgv_pga_edges_s[i] <= PGV/PGA < pgv_pga_edges_s[i+1] "
+                   "(the last bin also holds its upper edge)");
+  w.make_scale(bin, "/axes/pgv_pga_bin", "pgv_pga_bin");
+  w.doubles("/axes/pgv_pga_edges_s", edges, {B + 1}, "s",
+            "edges of the PGV/PGA bins of the fragility surface");
+
+  w.group("/records");
+  // its own dimension scale: netCDF-4 cannot see one in the sibling group /axes
+  const Hid own_record = w.strings("/records/record", record_names(c), "record (set) names, in job order");
+  w.long_name("/records/record", "record (set) name");
+  w.make_scale(own_record, "/records/record", "record");
+  const auto text = [&](const char* name, auto field, const char* description) {
+    const std::string path = std::string("/records/") + name;
+    Hid d = w.strings(path, column<std::string>(c.records, field), description);
+    w.attach(d, path, 0, own_record, "record");
+  };
+  const auto number = [&](const char* name, auto field, const char* units, const char* description) {
+    const std::string path = std::string("/records/") + name;
+    Hid d = w.doubles(path, column<double>(c.records, field), {R}, units, description);
+    w.attach(d, path, 0, own_record, "record");
+  };
+  text(
+      "name", [](const RecordMeta& m) { return m.name; }, "record (set) name");
+  text(
+      "source", [](const RecordMeta& m) { return m.source; }, "motion-set spec the record was read from");
+  text(
+      "earthquake", [](const RecordMeta& m) { return m.earthquake; },
+      "earthquake, from the record list (may be empty)");
+  text(
+      "alignment", [](const RecordMeta& m) { return m.alignment; },
+      "how the components were aligned to one length (zero-padding, resampling); empty if they matched");
+  text(
+      "inputs_sha256", [](const RecordMeta& m) { return m.inputs; },
+      "SHA-256 of the record's motion files, sha256sum lines (HEX  PATH)");
+  number(
+      "start_s", [](const RecordMeta& m) { return m.start_s; }, "s", "start of the time window");
+  number(
+      "end_s", [](const RecordMeta& m) { return m.end_s; }, "s", "end of the time window");
+  number(
+      "gmroti_pga_g", [](const RecordMeta& m) { return m.gmroti_pga_g; }, "g",
+      "GMRotI50 PGA of the windowed record, as computed");
+  number(
+      "gmroti_pgv_cm_s", [](const RecordMeta& m) { return m.gmroti_pgv_cm_s; }, "cm/s",
+      "GMRotI50 PGV of the windowed record, as computed");
+  number(
+      "pgv_pga_s", [](const RecordMeta& m) { return m.pgv_pga_s; }, "s",
+      "PGV/PGA of the record (bins the fragility surface)");
+  number(
+      "listed_pga_g", [](const RecordMeta& m) { return m.listed_pga_g; }, "g",
+      "GMRotI PGA given by the record list, 0 if none");
+  number(
+      "listed_pgv_cm_s", [](const RecordMeta& m) { return m.listed_pgv_cm_s; }, "cm/s",
+      "GMRotI PGV given by the record list, 0 if none");
+}
+
+// The coordinate variables of one object group: netCDF-4 (and so xarray) sees a dimension only
+// through a dimension scale in the variable's own group or an ancestor, so each object group
+// carries its own, named like the dimensions. /axes keeps the shared copies h5py users read.
+struct ObjectScales {
+  Hid record, scale, rotation, bin;
+};
+
+ObjectScales write_coordinates(Writer& w, const std::string& g, const Cube& c) {
+  const std::vector<double> edges = pgv_pga_edges(c);
+  const hsize_t S = c.scales_g.size(), A = static_cast<hsize_t>(c.rotations), B = edges.size() - 1;
+  ObjectScales s;
+  s.record = w.strings(g + "/record", record_names(c), {c.records.size()}, nullptr, "record (set) names, in job order");
+  w.long_name(g + "/record", "record (set) name");
+  w.make_scale(s.record, g + "/record", "record");
+  s.scale = w.doubles(g + "/scale", c.scales_g, {S}, "1",
+                      "target GMRotI50 PGA of each scale as a multiple of standard gravity; the same "
+                      "values in m s-2 are in target_pga");
+  w.long_name(g + "/scale", "target GMRotI50 PGA in units of g (standard gravity, 9.80665 m s-2)");
+  w.make_scale(s.scale, g + "/scale", "scale");
+  std::vector<double> pga(c.scales_g);
+  for (double& x : pga) x *= kGravity;
+  w.variable(w.doubles(g + "/target_pga", pga, {S}, "m s-2", "target GMRotI50 PGA of each scale"),
+                    g + "/target_pga", "target GMRotI50 PGA", {{s.scale, "scale"}});
+  s.rotation = w.ints(g + "/rotation", iota32(A), {A}, "1",
+                      "rotation index; the angle of each cell is in rotation_deg");
+  w.long_name(g + "/rotation", "rotation index");
+  w.make_scale(s.rotation, g + "/rotation", "rotation");
+  s.bin = w.ints(g + "/pgv_pga_bin", iota32(B), {B}, "1",
+                 "PGV/PGA bin index; bin i holds /axes/pgv_pga_edges_s[i] <= PGV/PGA < "
+                 "/axes/pgv_pga_edges_s[i+1] (the last bin also holds its upper edge)");
+  w.long_name(g + "/pgv_pga_bin", "PGV/PGA bin index");
+  w.make_scale(s.bin, g + "/pgv_pga_bin", "pgv_pga_bin");
+  return s;
+}
+
+/// CF names, units and flag tables of the cell variables [record, scale, rotation].
+struct CellVariable {
+  const char* name;
+  const char* units;      ///< UDUNITS-2; nullptr for text
+  const char* long_name;
+  const char* description;
+};
+
+constexpr CellVariable kOutcome{"outcome", "1", "outcome of the cell",
+                                "outcome of each cell (record, scale, rotation); see flag_values, flag_meanings"};
+constexpr CellVariable kRotationDeg{"rotation_deg", "degree", "rotation of the horizontal components about z",
+                                    "rotation of the horizontal components about z"};
+constexpr CellVariable kFailureTime{"failure_time_s", "s", "time of failure",
+                                    "time at which failure was decided; NaN when none"};
+constexpr CellVariable kMaxTilt{"max_tilt_deg", "degree", "largest tilt of a free block",
+                                "largest tilt of a free block; NaN when not simulated"};
+constexpr CellVariable kMaxSlip{"max_slip_m", "m", "largest slip of a free block",
+                                "largest slip of a free block; NaN when not simulated"};
+constexpr CellVariable kWall{"wall_s", "s", "wall-clock time of the simulation",
+                             "wall-clock time of the simulation; NaN when none; run-dependent (ignored by "
+                             "comparisons)"};
+constexpr CellVariable kFailureReason{"failure_reason", "1", "reason a cell failed",
+                                      "0 = none, else the campaign's FailureReason code; see flag_values, "
+                                      "flag_meanings"};
+constexpr CellVariable kFailureMessage{"failure_message", nullptr, "error message of a failed cell",
+                                       "the error's text of each failed cell, empty elsewhere"};
+
+// Flag tables of scenario::CellOutcome and scenario::FailureReason (include/rigid/scenario/case.hpp).
+const std::vector<std::int8_t> kOutcomeValues{0, 1, 2, 3, 4};
+const std::vector<std::int32_t> kReasonValues{0, 1, 2, 3};
+
+/// CF flag_meanings: the codes' names, space-separated.
+template <class T>
+std::string flag_meanings(const std::vector<T>& codes, const char* (*name)(int)) {
+  std::string s;
+  for (const T code : codes) s += (s.empty() ? "" : " ") + std::string(name(code));
+  return s;
+}
+
+/// The cell datasets [record, scale, rotation] of one object, with their flags and checksum.
+void write_cells(Writer& w, const std::string& g, const Cube& c, const ObjectCube& o, const ObjectScales& s) {
+  const std::vector<hsize_t> rsa{c.records.size(), c.scales_g.size(), static_cast<hsize_t>(c.rotations)};
+  const std::vector<std::pair<hid_t, const char*>> dims{{s.record, "record"}, {s.scale, "scale"}, {s.rotation, "rotation"}};
+  const auto describe = [&](Hid d, const CellVariable& v) {
+    w.variable(std::move(d), g + "/" + v.name, v.long_name, dims);
+    w.attribute(g + "/" + v.name, "coordinates", std::string("target_pga"));
+  };
+  const auto path = [&](const CellVariable& v) { return g + "/" + v.name; };
+
+  describe(w.dataset(path(kOutcome), H5T_STD_I8LE, H5T_NATIVE_INT8, rsa, o.outcome.data(), kOutcome.units,
+                     kOutcome.description),
+           kOutcome);
+  w.attribute(path(kOutcome), "legend", std::string(kLegend));
+  w.flags(path(kOutcome), H5T_STD_I8LE, H5T_NATIVE_INT8, kOutcomeValues.data(), kOutcomeValues.size(),
+          flag_meanings(kOutcomeValues, outcome_name));
+  for (const auto& [v, values] : {std::pair{&kRotationDeg, &o.rotation_deg}, std::pair{&kFailureTime, &o.failure_time_s},
+                                  std::pair{&kMaxTilt, &o.max_tilt_deg}, std::pair{&kMaxSlip, &o.max_slip_m},
+                                  std::pair{&kWall, &o.wall_s}})
+    describe(w.doubles(path(*v), *values, rsa, v->units, v->description), *v);
+  describe(w.ints(path(kFailureReason), o.failure_reason, rsa, kFailureReason.units, kFailureReason.description),
+           kFailureReason);
+  w.flags(path(kFailureReason), H5T_STD_I32LE, H5T_NATIVE_INT32, kReasonValues.data(), kReasonValues.size(),
+          flag_meanings(kReasonValues, failure_reason_name));
+  const std::vector<std::string> messages = stored_failure_messages(c, o);
+  describe(w.strings(path(kFailureMessage), messages, rsa, nullptr, kFailureMessage.description), kFailureMessage);
+
+  w.attribute(g, "datasets_sha256", cell_datasets_sha256(o, messages));
+  w.attribute(g, "datasets_sha256_covers", std::string(kChecksumCovers));
+}
+
+/// The derived products, recomputed from the cells at every write.
+void write_derived(Writer& w, const std::string& g, const Cube& c, const ObjectCube& o, const ObjectScales& s) {
+  const hsize_t R = c.records.size(), S = c.scales_g.size();
+  const std::string probability = g + "/probability";
+  w.variable(
+      w.doubles(probability, overturn_probability(c, o), {R, S}, "1",
+                "overturning probability per (record, scale): (overturned + inferred) / (overturned + "
+                "inferred + survived) over the rotations; not run and failed cells left out; NaN when "
+                "none is known"),
+      probability, "probability of overturning", {{s.record, "record"}, {s.scale, "scale"}});
+  w.attribute(probability, "coordinates", std::string("target_pga"));
+
+  const FragilitySurface f = fragility_surface(c, o);
+  const hsize_t B = f.bins();
+  const std::vector<std::pair<hid_t, const char*>> surface{{s.scale, "scale"}, {s.bin, "pgv_pga_bin"}};
+  const std::string fragility = g + "/fragility", count = g + "/fragility_count";
+  w.variable(w.doubles(fragility, f.probability, {S, B}, "1",
+                              "P(overturn | scale, PGV/PGA bin): mean of probability over the records of the "
+                              "bin whose probability is known; NaN for empty bins"),
+                    fragility, "fragility: probability of overturning per scale and PGV/PGA bin", surface);
+  w.attribute(fragility, "coordinates", std::string("target_pga"));
+  w.variable(w.ints(count, f.count, {S, B}, "1", "number of records averaged in fragility"), count,
+                    "number of records averaged in fragility", surface);
+  w.attribute(count, "coordinates", std::string("target_pga"));
+}
+
+void write_object(Writer& w, const Cube& c, std::size_t index) {
+  const ObjectCube& o = c.objects[index];
+  const std::string g = "/objects/" + o.name;
+  w.group(g);
+  w.attribute(g, "scene", o.scene);
+  w.attribute(g, "index", static_cast<std::int32_t>(index));
+  w.attribute(g, "inputs_sha256", o.inputs);
+  if (!o.physics_json.empty()) w.attribute(g, "physics_json", o.physics_json);
+  if (std::isfinite(o.alpha_rad)) w.attribute(g, "alpha_rad", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &o.alpha_rad);
+  if (std::isfinite(o.p_rad_s)) w.attribute(g, "p_rad_s", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &o.p_rad_s);
+  const ObjectScales scales = write_coordinates(w, g, c);
+  write_cells(w, g, c, o, scales);
+  write_derived(w, g, c, o, scales);
+}
+
+void write_contents(const H5& h, hid_t file, const Cube& c) {
+  Writer w(h, file);
+  write_root_attributes(w, c);
+  write_axes_and_records(w, c);
+  w.group("/objects");
+  for (std::size_t i = 0; i < c.objects.size(); ++i) write_object(w, c, i);
+}
+
+// Writes bytes to a new file and fsyncs it; errors name the file and errno.
+void write_file(const H5& h, const std::string& p, const std::vector<unsigned char>& bytes) {
+  const int fd = ::open(p.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) h.fail_errno("creating " + p);
+  std::size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const int err = n < 0 ? errno : ENOSPC;
+      ::close(fd);
+      errno = err;
+      h.fail_errno("writing " + p);
+    }
+    done += static_cast<std::size_t>(n);
+  }
+  if (::fsync(fd) != 0) {
+    const int err = errno;
+    ::close(fd);
+    errno = err;
+    h.fail_errno("syncing " + p);
+  }
+  if (::close(fd) != 0) h.fail_errno("closing " + p);
+}
+
+void fsync_path(const H5& h, const std::string& p, bool directory) {
+  const int fd = ::open(p.c_str(), O_RDONLY | (directory ? O_DIRECTORY : 0));
+  if (fd < 0) h.fail_errno("opening " + p + " to sync it");
+  const int status = ::fsync(fd);
+  const int err = errno;
+  ::close(fd);
+  // some file systems cannot sync a directory; the rename has happened all the same
+  if (status != 0 && !(directory && (err == EINVAL || err == ENOTSUP))) {
+    errno = err;
+    h.fail_errno("syncing " + p);
+  }
+}
+
+}  // namespace
+
+void write_cube(const std::string& path, const Cube& cube) {
+  if (std::string p = cube_problem(cube); !p.empty())
+    throw InputError(path, 0, "cannot write the cube: " + p);
+  const QuietErrors quiet;
+  const H5 h(path);
+  const std::string tmp = path + ".tmp";
+  // Built in memory (HDF5's core driver, no backing store) and written out here: HDF5 never
+  // meets a disk error, which it reports as a multi-line stack and, in 1.10, follows with a crash
+  // at exit while closing the file it could not write (issue 12); ours is one errno line.
+  std::vector<unsigned char> image;
+  {
+    Hid fcpl = h.own(H5Pcreate(H5P_FILE_CREATE), H5Pclose, "creating a file creation property list");
+    h.check(H5Pset_obj_track_times(fcpl, false), "switching off root group time stamps");
+    Hid fapl = file_access(h);
+    h.check(H5Pset_fapl_core(fapl, 1 << 20, false), "selecting the in-memory file driver");
+    // SEMI: closing the file fails rather than lingers if a handle were still open
+    h.check(H5Pset_fclose_degree(fapl, H5F_CLOSE_SEMI), "setting the file close degree");
+    Hid file = h.own(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, fcpl, fapl), H5Fclose, "creating the cube in memory");
+    write_contents(h, file, cube);
+    h.check(H5Fflush(file, H5F_SCOPE_GLOBAL), "flushing the cube in memory");
+    const ssize_t size = h.check(H5Fget_file_image(file, nullptr, 0), "sizing the cube's file image");
+    image.resize(static_cast<std::size_t>(size));
+    h.check(H5Fget_file_image(file, image.data(), image.size()), "copying the cube's file image");
+    h.check(file.close(), "closing the cube in memory");
+  }
+  try {
+    write_file(h, tmp, image);
+    if (std::rename(tmp.c_str(), path.c_str()) != 0) h.fail_errno("renaming " + tmp + " over " + path);
+    const fs::path dir = fs::path(path).parent_path();
+    fsync_path(h, dir.empty() ? std::string(".") : dir.string(), true);
+  } catch (...) {
+    std::error_code ignored;
+    fs::remove(tmp, ignored);  // a partial PATH.tmp is useless; PATH is untouched
+    throw;
+  }
+}
+
+void silence_hdf5_errors() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
+
+}  // namespace rigid::io

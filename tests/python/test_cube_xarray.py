@@ -1,0 +1,142 @@
+#!/usr/bin/python3
+"""The cube as analysis tools see it: xarray opens every object group with both netCDF engines
+(named dimensions, coordinate values, CF flags), and `rigid export cells --csv` round-trips
+through pandas with the cube's own values.
+
+    /usr/bin/python3 tests/python/test_cube_xarray.py RIGID REPO
+
+Runs jobs/ci_small.toml on one process (a few seconds). Exit 77 (CTest: skipped) when xarray,
+h5netcdf, netCDF4 or pandas is missing (Debian: python3-xarray python3-h5netcdf python3-netcdf4
+python3-pandas).
+"""
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import unittest
+
+try:
+    import h5py
+    import netCDF4  # noqa: F401  (the "netcdf4" engine)
+    import h5netcdf  # noqa: F401  (the "h5netcdf" engine)
+    import numpy as np
+    import pandas as pd
+    import xarray as xr
+except ImportError as e:  # pragma: no cover
+    print(f"skipped: {e} (install python3-xarray python3-h5netcdf python3-netcdf4 python3-pandas)")
+    sys.exit(77)
+
+RIGID = REPO = None  # set from argv
+ENGINES = ("h5netcdf", "netcdf4")
+OUTCOMES = ["not_run", "survived", "overturned", "inferred", "failed"]
+REASONS = ["none", "exception", "non_finite", "worker_lost"]
+
+
+def same(a, b):
+    """Equal arrays, NaN matching NaN."""
+    return np.array_equal(np.asarray(a, dtype=float), np.asarray(b, dtype=float), equal_nan=True)
+
+
+class AnalysisReadyCube(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = tempfile.mkdtemp(prefix="rigid_xarray_")
+        cls.cube = os.path.join(cls.tmp, "ci.h5")
+        job = os.path.join(REPO, "jobs", "ci_small.toml")
+        r = subprocess.run([RIGID, "campaign", job, "--out", cls.cube], capture_output=True, text=True)
+        if r.returncode != 0:
+            raise RuntimeError(f"rigid campaign failed ({r.returncode}): {r.stderr}")
+        cls.f = h5py.File(cls.cube, "r")
+        cls.objects = list(cls.f["objects"])
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.f.close()
+        shutil.rmtree(cls.tmp)
+
+    def test_xarray_opens_every_object_group_with_both_engines(self):
+        records = list(self.f["axes/record"].asstr()[()])
+        scales = self.f["axes/scale_g"][()]
+        rotations = len(self.f["axes/rotation"])
+        self.assertTrue(self.objects)
+        for engine in ENGINES:
+            for name in self.objects:
+                with self.subTest(engine=engine, object=name), \
+                        xr.open_dataset(self.cube, group=f"objects/{name}", engine=engine) as ds:
+                    self.assertEqual(ds["outcome"].dims, ("record", "scale", "rotation"))
+                    self.assertEqual(list(ds["record"].values), records)
+                    self.assertTrue(same(ds["scale"].values, scales))
+                    self.assertEqual(list(ds["rotation"].values), list(range(rotations)))
+                    self.assertTrue(np.allclose(ds["target_pga"].values, 9.80665 * scales, rtol=1e-15))
+                    self.assertEqual(ds["target_pga"].attrs["units"], "m s-2")
+                    self.assertIn("target_pga", ds.coords)
+                    g = self.f[f"objects/{name}"]
+                    for var in ("outcome", "failure_time_s", "max_tilt_deg", "max_slip_m", "failure_reason"):
+                        self.assertTrue(same(ds[var].values, g[var][()]), var)
+                    for var in ds.variables:
+                        self.assertTrue(ds[var].attrs.get("long_name"), var)
+                    self.assertEqual(list(ds["outcome"].attrs["flag_values"]), list(range(5)))
+                    self.assertEqual(ds["outcome"].attrs["flag_meanings"].split(), OUTCOMES)
+                    self.assertEqual(list(ds["failure_reason"].attrs["flag_values"]), list(range(4)))
+                    self.assertEqual(ds["failure_reason"].attrs["flag_meanings"].split(), REASONS)
+                    # label-based selection works in g
+                    p = ds["probability"].sel(scale=scales[-1], record=records[0]).item()
+                    self.assertTrue(same(p, g["probability"][0, -1]))
+
+    def test_export_cells_round_trips_through_pandas(self):
+        r = subprocess.run([RIGID, "export", "cells", self.cube, "--csv"], capture_output=True)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        csv = os.path.join(self.tmp, "cells.csv")
+        with open(csv, "wb") as out:
+            out.write(r.stdout)
+        # round_trip: pandas' default parser may miss the last bit of a 17-digit number
+        t = pd.read_csv(csv, keep_default_na=False, dtype={"failure_message": str}, float_precision="round_trip",
+                        na_values={c: [""] for c in ("rotation_deg", "failure_time_s", "max_tilt_deg", "max_slip_m")})
+        cells = sum(self.f[f"objects/{n}/outcome"].size for n in self.objects)
+        self.assertEqual(len(t), cells)
+        self.assertEqual(list(t.columns), ["object", "record", "scale_g", "rotation", "rotation_deg", "outcome",
+                                           "failure_time_s", "max_tilt_deg", "max_slip_m", "failure_reason",
+                                           "failure_message"])
+        records = list(self.f["axes/record"].asstr()[()])
+        scales = self.f["axes/scale_g"][()]
+        for name in self.objects:
+            g = self.f[f"objects/{name}"]
+            rows = t[t["object"] == name]
+            shape = g["outcome"].shape
+            self.assertEqual(list(rows["record"]), [records[i] for i in np.indices(shape)[0].ravel()])
+            self.assertTrue(same(rows["scale_g"], scales[np.indices(shape)[1].ravel()]))
+            self.assertEqual(list(rows["rotation"]), list(np.indices(shape)[2].ravel()))
+            self.assertEqual(list(rows["outcome"]), [OUTCOMES[v] for v in g["outcome"][()].ravel()])
+            self.assertEqual(list(rows["failure_reason"]), [REASONS[v] for v in g["failure_reason"][()].ravel()])
+            for var in ("rotation_deg", "failure_time_s", "max_tilt_deg", "max_slip_m"):
+                self.assertTrue(same(rows[var], g[var][()].ravel()), var)
+            self.assertEqual(list(rows["failure_message"]), list(g["failure_message"].asstr()[()].ravel()))
+
+    def test_export_of_a_non_cube_is_one_line_exit_2(self):
+        for path in (os.path.join(self.tmp, "missing.h5"), os.path.join(REPO, "jobs", "ci_small.toml")):
+            r = subprocess.run([RIGID, "export", "cells", path, "--csv"], capture_output=True, text=True)
+            self.assertEqual(r.returncode, 2, path)
+            self.assertEqual(r.stdout, "")
+            self.assertEqual(len(r.stderr.splitlines()), 1, r.stderr)
+            self.assertTrue(r.stderr.startswith("rigid: error: "), r.stderr)
+
+    def test_a_flipped_outcome_byte_is_refused(self):
+        damaged = os.path.join(self.tmp, "damaged.h5")
+        shutil.copyfile(self.cube, damaged)
+        name = self.objects[0]
+        with h5py.File(damaged, "r+") as f:
+            d = f[f"objects/{name}/outcome"]
+            d[0, 0, 0] = d[0, 0, 0] ^ 1
+        job = os.path.join(REPO, "jobs", "ci_small.toml")
+        for command in (["export", "cells", damaged, "--csv"], ["campaign", job, "--out", damaged]):  # a resume
+            r = subprocess.run([RIGID] + command, capture_output=True, text=True)
+            self.assertEqual(r.returncode, 2, command)
+            self.assertIn(f"/objects/{name}: datasets changed since written (checksum mismatch)", r.stderr)
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 3:
+        sys.exit(__doc__)
+    RIGID, REPO = sys.argv[1], sys.argv[2]
+    unittest.main(argv=sys.argv[:1], verbosity=2)
