@@ -8,7 +8,9 @@
 #   MODE journal     a flipped byte in one record / in the header: reported, the rest kept
 #   MODE lock        a second campaign on the same --out while the first runs: exit 2, one line
 #   MODE physics     two objects with different frictions and models: each object's own physics is
-#                    in the cube (its physics_json attribute), read back with h5py
+#                    in the cube (its physics_json attribute), read back with h5py; cells that fail
+#                    (a 1e200 g scale drives the state to Inf) keep their message in the cube and
+#                    are listed by rigid campaign
 #   MODE checkpoint  a full disk (small tmpfs) at a resume, mid-run under mpirun -np 2 and after
 #                    SIGUSR1: exit 1, one line, no abort, cube and journal intact, resume exact
 set -u
@@ -115,6 +117,17 @@ PY
   check "object block_a02: friction 0.6, rigid contact" grep -q "^block_a02 0.6 rigid 2600 below True" "$work/phys.txt"
   check "object other: friction 0.9, penalty contact" grep -q "^other 0.9 penalty 2600 below True" "$work/phys.txt"
   cat "$work/phys.txt"
+  # a failed cell keeps its message: a scale of 1e200 g drives the state to Inf (non-finite)
+  sed 's/^scales = .*/scales = [0.1, 1e200]/' job.toml > fail.toml
+  "$rigid" campaign fail.toml --progress none --out "$work/fail.h5" > "$work/fail.log" 2>&1
+  check "campaign with failing cells completes" test $? -eq 0
+  check "the failed cells are listed with their message" grep -q "1e+200 g, rotation .*: the simulation produced a non-finite state" "$work/fail.log"
+  check "the cube keeps each failed cell's message" /usr/bin/python3 -c "
+import sys, h5py, numpy as np
+o = h5py.File(sys.argv[1], 'r')['objects']['block_a02']
+failed = o['outcome'][...] == 4
+messages = o['failure_message'][...][failed]
+sys.exit(0 if failed.any() and all(m.decode() == 'the simulation produced a non-finite state' for m in messages) else 1)" "$work/fail.h5"
   ;;
 inputs)
   interrupted "$work/part.h5" 2
