@@ -6,11 +6,10 @@
 namespace rigid::campaign {
 namespace {
 
-// An override is part of what the cube holds: appended to the job text, so to its hash, a resume
-// under another value is refused.
+// An override is part of what the cube holds: appended to the job text, so to its hash (set once
+// at the end of load_campaign_job), a resume under another value is refused.
 void record_override(scenario::Job& job, const std::string& flag, const std::string& value) {
   job.text += "\n# command line: " + flag + " " + value + "\n";
-  job.hash = io::text_hash(job.text);
 }
 
 }  // namespace
