@@ -457,7 +457,7 @@ ClosedMesh make_closed_mesh(const TriangleSoup& soup, const MeshOptions& options
   // a convex surface is a topological sphere: V - E + F = 2
   const long long euler = static_cast<long long>(v.size()) - static_cast<long long>(3 * nf / 2) +
                           static_cast<long long>(nf);
-  if (euler != 2) {
+  if (options.require_convex && euler != 2) {
     fail_mesh(source, "Euler characteristic V - E + F is " + std::to_string(euler) +
                           ", not 2: the surface has handles and cannot be convex");
   }
@@ -480,7 +480,7 @@ ClosedMesh make_closed_mesh(const TriangleSoup& soup, const MeshOptions& options
                             " facets were oriented inconsistently; flipped to face outward");
   }
 
-  check_convex(mesh, options.convexity_tolerance * diag, source);
+  if (options.require_convex) check_convex(mesh, options.convexity_tolerance * diag, source);
   return mesh;
 }
 

@@ -26,6 +26,9 @@ struct MeshOptions {
   /// Adjacent triangles whose normals differ by less than this angle are merged into one planar
   /// face for contact (unit: rad).
   double coplanar_angle = 1e-6;
+  /// Refuse a mesh that is not convex (a block's contact shape). false: any closed, manifold,
+  /// oriented mesh is accepted (a scanned rock, whose mass properties come from its true surface).
+  bool require_convex = true;
 };
 
 /// A closed, consistently outward-oriented triangle mesh with welded vertices, in the file's frame.
@@ -37,7 +40,8 @@ struct ClosedMesh {
 
 /// Welds vertices, builds adjacency and checks the mesh: non-empty, no degenerate (zero-area)
 /// triangles, closed (every edge shared by exactly two triangles), consistently oriented,
-/// outward (fixes an inward mesh and records a warning), and convex within tolerance.
+/// outward (fixes an inward mesh and records a warning), and, when options.require_convex, a
+/// topological sphere that is convex within tolerance.
 /// Throws rigid::InputError(source, 0, "facet N: <problem>") when a check fails.
 ClosedMesh make_closed_mesh(const TriangleSoup& soup, const MeshOptions& options,
                             const std::string& source);
