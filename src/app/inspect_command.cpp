@@ -1,10 +1,12 @@
 // `rigid inspect`: what Rigid made of a scene's meshes (mass properties and checks).
+#include <cmath>
 #include <cstdio>
 #include <memory>
 
 #include "commands.hpp"
 #include "rigid/io/json.hpp"
 #include "rigid/io/scene_file.hpp"
+#include "rigid/scenario/rocking_parameters.hpp"
 #include "scene_input.hpp"
 
 namespace rigid::app {
@@ -12,9 +14,45 @@ namespace {
 
 io::Json vec_json(const Vec3& v) { return io::Json::array({v.x(), v.y(), v.z()}); }
 
+// + 0.0 turns -0 into 0, which prints as 0
+double degrees(double rad) { return rad * 180.0 / kPi + 0.0; }
+
+// The rocking parameters as they are printed in JSON: angles in rad, directions also in degrees.
+io::Json rocking_json(const scenario::RockingParameters& r) {
+  io::Json j;
+  j["alpha_rad"] = r.alpha;
+  j["static_toppling_g"] = std::tan(r.alpha);
+  j["radius_m"] = r.radius;
+  j["p_rad_s"] = r.p;
+  j["weakest_azimuth_deg"] = degrees(r.azimuth);
+  io::Json azimuths = io::Json::array(), alphas = io::Json::array(), polygon = io::Json::array();
+  for (std::size_t k = 0; k < r.alpha_by_azimuth.size(); ++k) {
+    azimuths.push_back(360.0 * double(k) / double(r.alpha_by_azimuth.size()));
+    alphas.push_back(r.alpha_by_azimuth[k]);
+  }
+  for (const auto& corner : r.support_polygon) polygon.push_back(io::Json::array({corner.x(), corner.y()}));
+  j["azimuths_deg"] = azimuths;
+  j["alpha_by_azimuth_rad"] = alphas;
+  j["support_polygon_m"] = polygon;
+  return j;
+}
+
+void print_rocking(const scenario::RockingParameters& r) {
+  std::printf("rocking: alpha %.4g rad (static toppling %.4g g) towards azimuth %.1f deg, R %.4g m, p %.4g rad/s\n",
+              r.alpha, std::tan(r.alpha), degrees(r.azimuth), r.radius, r.p);
+  std::printf("  support polygon: %zu corners; alpha by azimuth of the ground acceleration (deg: rad):",
+              r.support_polygon.size());
+  for (std::size_t k = 0; k < r.alpha_by_azimuth.size(); ++k) {
+    std::printf("%s %.1f: %.4g", k % 4 == 0 ? "\n   " : ",", 360.0 * double(k) / double(r.alpha_by_azimuth.size()),
+                r.alpha_by_azimuth[k]);
+  }
+  std::printf("\n");
+}
+
 void inspect(const std::string& path, bool json) {
   // loading runs every mesh check (closed, oriented, convex); a failure throws before this point
   const scenario::Scene scene = load_scene_with_warnings(path);
+  const auto rocking = scenario::rocking_parameters(scene);
   for (const auto& b : scene.bodies) {
     const auto& s = b.shape;
     if (json) {
@@ -29,6 +67,8 @@ void inspect(const std::string& path, bool json) {
       j["principal_moments_kg_m2"] = vec_json(s.inertia);
       j["bounding_radius_m"] = s.bounding_radius;
       j["checks"] = io::Json::array({"closed", "oriented", "convex", "finite"});
+      // a single free block resting on its pedestals: its rocking parameters (physics.md §2)
+      if (!b.fixed && rocking) j["rocking"] = rocking_json(*rocking);
       std::printf("%s\n", io::json_line(j).c_str());
     } else {
       std::printf("%s (%s): %zu vertices, %zu faces\n", b.name.c_str(), b.fixed ? "fixed" : "free",
@@ -40,6 +80,7 @@ void inspect(const std::string& path, bool json) {
     }
   }
   if (!json) {
+    if (rocking) print_rocking(*rocking);
     std::printf("contact model: %s (restitution %.3g, rigid model only)\n", contact::contact_model_name(scene.law.model),
                 scene.law.restitution);
     std::printf("contact: K_N %.3g N/m^1.5, K_S %.3g N/m, friction %.3g, damping %.3g s/m; density %.6g kg/m^3\n",

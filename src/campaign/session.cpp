@@ -110,6 +110,13 @@ io::Cube make_cube(const CampaignContext& context, const Plan& plan) {
     if (const auto rocking = scenario::rocking_parameters(model.scene(int(o)))) {
       oc.alpha_rad = rocking->alpha;
       oc.p_rad_s = rocking->p;
+      oc.rocking_radius_m = rocking->radius;
+      oc.weakest_azimuth_deg = rocking->azimuth * 180.0 / kPi;
+      oc.alpha_by_azimuth_rad = rocking->alpha_by_azimuth;
+      for (const auto& corner : rocking->support_polygon) {
+        oc.support_polygon_m.push_back(corner.x());
+        oc.support_polygon_m.push_back(corner.y());
+      }
     }
     for (long i = 0; i < per_object; ++i) {
       const long t = long(o) * per_object + i;

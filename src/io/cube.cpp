@@ -24,7 +24,10 @@
 //   /records/record                                                   [R] string dimension scale
 //   /objects/<name>/       attributes: scene (string), index (int32, position in the job),
 //                          inputs_sha256 (string, sha256sum lines: scene, model, STLs, state),
-//                          alpha_rad, p_rad_s (float64, only for single-block objects),
+//                          alpha_rad, p_rad_s, rocking_radius_m, weakest_azimuth_deg (float64)
+//                          and the float64 arrays alpha_by_azimuth_rad [Z] (azimuth k*360/Z deg
+//                          of the ground acceleration) and support_polygon_m [2V] (x0 y0 x1 y1..,
+//                          relative to the centroid): only for single-block objects,
 //                          physics_json (string: the object's own physics and run settings),
 //                          datasets_sha256, datasets_sha256_covers (checksum of the cell datasets)
 //       record, scale, rotation, pgv_pga_bin   the group's own dimension scales (netCDF-4

@@ -65,6 +65,20 @@ class Reader {
     return v;
   }
 
+  /// A one-dimensional float64 attribute (at most `limit` values).
+  std::vector<double> double_array_attribute(const std::string& path, const char* name, hssize_t limit) const {
+    const std::string what = "reading attribute " + std::string(name) + " of " + path;
+    Hid a = h_.own(H5Aopen_by_name(file_, path.c_str(), name, H5P_DEFAULT, H5P_DEFAULT), H5Aclose, what);
+    Hid space = h_.own(H5Aget_space(a), H5Sclose, what);
+    Hid type = h_.own(H5Aget_type(a), H5Tclose, what);
+    const hssize_t n = h_.check(H5Sget_simple_extent_npoints(space), what);
+    if (H5Tget_class(type) != H5T_FLOAT || h_.check(H5Sget_simple_extent_ndims(space), what) != 1 || n > limit)
+      h_.fail(what + ": not a list of at most " + std::to_string(limit) + " numbers");
+    std::vector<double> v(static_cast<std::size_t>(n));
+    if (n > 0) h_.check(H5Aread(a, H5T_NATIVE_DOUBLE, v.data()), what);
+    return v;
+  }
+
   /// Opens a dataset and checks its type class and shape.
   Hid open_dataset(const std::string& path, H5T_class_t cls, const std::vector<hsize_t>& dims) const {
     const std::string what = "reading dataset " + path;
@@ -244,6 +258,11 @@ Cube read_contents(const H5& h, hid_t file) {
     if (rd.has_attribute(g, "physics_json")) o.physics_json = rd.string_attribute(g, "physics_json");
     if (rd.has_attribute(g, "alpha_rad")) o.alpha_rad = rd.double_attribute(g, "alpha_rad");
     if (rd.has_attribute(g, "p_rad_s")) o.p_rad_s = rd.double_attribute(g, "p_rad_s");
+    if (rd.has_attribute(g, "rocking_radius_m")) o.rocking_radius_m = rd.double_attribute(g, "rocking_radius_m");
+    if (rd.has_attribute(g, "weakest_azimuth_deg")) o.weakest_azimuth_deg = rd.double_attribute(g, "weakest_azimuth_deg");
+    // bounded: a support polygon of a scanned rock has at most a few thousand corners
+    if (rd.has_attribute(g, "alpha_by_azimuth_rad")) o.alpha_by_azimuth_rad = rd.double_array_attribute(g, "alpha_by_azimuth_rad", 3600);
+    if (rd.has_attribute(g, "support_polygon_m")) o.support_polygon_m = rd.double_array_attribute(g, "support_polygon_m", 1 << 20);
     o.outcome = rd.numbers<std::int8_t>(g + "/outcome", H5T_INTEGER, H5T_NATIVE_INT8, rsa);
     o.rotation_deg = rd.doubles(g + "/rotation_deg", rsa);
     o.failure_time_s = rd.doubles(g + "/failure_time_s", rsa);

@@ -46,6 +46,16 @@ class Writer {
         H5Aclose, what);
     h_.check(H5Awrite(a, mem_type, value), what);
   }
+  /// One-dimensional float64 attribute (an empty vector writes nothing).
+  void attribute(const std::string& path, const char* name, const std::vector<double>& values) {
+    if (values.empty()) return;
+    const std::string what = "writing attribute " + std::string(name) + " of " + path;
+    Hid space = dataspace(h_, {hsize_t(values.size())});
+    Hid a = h_.own(H5Acreate_by_name(file_, path.c_str(), name, H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT,
+                                     H5P_DEFAULT),
+                   H5Aclose, what);
+    h_.check(H5Awrite(a, H5T_NATIVE_DOUBLE, values.data()), what);
+  }
   void attribute(const std::string& path, const char* name, const std::string& value) {
     const char* p = value.c_str();
     attribute(path, name, str_, str_, &p);
@@ -370,6 +380,14 @@ void write_object(Writer& w, const Cube& c, std::size_t index) {
   if (!o.physics_json.empty()) w.attribute(g, "physics_json", o.physics_json);
   if (std::isfinite(o.alpha_rad)) w.attribute(g, "alpha_rad", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &o.alpha_rad);
   if (std::isfinite(o.p_rad_s)) w.attribute(g, "p_rad_s", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &o.p_rad_s);
+  if (std::isfinite(o.alpha_rad)) {
+    for (const auto& [name, value] : {std::pair{"rocking_radius_m", &o.rocking_radius_m},
+                                      std::pair{"weakest_azimuth_deg", &o.weakest_azimuth_deg}}) {
+      if (std::isfinite(*value)) w.attribute(g, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, value);
+    }
+    w.attribute(g, "alpha_by_azimuth_rad", o.alpha_by_azimuth_rad);
+    w.attribute(g, "support_polygon_m", o.support_polygon_m);
+  }
   const ObjectScales scales = write_coordinates(w, g, c);
   write_cells(w, g, c, o, scales);
   write_derived(w, g, c, o, scales);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "rigid/geometry/polygon2d.hpp"
@@ -17,6 +18,26 @@ double outside_distance(const dynamics::BodyDef& b, const Vec3& world_point) {
   double most = -1e300;
   for (const auto& f : b.shape.faces) most = std::max(most, f.normal.dot(q) - f.offset);
   return most;
+}
+
+// Height of the support polygon's boundary at `offset` from the centroid's projection: linear
+// along the hull edge that contains it (the corners' heights differ on an uneven pedestal).
+double support_height(const std::vector<Vec3>& support, const std::vector<int>& hull, const Vec3& c,
+                      const P2& offset) {
+  const P2 x = c.head<2>() + offset;
+  double best_distance = std::numeric_limits<double>::infinity(), z = 0;
+  for (std::size_t i = 0; i < hull.size(); ++i) {
+    const Vec3& a = support[hull[i]];
+    const Vec3& b = support[hull[(i + 1) % hull.size()]];
+    const P2 edge = (b - a).head<2>();
+    const double t = std::clamp((x - a.head<2>()).dot(edge) / std::max(edge.squaredNorm(), 1e-300), 0.0, 1.0);
+    const double distance = (a.head<2>() + t * edge - x).norm();
+    if (distance < best_distance) {
+      best_distance = distance;
+      z = a.z() + t * (b.z() - a.z());
+    }
+  }
+  return z;
 }
 
 }  // namespace
@@ -58,6 +79,8 @@ std::optional<RockingParameters> rocking_parameters(const Scene& scene, double c
   const Mat3 inertia = r * block->shape.inertia.asDiagonal() * r.transpose();
   const double m = block->shape.mass;
   std::optional<RockingParameters> best;
+  geometry::Polygon2 polygon;
+  for (int i : hull) polygon.push_back((support[i] - c).head<2>());
   for (std::size_t i = 0; i < hull.size(); ++i) {
     const Vec3& a = support[hull[i]];
     const Vec3& b = support[hull[(i + 1) % hull.size()]];
@@ -85,6 +108,14 @@ std::optional<RockingParameters> rocking_parameters(const Scene& scene, double c
     const P2 outward(edge.y(), -edge.x());  // right of a counter-clockwise edge
     out.azimuth = std::atan2(outward.y(), outward.x());
     best = out;
+  }
+  if (!best) return best;
+  best->support_polygon = polygon;
+  for (int k = 0; k < kRockingAzimuths; ++k) {
+    const double azimuth = 2.0 * kPi * k / kRockingAzimuths;
+    const P2 lean(-std::cos(azimuth), -std::sin(azimuth));
+    const double s = geometry::ray_to_boundary(polygon, P2::Zero(), lean);
+    best->alpha_by_azimuth.push_back(std::atan2(s, c.z() - support_height(support, hull, c, s * lean)));
   }
   return best;
 }

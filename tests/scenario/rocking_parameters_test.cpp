@@ -63,6 +63,29 @@ TEST(RockingParameters, NarrowPedestalTopSetsTheSupportPolygon) {
   EXPECT_NEAR(r->p, std::sqrt(kGravity * radius / (1.0 / 6.0 + radius * radius)), 1e-9);
 }
 
+TEST(RockingParameters, AlphaByAzimuthIsTheRayToTheBaseOverTheHeight) {
+  // 0.4 wide (x), 0.6 deep (y), centroid 0.5 up: pushed along azimuth theta the block leans
+  // towards -theta and its resultant leaves the base rectangle after s = min(b/|cos|, d/|sin|)
+  const double b = 0.2, d = 0.3, h = 0.5;
+  const Scene scene = block_on_pedestal(b, h, 2 * d);
+  const auto r = rocking_parameters(scene);
+  ASSERT_TRUE(r.has_value());
+  ASSERT_EQ(r->alpha_by_azimuth.size(), std::size_t(kRockingAzimuths));
+  for (int k = 0; k < kRockingAzimuths; ++k) {
+    const double theta = 2 * kPi * k / kRockingAzimuths;
+    const double c = std::abs(std::cos(theta)), s = std::abs(std::sin(theta));
+    const double reach = std::min(c > 1e-12 ? b / c : 1e300, s > 1e-12 ? d / s : 1e300);
+    EXPECT_NEAR(r->alpha_by_azimuth[k], std::atan2(reach, h), 1e-9) << k;
+    EXPECT_GE(r->alpha_by_azimuth[k], r->alpha - 1e-12) << k;
+  }
+  // the support polygon is the base: four corners at (+-b, +-d) around the centroid
+  ASSERT_EQ(r->support_polygon.size(), 4u);
+  for (const auto& corner : r->support_polygon) {
+    EXPECT_NEAR(std::abs(corner.x()), b, 1e-12);
+    EXPECT_NEAR(std::abs(corner.y()), d, 1e-12);
+  }
+}
+
 TEST(RockingParameters, StacksAndFloatingBlocksHaveNone) {
   Scene stack = block_on_pedestal(0.2, 0.5, 0.4);
   stack.bodies.push_back(box_body("top", Vec3(-0.2, -0.2, 1.0), Vec3(0.2, 0.2, 1.4), 2600, false));

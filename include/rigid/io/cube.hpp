@@ -45,6 +45,13 @@ struct ObjectCube {
   /// object has none (stacks): written as attributes alpha_rad, p_rad_s only when finite.
   double alpha_rad = std::numeric_limits<double>::quiet_NaN();
   double p_rad_s = std::numeric_limits<double>::quiet_NaN();
+  /// ...and the rest of them, written only with alpha_rad: R, the weakest direction, alpha per
+  /// azimuth of the ground acceleration (RockingParameters::alpha_by_azimuth, azimuth k * 360 / n
+  /// degrees) and the support polygon's corners relative to the centroid, flattened x0 y0 x1 y1...
+  double rocking_radius_m = std::numeric_limits<double>::quiet_NaN();
+  double weakest_azimuth_deg = std::numeric_limits<double>::quiet_NaN();
+  std::vector<double> alpha_by_azimuth_rad;
+  std::vector<double> support_polygon_m;
   std::vector<std::int8_t> outcome;     ///< CellOutcome values
   std::vector<double> rotation_deg;     ///< rotation of the horizontals about z (unit: deg)
   std::vector<double> failure_time_s;   ///< NaN when none (unit: s)

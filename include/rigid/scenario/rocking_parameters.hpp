@@ -3,6 +3,7 @@
 /// frequency parameter p that normalise its fragility (the probit of the plots is in
 /// ln(PGA / (g tan alpha)) and ln((PGV/PGA) p / alpha)). Rigid statics of the block as it rests.
 #include <optional>
+#include <vector>
 
 #include "rigid/scenario/scene.hpp"
 
@@ -13,7 +14,20 @@ struct RockingParameters {
   double radius = 0;   ///< R: distance from the centroid to that edge (unit: m)
   double p = 0;        ///< sqrt(m g R / I_edge), I_edge the inertia about that edge (unit: rad/s)
   double azimuth = 0;  ///< horizontal direction from the centroid to the edge (unit: rad, from +x)
+  /// The support polygon: counter-clockwise (x, y) corners relative to the centroid (unit: m).
+  std::vector<Eigen::Vector2d> support_polygon;
+  /// alpha for a ground acceleration along each of kRockingAzimuths directions, k * 2 pi / n from
+  /// +x towards +y (the field convention: x north, y east seen from above with z up): the block
+  /// leans against the inertial force, towards -azimuth, and tips when the resultant of gravity
+  /// and that force leaves the polygon, at a / g = tan(alpha_k) = s / h, s the distance from the
+  /// centroid's projection to the polygon's boundary along -azimuth and h the centroid's height
+  /// above that boundary point (unit: rad). Its minimum over all directions is `alpha`.
+  std::vector<double> alpha_by_azimuth;
 };
+
+/// Directions of RockingParameters::alpha_by_azimuth: every 22.5 degrees, a superset of the
+/// tilt test's eight (scenario::tilt_survey).
+inline constexpr int kRockingAzimuths = 16;
 
 /// The rocking parameters of the scene's single free block, resting on fixed blocks: its support
 /// polygon is the horizontal convex hull of its vertices within `contact_tolerance` of a fixed
