@@ -6,6 +6,7 @@
 #include <memory>
 #include <vector>
 
+#include "rigid/campaign/log.hpp"
 #include "rigid/campaign/output_lock.hpp"
 #include "rigid/campaign/stop_signal.hpp"
 #include "rigid/campaign/task.hpp"
@@ -30,6 +31,9 @@ bool load_everywhere(const CampaignOptions& options, int rank, Loaded& loaded) {
   std::string error;
   try {
     loaded.job = load_campaign_job(options);
+    if (rank == 0) {
+      for (const std::string& note : loaded.job.notes) log_status("note: {}", note);
+    }
     loaded.model = std::make_unique<scenario::Model>(io::load_model(loaded.job));
   } catch (const InputError& e) {
     ok = 0;

@@ -179,11 +179,22 @@ scenario::Job load_job(const std::string& path) {
   for (const auto& node : *objects) {
     const auto* t = node.as_table();
     if (!t) throw InputError(path, line_of(node), "each [[object]] must be a table");
-    reject_unknown(*t, {"name", "scene", "state"}, path, "[[object]]");
+    reject_unknown(*t, {"name", "scene", "state", "optional"}, path, "[[object]]");
     scenario::JobObject o;
     const std::string scene = optional_string(*t, "scene", "", path);
     if (scene.empty()) throw InputError(path, line_of(node), "[[object]] needs scene = \"FILE\"");
     o.scene = (base / scene).lexically_normal().string();
+    // an optional object is a generated scene (e.g. a scan imported from data outside the
+    // repository): left out with a note when absent; the note enters the job's text, so a resume
+    // after it appeared is refused instead of mixing two sets of objects
+    const bool optional = optional_bool(*t, "optional", false, path);
+    if (optional && !fs::exists(o.scene)) {
+      const std::string note = "[[object]] at line " + std::to_string(line_of(node)) + " left out: its scene " +
+                               o.scene + " does not exist (optional = true)";
+      job.notes.push_back(note);
+      job.text += "\n# " + note + "\n";
+      continue;
+    }
     if (!fs::exists(o.scene)) throw InputError(path, line_of(node), "scene file not found: " + o.scene);
     const std::string state = optional_string(*t, "state", "", path);
     if (!state.empty()) {
@@ -197,6 +208,8 @@ scenario::Job load_job(const std::string& path) {
     if (!object_names.insert(o.name).second) throw InputError(path, line_of(node), "duplicate object name '" + o.name + "'");
     job.objects.push_back(o);
   }
+
+  if (job.objects.empty()) throw InputError(path, 0, "every [[object]] of the job is optional and absent");
 
   // records: a list file or [[record]] tables
   if (root.contains("records") == root.contains("record")) {

@@ -79,6 +79,28 @@ TEST_F(JobFile, MissingSceneIsRefused) {
   expect_error(t, "nothere.toml");
 }
 
+TEST_F(JobFile, AbsentOptionalObjectIsLeftOutWithANoteThatEntersTheHash) {
+  const std::string extra = "[[object]]\nname = \"scan\"\nscene = \"../models/absent/none.toml\"\noptional = true\n";
+  std::string text = kGood;
+  text.insert(text.find("[[record]]"), extra);
+  const scenario::Job with_absent = load_job(write(text));
+  ASSERT_EQ(with_absent.objects.size(), 1u);
+  ASSERT_EQ(with_absent.notes.size(), 1u);
+  EXPECT_NE(with_absent.notes[0].find("none.toml"), std::string::npos) << with_absent.notes[0];
+  // the same job without the optional object is another job: a resume between them is refused
+  EXPECT_NE(with_absent.hash, load_job(write(kGood)).hash);
+  // an optional object that exists is loaded; a non-optional absent one is an error
+  std::string present = kGood;
+  present.insert(present.find("[[record]]"), "[[object]]\nname = \"again\"\nscene = \"../models/demo/block_a03.toml\"\noptional = true\n");
+  EXPECT_EQ(load_job(write(present)).objects.size(), 2u);
+  std::string required = text;
+  required.replace(required.find("optional = true"), 15, "optional = false");
+  expect_error(required, "scene file not found");
+  std::string typo = text;
+  typo.replace(typo.find("optional = true"), 15, "optional = 1");
+  expect_error(typo, "optional");
+}
+
 TEST_F(JobFile, MissingMotionIsRefused) {
   std::string t = kGood;
   t.replace(t.find("stochastic_s1-X"), 15, "stochastic_s9-X");

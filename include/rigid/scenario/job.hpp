@@ -69,6 +69,9 @@ struct Job {
   long run_line = 0;
   double checkpoint_interval = 30;  ///< unit: s
   double grace = 30;              ///< time in-flight tasks get after a stop signal (unit: s)
+  /// What the reader left out and the user should hear of, one line each (an optional object
+  /// whose scene does not exist: [[object]] optional = true).
+  std::vector<std::string> notes;
 };
 
 }  // namespace rigid::scenario
