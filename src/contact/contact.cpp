@@ -267,6 +267,8 @@ void collect_subcontacts(const PlacedHull& a, const PlacedHull& b, const CommonP
     const auto& shape = *edges_of.shape;
     const double sign = side == 0 ? 1.0 : -1.0;  // A's edges press along +n into B, B's along -n
     const Vec3 other_position = other.position + other.offset;
+    // the other block's bounding sphere (about its own middle for a piece of a compound body)
+    const Vec3 other_centre = other_position + other.rotation * other.shape->bounding_centre;
     const double reach2 = other.shape->bounding_radius * other.shape->bounding_radius;
     auto past = [&](int v) {  // beyond the other block's supporting plane
       return sign * n.dot(edges_of.world_vertices[v] + edges_of.offset) > sign * limit;
@@ -305,8 +307,8 @@ void collect_subcontacts(const PlacedHull& a, const PlacedHull& b, const CommonP
         const Vec3 d = p1 - p0;
         const double len2 = d.squaredNorm();
         const double t_near =
-            len2 > 0 ? std::clamp((other_position - p0).dot(d) / len2, 0.0, 1.0) : 0.0;
-        if ((p0 + t_near * d - other_position).squaredNorm() > reach2) continue;
+            len2 > 0 ? std::clamp((other_centre - p0).dot(d) / len2, 0.0, 1.0) : 0.0;
+        if ((p0 + t_near * d - other_centre).squaredNorm() > reach2) continue;
         if (v_out == -2) {
           qv = to_other * (edges_of.world_vertices[v] + edges_of.offset - other_position);
           double most = 0;

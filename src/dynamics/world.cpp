@@ -46,6 +46,7 @@ World::World(std::vector<BodyDef> bodies, const contact::ContactLaw& law,
   const std::size_t n = defs_.size();
   states_.resize(n);
   world_vertices_.resize(n);
+  piece_vertices_.resize(n);
   rotations_.resize(n);
   forces_.assign(n, Vec3::Zero());
   torques_.assign(n, Vec3::Zero());
@@ -63,6 +64,7 @@ World::World(std::vector<BodyDef> bodies, const contact::ContactLaw& law,
     const Mat3 r = s.orientation.toRotationMatrix();
     s.angular_momentum = r * d.shape.inertia.asDiagonal() * r.transpose() * d.angular_velocity;
     world_vertices_[i].resize(d.shape.vertices.size());
+    for (const auto& piece : d.pieces) piece_vertices_[i].emplace_back(piece.vertices.size());
   }
   // every pair that can ever touch: two fixed blocks never interact
   for (std::size_t a = 0; a < n; ++a) {
@@ -71,16 +73,26 @@ World::World(std::vector<BodyDef> bodies, const contact::ContactLaw& law,
         ++fixed_fixed_pairs_;
         continue;
       }
-      PairContact p;
-      p.a = static_cast<int>(a);
-      p.b = static_cast<int>(b);
-      const Vec3 d = defs_[b].position - defs_[a].position;
-      p.normal = d.norm() > 0 ? Vec3(d.normalized()) : Vec3(0, 0, 1);
-      const std::size_t cap = defs_[a].shape.vertices.size() + defs_[b].shape.vertices.size() + 1;
-      p.subs.reserve(cap);
-      p.next_subs.reserve(cap);
-      p.points.reserve(cap);
-      pairs_.push_back(std::move(p));
+      // one pair per two contact pieces (one piece each for plain blocks)
+      const std::size_t pieces_a = std::max<std::size_t>(1, defs_[a].pieces.size());
+      const std::size_t pieces_b = std::max<std::size_t>(1, defs_[b].pieces.size());
+      for (std::size_t ka = 0; ka < pieces_a; ++ka) {
+        for (std::size_t kb = 0; kb < pieces_b; ++kb) {
+          PairContact p;
+          p.a = static_cast<int>(a);
+          p.b = static_cast<int>(b);
+          p.piece_a = static_cast<int>(ka);
+          p.piece_b = static_cast<int>(kb);
+          const Vec3 d = defs_[b].position - defs_[a].position;
+          p.normal = d.norm() > 0 ? Vec3(d.normalized()) : Vec3(0, 0, 1);
+          const std::size_t cap =
+              contact_piece(p.a, p.piece_a).vertices.size() + contact_piece(p.b, p.piece_b).vertices.size() + 1;
+          p.subs.reserve(cap);
+          p.next_subs.reserve(cap);
+          p.points.reserve(cap);
+          pairs_.push_back(std::move(p));
+        }
+      }
     }
   }
   if (law_.model == contact::ContactModel::rigid) {
@@ -116,6 +128,30 @@ void World::update_world_vertices(int i) {
   const Vec3& x = states_[i].position;
   auto& out = world_vertices_[i];
   for (std::size_t k = 0; k < body.size(); ++k) out[k] = r * body[k] + x;
+  const auto& pieces = defs_[i].pieces;
+  for (std::size_t p = 0; p < pieces.size(); ++p) {
+    const auto& local = pieces[p].vertices;
+    auto& world = piece_vertices_[i][p];
+    for (std::size_t k = 0; k < local.size(); ++k) world[k] = r * local[k] + x;
+  }
+}
+
+void World::shift_world_vertices(int i, const Vec3& shift) {
+  for (auto& v : world_vertices_[i]) v += shift;
+  for (auto& piece : piece_vertices_[i]) {
+    for (auto& v : piece) v += shift;
+  }
+}
+
+void World::shift_world_vertices_xy(int i, double dx, double dy) {
+  auto shift = [dx, dy](std::vector<Vec3>& vertices) {
+    for (auto& v : vertices) {
+      v.x() += dx;
+      v.y() += dy;
+    }
+  };
+  shift(world_vertices_[i]);
+  for (auto& piece : piece_vertices_[i]) shift(piece);
 }
 
 Vec3 World::angular_velocity(int i) const {
@@ -189,16 +225,13 @@ void World::move_pedestals(double dt, const Vec3& ground_velocity) {
     s.velocity = ground_velocity;
     if (effects_.vertical_ground) {
       s.position += dt * ground_velocity;
-      for (auto& v : world_vertices_[i]) v += dt * ground_velocity;
+      shift_world_vertices(static_cast<int>(i), dt * ground_velocity);
     } else {
       // no vertical component: the same sums in x and y, z left alone (it would add 0 exactly)
       const double dx = dt * ground_velocity.x(), dy = dt * ground_velocity.y();
       s.position.x() += dx;
       s.position.y() += dy;
-      for (auto& v : world_vertices_[i]) {
-        v.x() += dx;
-        v.y() += dy;
-      }
+      shift_world_vertices_xy(static_cast<int>(i), dx, dy);
     }
   }
 }
@@ -213,8 +246,13 @@ bool World::pair_apart(PairContact& p, double margin) {
     return true;
   }
   // bounding spheres apart: no contact possible this step
-  const double radii = da.shape.bounding_radius + db.shape.bounding_radius;
-  const double gap = (states_[p.b].position - states_[p.a].position).norm() - radii;
+  const auto& pa = contact_piece(p.a, p.piece_a);
+  const auto& pb = contact_piece(p.b, p.piece_b);
+  const double radii = pa.bounding_radius + pb.bounding_radius;
+  Vec3 centre_a = states_[p.a].position, centre_b = states_[p.b].position;
+  if (!da.pieces.empty()) centre_a += rotations_[p.a] * pa.bounding_centre;
+  if (!db.pieces.empty()) centre_b += rotations_[p.b] * pb.bounding_centre;
+  const double gap = (centre_b - centre_a).norm() - radii;
   if (gap > margin) {
     p.subs.clear();
     p.points.clear();
@@ -290,10 +328,10 @@ void World::compute_forces(double dt) {
     if (pair_apart(p, 0.0)) continue;
     ++stats_.pair_tests;
     ++p.tests;
-    contact::PlacedHull ha{&da.shape, world_vertices_[p.a].data(), Vec3::Zero(), rotations_[p.a],
-                           sa.position};
-    contact::PlacedHull hb{&db.shape, world_vertices_[p.b].data(), Vec3::Zero(), rotations_[p.b],
-                           sb.position};
+    contact::PlacedHull ha{&contact_piece(p.a, p.piece_a), piece_vertices(p.a, p.piece_a), Vec3::Zero(),
+                           rotations_[p.a], sa.position};
+    contact::PlacedHull hb{&contact_piece(p.b, p.piece_b), piece_vertices(p.b, p.piece_b), Vec3::Zero(),
+                           rotations_[p.b], sb.position};
     const contact::CommonPlane cp = contact::find_common_plane(ha, hb, p.normal, p.hints);
     p.normal = cp.normal;
     p.overlap = cp.overlap;
@@ -308,6 +346,26 @@ void World::compute_forces(double dt) {
     const Vec3 wb = angular_velocity(p.b);
     const Vec3& n = cp.normal;
     p.next_subs.clear();
+    // stiffness per patch, not per vertex: a patch of many subcontacts (a finely meshed face)
+    // shares the springs of the study's four-corner block face (physics.md §11), so a rock and
+    // the same rock meshed finer carry the same load on the same indentation. The count is
+    // weighted by depth, n = sum (d_i / d_max)^1.5, so a subcontact entering at zero depth changes
+    // nothing: the force stays continuous (a jump in it would pump energy into a bouncing block)
+    double deepest = 0, sum = 0;
+    for (const auto& pt : p.points) {
+      const double load = pt.overlap * std::sqrt(pt.overlap);
+      deepest = std::max(deepest, load);
+      sum += load;
+    }
+    const double count = deepest > 0 ? sum / deepest : 0.0;
+    p.stiffness_weight = count > 4 ? 4.0 / count : 1.0;
+    contact::ContactLaw weighted;
+    if (count > 4) {
+      weighted = law_;
+      weighted.normal_stiffness *= p.stiffness_weight;
+      weighted.shear_stiffness *= p.stiffness_weight;
+    }
+    const contact::ContactLaw& law = count > 4 ? weighted : law_;
     Vec3 total = Vec3::Zero();
     double pair_slip = 0;
     for (const auto& pt : p.points) {
@@ -324,7 +382,7 @@ void World::compute_forces(double dt) {
       const double normal_speed = n.dot(relative);
       const Vec3 tangential_step = (relative - normal_speed * n) * dt;
       double slip = 0;
-      const Vec3 f = contact::subcontact_force(law_, n, pt.overlap, -normal_speed, tangential_step,
+      const Vec3 f = contact::subcontact_force(law, n, pt.overlap, -normal_speed, tangential_step,
                                                shear, slip);
       forces_[p.b] += f;
       torques_[p.b] += rb.cross(f);
@@ -369,7 +427,7 @@ void World::carry_with_ground(double t_end, const Vec3& displacement, const Vec3
   for (std::size_t i = 0; i < defs_.size(); ++i) {
     auto& s = states_[i];
     s.position += displacement;
-    for (auto& v : world_vertices_[i]) v += displacement;
+    shift_world_vertices(static_cast<int>(i), displacement);
     if (defs_[i].fixed) {
       s.velocity = v_end;
       continue;
@@ -407,7 +465,7 @@ double World::potential_energy() const {
 double World::subcontact_load(const PairContact& pair, std::size_t k) const {
   if (law_.model == contact::ContactModel::rigid) return pair.subs[k].normal_impulse / dt_;
   const double d = pair.points[k].overlap;
-  return law_.normal_stiffness * d * std::sqrt(d);
+  return pair.stiffness_weight * law_.normal_stiffness * d * std::sqrt(d);
 }
 
 void World::summarize_contacts(ContactSummary& out) const {
@@ -433,9 +491,10 @@ double World::elastic_energy() const {
   double e = 0;
   for (const auto& p : pairs_) {
     if (p.overlap <= 0) continue;
-    for (const auto& sub : p.subs) e += 0.5 * sub.shear_force.squaredNorm() / law_.shear_stiffness;
+    const double w = p.stiffness_weight;
+    for (const auto& sub : p.subs) e += 0.5 * sub.shear_force.squaredNorm() / (w * law_.shear_stiffness);
     for (const auto& pt : p.points) {
-      e += 0.4 * law_.normal_stiffness * std::pow(pt.overlap, 2.5);
+      e += 0.4 * w * law_.normal_stiffness * std::pow(pt.overlap, 2.5);
     }
   }
   return e;

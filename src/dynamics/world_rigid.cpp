@@ -48,8 +48,10 @@ void World::collect_rigid_rows(double dt, const Vec3& ground_velocity) {
     // B is shifted by the margin along last step's normal, into A: pairs open by less than the
     // margin then overlap, and the common plane and subcontacts of the penetrating case apply
     const Vec3 shift = -margin * p.normal;
-    contact::PlacedHull ha{&da.shape, world_vertices_[p.a].data(), Vec3::Zero(), rotations_[p.a], sa.position};
-    contact::PlacedHull hb{&db.shape, world_vertices_[p.b].data(), shift, rotations_[p.b], sb.position};
+    contact::PlacedHull ha{&contact_piece(p.a, p.piece_a), piece_vertices(p.a, p.piece_a), Vec3::Zero(),
+                           rotations_[p.a], sa.position};
+    contact::PlacedHull hb{&contact_piece(p.b, p.piece_b), piece_vertices(p.b, p.piece_b), shift, rotations_[p.b],
+                           sb.position};
     const contact::CommonPlane cp = contact::find_common_plane(ha, hb, p.normal, p.hints);
     const Vec3 n = cp.normal;
     const double shift_along_n = -n.dot(shift);  // how much closer the shift brought them along n

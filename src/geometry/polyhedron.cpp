@@ -178,6 +178,43 @@ ConvexPolyhedron make_polyhedron(const ClosedMesh& mesh, const MassProperties& p
   return poly;
 }
 
+ConvexPolyhedron make_piece(const ClosedMesh& convex_mesh, const ConvexPolyhedron& body, const MeshOptions& options) {
+  // into the body frame first; make_polyhedron with an identity frame then keeps it
+  ClosedMesh in_body = convex_mesh;
+  const Mat3 rt = body.rotation.toRotationMatrix().transpose();
+  for (Vec3& x : in_body.vertices) x = rt * (x - body.translation);
+  MassProperties frame;
+  frame.volume = mass_properties(in_body, 1.0).volume;
+  ConvexPolyhedron piece = make_polyhedron(in_body, frame, options);
+  piece.rotation = body.rotation;
+  piece.translation = body.translation;
+  // the sphere about the piece's middle: pieces far from the body's centroid get tight spheres
+  Vec3 lo = piece.vertices.front(), hi = lo;
+  for (const Vec3& x : piece.vertices) {
+    lo = lo.cwiseMin(x);
+    hi = hi.cwiseMax(x);
+  }
+  piece.bounding_centre = 0.5 * (lo + hi);
+  piece.bounding_radius = 0;
+  for (const Vec3& x : piece.vertices) piece.bounding_radius = std::max(piece.bounding_radius, (x - piece.bounding_centre).norm());
+  return piece;
+}
+
+CompoundBody build_compound(const ClosedMesh& mesh, const std::vector<ClosedMesh>& convex_pieces, double density,
+                            const MeshOptions& options) {
+  if (convex_pieces.empty()) throw std::invalid_argument("build_compound: no contact pieces");
+  const MassProperties props = mass_properties(mesh, density);
+  std::vector<Vec3> corners;
+  for (const ClosedMesh& piece : convex_pieces) corners.insert(corners.end(), piece.vertices.begin(), piece.vertices.end());
+  MeshOptions hull_options = options;
+  hull_options.require_convex = true;
+  const ClosedMesh outline = make_closed_mesh(convex_hull(corners), hull_options, "outline of the contact pieces");
+  CompoundBody body;
+  body.shape = make_polyhedron(outline, props, options);
+  for (const ClosedMesh& piece : convex_pieces) body.pieces.push_back(make_piece(piece, body.shape, options));
+  return body;
+}
+
 ConvexPolyhedron build_block(const TriangleSoup& soup, double density, const MeshOptions& options,
                              const std::string& source, std::vector<std::string>* warnings) {
   // cheap argument check before the mesh work

@@ -100,6 +100,8 @@ void check_overlap(const scenario::Scene& scene, const std::string& file) {
 
 struct BlockSpec {
   std::string stl;
+  std::string name;                  ///< empty: the STL's stem
+  std::vector<std::string> contact;  ///< convex contact pieces of a compound body (STL paths)
   bool fixed = false;
   Vec3 velocity{0, 0, 0};
   long line = 0;
@@ -125,11 +127,52 @@ void check_block_size(const dynamics::BodyDef& body, const std::string& stl) {
   }
 }
 
+// Pieces may stick out of the mesh they stand for by at most this fraction of its bounding box
+// diagonal (a hull reduced to a vertex budget lies inside; a decomposition's pieces hug the mesh).
+constexpr double kPieceReach = 0.05;
+
+// A compound body: mass properties from the closed mesh at `path` (any shape), contact from the
+// convex pieces listed in the block's `contact`, in the same coordinates.
+void build_compound_body(dynamics::BodyDef& body, const geometry::TriangleSoup& soup, const fs::path& path,
+                         const BlockSpec& b, const std::string& base_dir, scenario::Scene& scene,
+                         std::vector<std::string>& warnings) {
+  geometry::MeshOptions any_shape;
+  any_shape.require_convex = false;
+  const geometry::ClosedMesh mesh = geometry::make_closed_mesh(soup, any_shape, path.string());
+  warnings.insert(warnings.end(), mesh.warnings.begin(), mesh.warnings.end());
+  Vec3 lo = mesh.vertices.front(), hi = lo;
+  for (const Vec3& v : mesh.vertices) {
+    lo = lo.cwiseMin(v);
+    hi = hi.cwiseMax(v);
+  }
+  const double reach = kPieceReach * (hi - lo).norm();
+  std::vector<geometry::ClosedMesh> pieces;
+  for (const std::string& name : b.contact) {
+    const fs::path piece_path = fs::path(base_dir) / name;
+    if (!fs::exists(piece_path)) throw InputError(scene.source, b.line, "contact piece not found: " + piece_path.string());
+    geometry::ClosedMesh piece = geometry::make_closed_mesh(read_stl(piece_path.string()), geometry::MeshOptions{},
+                                                            piece_path.string());
+    for (const auto& w : piece.warnings) scene.warnings.push_back(piece_path.string() + ": " + w);
+    for (const Vec3& v : piece.vertices) {
+      if ((v - v.cwiseMax(lo).cwiseMin(hi)).norm() > reach) {
+        throw InputError(piece_path.string(), 0, "contact piece reaches beyond its body's mesh " + path.string() +
+                                                     " (by more than 5 % of its size): another rock's piece, or other units?");
+      }
+    }
+    scene.files.push_back(piece_path.lexically_normal().string());
+    pieces.push_back(std::move(piece));
+  }
+  geometry::CompoundBody compound = geometry::build_compound(mesh, pieces, scene.density, geometry::MeshOptions{});
+  body.shape = std::move(compound.shape);
+  body.pieces = std::move(compound.pieces);
+}
+
 void build_bodies(scenario::Scene& scene, const std::vector<BlockSpec>& blocks,
                   const std::string& base_dir) {
   if (blocks.empty()) throw InputError(scene.source, 0, "the scene has no blocks");
   reject_repeated_stl(blocks, base_dir, scene.source);
   bool any_free = false, any_fixed = false;
+  std::set<std::string> names;
   for (const auto& b : blocks) {
     const fs::path path = fs::path(base_dir) / b.stl;
     if (!fs::exists(path)) {
@@ -138,9 +181,14 @@ void build_bodies(scenario::Scene& scene, const std::vector<BlockSpec>& blocks,
     const geometry::TriangleSoup soup = read_stl(path.string());
     scene.files.push_back(path.lexically_normal().string());
     dynamics::BodyDef body;
-    body.name = fs::path(b.stl).stem().string();
+    body.name = b.name.empty() ? fs::path(b.stl).stem().string() : b.name;
+    if (!names.insert(body.name).second) throw InputError(scene.source, b.line, "two blocks are named '" + body.name + "'");
     std::vector<std::string> mesh_warnings;
-    body.shape = geometry::build_block(soup, scene.density, geometry::MeshOptions{}, path.string(), &mesh_warnings);
+    if (b.contact.empty()) {
+      body.shape = geometry::build_block(soup, scene.density, geometry::MeshOptions{}, path.string(), &mesh_warnings);
+    } else {
+      build_compound_body(body, soup, path, b, base_dir, scene, mesh_warnings);
+    }
     for (const auto& w : mesh_warnings) scene.warnings.push_back(path.string() + ": " + w);
     check_block_size(body, path.string());
     body.fixed = b.fixed;
@@ -267,13 +315,25 @@ scenario::Scene load_toml_scene(const std::string& path) {
     for (const auto& node : *arr) {
       const auto* t = node.as_table();
       if (!t) throw InputError(path, line_of(node), "each [[block]] must be a table");
-      reject_unknown(*t, {"stl", "fixed", "velocity"}, path, "[[block]]");
+      reject_unknown(*t, {"stl", "name", "contact", "fixed", "velocity"}, path, "[[block]]");
       BlockSpec b;
       b.line = line_of(node);
       const auto stl = (*t)["stl"].value<std::string>();
       if (!stl) throw InputError(path, b.line, "[[block]] needs stl = \"FILE.stl\"");
       b.stl = *stl;
       b.fixed = optional_bool(*t, "fixed", false, path);
+      b.name = optional_string(*t, "name", "", path);
+      if (const auto* node_contact = t->get("contact")) {
+        const auto* list = node_contact->as_array();
+        if (!list || list->empty()) {
+          throw InputError(path, line_of(*node_contact), "contact must be a non-empty list of STL files of convex pieces");
+        }
+        for (const auto& item : *list) {
+          const auto piece = item.value<std::string>();
+          if (!piece || piece->empty()) throw InputError(path, line_of(item), "contact lists STL file names (strings)");
+          b.contact.push_back(*piece);
+        }
+      }
       if (const auto* v = (*t)["velocity"].as_array()) {
         if (v->size() != 3) throw InputError(path, line_of(*v), "velocity must have 3 components (m/s)");
         for (int k = 0; k < 3; ++k) {

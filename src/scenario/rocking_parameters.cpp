@@ -12,12 +12,35 @@ namespace {
 
 using P2 = geometry::Point2;
 
-// Largest signed distance of a world point outside a fixed block's face planes (< 0 inside).
+// The convex pieces of a body's contact shape (its shape for a plain block).
+std::vector<const geometry::ConvexPolyhedron*> contact_pieces(const dynamics::BodyDef& b) {
+  std::vector<const geometry::ConvexPolyhedron*> out;
+  if (b.pieces.empty()) out.push_back(&b.shape);
+  for (const auto& piece : b.pieces) out.push_back(&piece);
+  return out;
+}
+
+// Signed distance of a world point outside a block's contact shape, by face planes (< 0 inside):
+// the smallest over its pieces of the largest over each piece's faces.
 double outside_distance(const dynamics::BodyDef& b, const Vec3& world_point) {
   const Vec3 q = b.orientation.conjugate() * (world_point - b.position);
-  double most = -1e300;
-  for (const auto& f : b.shape.faces) most = std::max(most, f.normal.dot(q) - f.offset);
-  return most;
+  double least = 1e300;
+  for (const auto* piece : contact_pieces(b)) {
+    double most = -1e300;
+    for (const auto& f : piece->faces) most = std::max(most, f.normal.dot(q) - f.offset);
+    least = std::min(least, most);
+  }
+  return least;
+}
+
+// World positions of the vertices of a block's contact pieces.
+std::vector<Vec3> contact_vertices(const dynamics::BodyDef& b) {
+  const Mat3 r = b.orientation.toRotationMatrix();
+  std::vector<Vec3> out;
+  for (const auto* piece : contact_pieces(b)) {
+    for (const auto& v : piece->vertices) out.push_back(r * v + b.position);
+  }
+  return out;
 }
 
 // Height of the support polygon's boundary at `offset` from the centroid's projection: linear
@@ -52,8 +75,7 @@ std::optional<RockingParameters> rocking_parameters(const Scene& scene, double c
   if (!block) return std::nullopt;
   const Mat3 r = block->orientation.toRotationMatrix();
   std::vector<Vec3> support;
-  for (const auto& v : block->shape.vertices) {
-    const Vec3 w = r * v + block->position;
+  for (const Vec3& w : contact_vertices(*block)) {
     for (const auto& b : scene.bodies) {
       if (b.fixed && outside_distance(b, w) <= contact_tolerance) {
         support.push_back(w);
@@ -64,9 +86,7 @@ std::optional<RockingParameters> rocking_parameters(const Scene& scene, double c
   // a block can also stand on a smaller pedestal top, whose corners then bound the support
   for (const auto& b : scene.bodies) {
     if (!b.fixed) continue;
-    const Mat3 rb = b.orientation.toRotationMatrix();
-    for (const auto& v : b.shape.vertices) {
-      const Vec3 w = rb * v + b.position;
+    for (const Vec3& w : contact_vertices(b)) {
       if (outside_distance(*block, w) <= contact_tolerance) support.push_back(w);
     }
   }

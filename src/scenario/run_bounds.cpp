@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <string>
 
 #include "rigid/contact/gjk.hpp"
@@ -17,25 +18,42 @@ std::string seconds(double s) {
   return buf;
 }
 
-std::vector<Vec3> world_vertices(const dynamics::BodyDef& body, const Mat3& rotation) {
+std::vector<Vec3> world_vertices(const geometry::ConvexPolyhedron& shape, const Mat3& rotation, const Vec3& position) {
   std::vector<Vec3> out;
-  out.reserve(body.shape.vertices.size());
-  for (const Vec3& v : body.shape.vertices) out.push_back(rotation * v + body.position);
+  out.reserve(shape.vertices.size());
+  for (const Vec3& v : shape.vertices) out.push_back(rotation * v + position);
   return out;
 }
 
-// Penetration depth of two placed blocks (m; <= 0 when apart), by the contact module's overlap step.
+// The convex pieces that make a body's contact shape (its shape alone for a plain block).
+std::vector<const geometry::ConvexPolyhedron*> contact_pieces(const dynamics::BodyDef& body) {
+  std::vector<const geometry::ConvexPolyhedron*> out;
+  if (body.pieces.empty()) out.push_back(&body.shape);
+  for (const auto& piece : body.pieces) out.push_back(&piece);
+  return out;
+}
+
+// Penetration depth of two placed blocks (m; <= 0 when apart), by the contact module's overlap
+// step: the deepest over their contact pieces (the outline of a compound body is no contact shape:
+// a rock in a hollow of its pedestal lies inside the pedestal's hull).
 double start_overlap(const dynamics::BodyDef& a, const dynamics::BodyDef& b) {
   const Vec3 between = b.position - a.position;
   if (between.norm() > a.shape.bounding_radius + b.shape.bounding_radius) return 0;
   const Mat3 ra = a.orientation.normalized().toRotationMatrix();
   const Mat3 rb = b.orientation.normalized().toRotationMatrix();
-  const std::vector<Vec3> va = world_vertices(a, ra), vb = world_vertices(b, rb);
-  const contact::PlacedHull ha{&a.shape, va.data(), Vec3::Zero(), ra, a.position};
-  const contact::PlacedHull hb{&b.shape, vb.data(), Vec3::Zero(), rb, b.position};
-  contact::SupportHints hints;
   const Vec3 guess = between.norm() > 0 ? Vec3(between.normalized()) : Vec3::UnitZ();
-  return contact::find_common_plane(ha, hb, guess, hints).overlap;
+  double deepest = -std::numeric_limits<double>::infinity();
+  for (const auto* pa : contact_pieces(a)) {
+    const std::vector<Vec3> va = world_vertices(*pa, ra, a.position);
+    for (const auto* pb : contact_pieces(b)) {
+      const std::vector<Vec3> vb = world_vertices(*pb, rb, b.position);
+      const contact::PlacedHull ha{pa, va.data(), Vec3::Zero(), ra, a.position};
+      const contact::PlacedHull hb{pb, vb.data(), Vec3::Zero(), rb, b.position};
+      contact::SupportHints hints;
+      deepest = std::max(deepest, contact::find_common_plane(ha, hb, guess, hints).overlap);
+    }
+  }
+  return deepest;
 }
 
 }  // namespace

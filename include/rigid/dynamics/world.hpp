@@ -17,6 +17,11 @@ namespace rigid::dynamics {
 struct BodyDef {
   std::string name;
   geometry::ConvexPolyhedron shape;  ///< body frame: centroid origin, principal axes
+  /// A compound body's contact shape: convex pieces in `shape`'s body frame (a scanned rock's
+  /// hull or convex decomposition, geometry::build_compound). Empty: the contact shape is `shape`.
+  /// With pieces, `shape` still gives the mass, the inertia and the outline (the pieces' convex
+  /// hull) that everything but contact uses (failure rule, bounds, trajectories).
+  std::vector<geometry::ConvexPolyhedron> pieces;
   bool fixed = false;                ///< true: a pedestal driven by the ground motion
   Vec3 position{0, 0, 0};            ///< world position of the centroid (unit: m)
   Quat orientation = Quat::Identity();  ///< body-to-world rotation
@@ -76,6 +81,13 @@ struct BodyState {
 /// Contact bookkeeping of one pair of blocks, kept across steps.
 struct PairContact {
   int a = 0, b = 0;                      ///< body indices, a < b
+  /// Which contact piece of each body (BodyDef::pieces; 0 for a body without pieces): a compound
+  /// body touches another through one pair per two pieces.
+  int piece_a = 0, piece_b = 0;
+  /// Penalty model: the weight of each subcontact's springs, min(1, 4 / n) for a patch of n
+  /// subcontacts counted by depth, n = sum (d_i / d_max)^1.5 (World::compute_forces): a patch is
+  /// never stiffer than four subcontacts at its deepest indentation.
+  double stiffness_weight = 1;
   Vec3 normal{0, 0, 1};                  ///< last common-plane normal, from a to b
   contact::SupportHints hints;
   double overlap = 0;                    ///< last overlap (unit: m); < 0 is a gap
@@ -167,8 +179,13 @@ class World {
   /// Sweeps the rigid contact solver needed in the last step, and whether it converged.
   const SolverResult& last_solve() const { return last_solve_; }
 
-  /// World positions of body i's vertices at the current time.
+  /// World positions of body i's vertices (of its shape: the outline of a compound body) at the
+  /// current time.
   const std::vector<Vec3>& world_vertices(int i) const { return world_vertices_[i]; }
+  /// The convex piece k of body i's contact shape (the shape itself for a body without pieces).
+  const geometry::ConvexPolyhedron& contact_piece(int i, int k) const {
+    return defs_[i].pieces.empty() ? defs_[i].shape : defs_[i].pieces[k];
+  }
   /// World angular velocity of body i (unit: rad/s).
   Vec3 angular_velocity(int i) const;
   /// Kinetic energy of the free blocks (unit: J).
@@ -206,6 +223,13 @@ class World {
 
  private:
   void update_world_vertices(int i);
+  /// World vertices of contact piece k of body i (body i's own for a body without pieces).
+  const Vec3* piece_vertices(int i, int k) const {
+    return defs_[i].pieces.empty() ? world_vertices_[i].data() : piece_vertices_[i][k].data();
+  }
+  /// Adds `shift` to every world vertex of body i (outline and pieces).
+  void shift_world_vertices(int i, const Vec3& shift);
+  void shift_world_vertices_xy(int i, double dx, double dy);
   void move_pedestals(double dt, const Vec3& ground_velocity);
   /// Whether the pair is too far apart to touch within `margin` (the bounding-sphere test and,
   /// with the distance skin, the travel since it was last found apart).
@@ -219,6 +243,7 @@ class World {
   std::vector<BodyDef> defs_;
   std::vector<BodyState> states_;
   std::vector<std::vector<Vec3>> world_vertices_;
+  std::vector<std::vector<std::vector<Vec3>>> piece_vertices_;  ///< [body][piece]: compound bodies only
   std::vector<Mat3> rotations_;
   std::vector<Vec3> forces_, torques_, contact_force_;
   std::vector<PairContact> pairs_;

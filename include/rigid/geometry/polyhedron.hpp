@@ -90,7 +90,10 @@ struct ConvexPolyhedron {
   double volume = 0;          ///< unit: m^3
   double mass = 0;            ///< unit: kg
   Vec3 inertia{0, 0, 0};      ///< principal moments, body frame (unit: kg m^2)
-  double bounding_radius = 0; ///< max |vertex| (unit: m)
+  double bounding_radius = 0; ///< max |vertex - bounding_centre| (unit: m)
+  /// Centre of the bounding sphere in the body frame (unit: m): the origin for a whole block, the
+  /// piece's own middle for a piece of a compound body (make_piece).
+  Vec3 bounding_centre{0, 0, 0};
   /// Pose of the body frame in the mesh frame: x_mesh = rotation * x_body + translation.
   Quat rotation = Quat::Identity();
   Vec3 translation{0, 0, 0};
@@ -103,6 +106,26 @@ ConvexPolyhedron make_polyhedron(const ClosedMesh& mesh, const MassProperties& p
 /// Convenience: soup -> checked mesh -> mass properties -> body-frame block.
 ConvexPolyhedron build_block(const TriangleSoup& soup, double density, const MeshOptions& options,
                              const std::string& source, std::vector<std::string>* warnings = nullptr);
+
+/// A convex piece of a compound body, in that body's frame (`body` gives the frame: its rotation
+/// and translation map body to mesh coordinates): `convex_mesh` is in mesh coordinates, like the
+/// body's own mesh. The piece keeps the body's origin and axes (its rotation and translation are
+/// the body's), has no mass of its own (volume only), and a bounding sphere about its own middle.
+ConvexPolyhedron make_piece(const ClosedMesh& convex_mesh, const ConvexPolyhedron& body, const MeshOptions& options);
+
+/// A rigid body whose mass properties come from a closed mesh of any shape (`mesh`, e.g. a
+/// scanned rock; never its hull) and whose contact shape is a set of convex pieces in the same
+/// coordinates (a convex hull or a convex decomposition of the mesh).
+struct CompoundBody {
+  /// Mass properties of `mesh`; the outline (the convex hull of every piece's vertices) as
+  /// geometry, in the body frame of the mesh's centroid and principal axes.
+  ConvexPolyhedron shape;
+  std::vector<ConvexPolyhedron> pieces;  ///< contact pieces, in shape's body frame
+};
+
+/// Builds a CompoundBody. Throws std::invalid_argument for an empty piece list or bad density.
+CompoundBody build_compound(const ClosedMesh& mesh, const std::vector<ClosedMesh>& convex_pieces, double density,
+                            const MeshOptions& options);
 
 /// Triangle soup of a convex hull of points (quickhull-style incremental hull), for building
 /// synthetic models and tests. Throws std::invalid_argument for fewer than 4 non-coplanar points.
