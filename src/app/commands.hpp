@@ -11,6 +11,7 @@ void register_motion_command(CLI::App& app);
 void register_bench_command(CLI::App& app);
 void register_model_command(CLI::App& app);
 void add_library_subcommand(CLI::App& model_command);
+void add_import_subcommand(CLI::App& model_command);
 void register_campaign_command(CLI::App& app);
 void register_plot_command(CLI::App& app);
 void register_study_command(CLI::App& app);

@@ -69,6 +69,7 @@ void register_model_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("model", "Generate model files");
   cmd->require_subcommand(1);
   add_library_subcommand(*cmd);
+  add_import_subcommand(*cmd);
   auto o = std::make_shared<BlockModelOptions>();
   CLI::App* block = cmd->add_subcommand("block", "A rectangular block on a pedestal (STL, model file, TOML scene)");
   block->add_option("--height", o->height, "Block height (m)")->capture_default_str();

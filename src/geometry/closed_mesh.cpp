@@ -297,6 +297,21 @@ void check_convex(const ClosedMesh& mesh, double tolerance, const std::string& s
 
 }  // namespace
 
+std::vector<std::size_t> drop_collapsed_facets(TriangleSoup& soup) {
+  std::vector<std::size_t> dropped;
+  std::size_t kept = 0;
+  for (std::size_t f = 0; f < soup.size(); ++f) {
+    const Triangle& t = soup[f];
+    if (t.a == t.b || t.b == t.c || t.c == t.a) {
+      dropped.push_back(f);
+      continue;
+    }
+    soup[kept++] = t;
+  }
+  soup.resize(kept);
+  return dropped;
+}
+
 std::vector<std::array<int, 3>> triangle_neighbors(const ClosedMesh& mesh) {
   const auto nv = static_cast<long long>(mesh.vertices.size());
   for (const auto& t : mesh.triangles) {
@@ -385,9 +400,19 @@ ClosedMesh make_closed_mesh(const TriangleSoup& soup, const MeshOptions& options
       const Vec3& a = v[mesh.triangles[f][i]];
       const Vec3& b = v[mesh.triangles[f][(i + 1) % 3]];
       if (n == 1) {
+        // a hole: name its facets (the first few of every open edge's facets), so it can be found
+        std::size_t open = 0;
+        std::string facets;
+        for (std::size_t g = 0; g < soup.size(); ++g) {
+          for (int j = 0; j < 3; ++j) {
+            if (adj.count[g * 3 + j] != 1) continue;
+            if (open < 8) facets += (open ? ", " : "") + std::to_string(g);
+            ++open;
+          }
+        }
         fail(source, f,
-             "edge " + fmt(a) + "-" + fmt(b) +
-                 " belongs to no other facet (open edge): the mesh is not closed");
+             "edge " + fmt(a) + "-" + fmt(b) + " belongs to no other facet (open edge): the mesh is not closed; " +
+                 std::to_string(open) + " open edges, at facets " + facets + (open > 8 ? ", ..." : ""));
       }
       fail(source, f,
            "edge " + fmt(a) + "-" + fmt(b) + " is shared by " + std::to_string(n) +

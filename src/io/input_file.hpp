@@ -11,6 +11,8 @@ namespace rigid::io {
 /// (STL meshes, AT2 records; a 1e6-facet binary STL is 50 MB).
 inline constexpr std::uintmax_t kMaxTextFileBytes = std::uintmax_t(64) << 20;
 inline constexpr std::uintmax_t kMaxBulkFileBytes = std::uintmax_t(256) << 20;
+/// Scans (rigid model import): an ASCII PLY or OBJ of a few million facets.
+inline constexpr std::uintmax_t kMaxMeshFileBytes = std::uintmax_t(512) << 20;
 
 /// Throws rigid::InputError(path, 0, ...) unless path is an existing regular file of at most
 /// max_bytes: "cannot open file: not found", "is a directory", "not a regular file (a FIFO, device or socket)",

@@ -46,6 +46,11 @@ struct ClosedMesh {
 ClosedMesh make_closed_mesh(const TriangleSoup& soup, const MeshOptions& options,
                             const std::string& source);
 
+/// Removes the facets that have two corners at exactly the same point (a scanner's duplicated
+/// vertex: the facet has no area, and welding would make it a degenerate triangle) and returns
+/// their indices in the soup as given.
+std::vector<std::size_t> drop_collapsed_facets(TriangleSoup& soup);
+
 /// Triangle adjacency of a mesh: entry [t][i] is the triangle across the edge from vertex i to
 /// vertex (i+1)%3 of triangle t, or -1 when that edge is not shared by exactly two triangles
 /// running it in opposite directions. Throws std::invalid_argument for an out-of-range index.
