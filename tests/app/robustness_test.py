@@ -178,11 +178,38 @@ def make_inputs(d):
 
 # --- cases ----------------------------------------------------------------------------------------
 
+CUBE_V = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)]
+CUBE_F = [(1, 3, 2), (1, 4, 3), (5, 6, 7), (5, 7, 8), (1, 2, 6), (1, 6, 5), (2, 3, 7), (2, 7, 6), (3, 4, 8), (3, 8, 7),
+          (4, 1, 5), (4, 5, 8)]
+
+
+def obj_text(vertices, faces):
+    return "".join("v %r %r %r\n" % v for v in vertices) + "".join("f %d %d %d\n" % f for f in faces)
+
+
+def make_scan_inputs(d):
+    """OBJ scans for rigid model import: a good cube (0.5 m) and one of each defect."""
+    half = [(0.5 * x, 0.5 * y, 0.5 * z) for x, y, z in CUBE_V]
+    write(d, "cube.obj", obj_text(half, CUBE_F))
+    write(d, "open.obj", obj_text(half, CUBE_F[:-1]))  # a hole: facet 11 missing
+    # a second cube sharing the first's edge 2-3 (x = 0.5, y = 0.5..): that edge has four facets
+    other = [(x + 0.5, y + 0.5, z) for x, y, z in half]
+    write(d, "nonmanifold.obj", obj_text(half + other, CUBE_F + [tuple(i + 8 for i in f) for f in CUBE_F]))
+    # the top corner above (0, 0) pushed down through the bottom face: its facets cross the base
+    folded = list(half)
+    folded[4] = (0.35, 0.3, -0.2)
+    write(d, "folded.obj", obj_text(folded, CUBE_F))
+    write(d, "flat.obj", obj_text([(0, 0, 0), (1, 0, 0), (0, 1, 0)], [(1, 2, 3), (1, 3, 2)]))
+    write(d, "nan.obj", obj_text(half, CUBE_F).replace("v 0.5 0.5 0.5", "v nan 0.5 0.5"))
+    write(d, "rock.xyz", "this is no mesh\n")
+
+
 def cases(d, sphere_facets):
     motion = ["--motion", "stochastic_s1-X.AT2", "--target-pga", "0.2"]
     demo = ["run", "block.toml"] + motion
     camp = lambda job, *extra: ["campaign", job, "--out", os.path.join(d, job + ".h5")] + list(extra)
     e = "error"
+    imp = lambda scan, *extra: ["model", "import", scan, "--out", os.path.join(d, "imported", "rock")] + list(extra)
     return [
         # wrong answers with exit 0
         ("--dt 0.05 (step far above the contact time scale)", demo + ["--dt", "0.05"], e, ["--dt", "exceeds"]),
@@ -233,6 +260,18 @@ def cases(d, sphere_facets):
         ("window past the record in a job", camp("window.job.toml", "--dry-run"), e, ["window.job.toml:", "window"]),
         ("window past the record on the command line", demo + ["--start", "100"], e, ["--start", "window"]),
         ("AT2 path that is a directory", ["run", "block.toml", "--motion", "dir-X.AT2"], e, ["dir-X.AT2", "directory"]),
+        # scans (rigid model import, issue 13)
+        ("import a good cube", imp("cube.obj"), "ok", []),
+        ("import an open mesh", imp("open.obj"), e, ["open.obj", "open edge", "3 open edges, at facets"]),
+        ("import a non-manifold edge", imp("nonmanifold.obj"), e, ["nonmanifold.obj", "non-manifold"]),
+        ("import a self-intersection", imp("folded.obj"), e, ["folded.obj", "crosses facet"]),
+        ("import a mesh with no volume", imp("flat.obj"), e, ["flat.obj", "volume"]),
+        ("import NaN coordinates", imp("nan.obj"), e, ["nan.obj", "NaN"]),
+        ("import an unknown format", imp("rock.xyz"), e, ["rock.xyz"]),
+        ("import a missing file", imp("none.obj"), e, ["none.obj", "not found"]),
+        ("import --up w", imp("cube.obj", "--up", "w"), e, ["--up"]),
+        ("import --scale -1", imp("cube.obj", "--scale", "-1"), e, ["--scale"]),
+        ("import --contact-shape blob", imp("cube.obj", "--contact-shape", "blob"), e, ["--contact-shape"]),
     ]
 
 
@@ -272,6 +311,7 @@ def main():
     start = time.monotonic()
     with tempfile.TemporaryDirectory(prefix="rigid_robustness_") as d:
         facets = make_inputs(d)
+        make_scan_inputs(d)
         all_cases = cases(d, facets)
         failed = [c[0] for c in all_cases if not check(*c, d)]
     print("%d cases, %d failed, %.1f s" % (len(all_cases), len(failed), time.monotonic() - start))
