@@ -102,6 +102,12 @@ case "$action" in
     # The main job: a small real campaign on the bundled models and generated waveforms, on two
     # ranks. It resumes if interrupted (run the command again); delete out/ to start over.
     rigid="$build_dir/bin/rigid"
+    # a real scanned rock (../shared/scans, beside the checkout, never in the repository): imported
+    # when present, and the demo's optional object sp1_rock then runs too
+    scan=../shared/scans/sp1_rock.obj
+    if [[ -f $scan ]]; then
+      "$rigid" model import "$scan" --out models/scans/sp1_rock/sp1_rock --flatten-base 0.005
+    fi
     "$rigid" campaign jobs/demo.toml --dry-run
     mpirun --oversubscribe -np 2 "$rigid" campaign jobs/demo.toml
     # what people look at: fragility maps per object and the scenario table (objects x records)

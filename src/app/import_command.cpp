@@ -219,9 +219,9 @@ void import_scan(const ImportOptions& o) {
   for (const auto& w : warnings) std::fprintf(stderr, "rigid: warning: %s\n", w.c_str());
   std::printf("%s: %zu facets, closed, manifold, oriented outward, no self-intersection\n", o.scan.c_str(),
               rock.triangles.size());
+  for (const auto& note : notes) std::printf("%s\n", note.c_str());
   std::printf("%-9s %13s %16s %7s %9s %22s\n", "body", "mesh m^3", "contact m^3", "pieces", "vertices",
               "budget Hausdorff m");
-  for (const auto& note : notes) std::printf("%s\n", note.c_str());
   for (const auto& r : reports) {
     std::printf("%-9s %13.6f %9.6f (%+5.1f%%) %7zu %9zu %22.4f\n", r.body.c_str(), r.mesh_volume, r.contact_volume,
                 100 * (r.contact_volume / r.mesh_volume - 1), r.pieces.size(), r.vertices, r.reduction);
