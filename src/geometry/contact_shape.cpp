@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <cmath>
 #include <limits>
+#include <queue>
 #include <stdexcept>
 
 namespace rigid::geometry {
@@ -36,14 +37,20 @@ double outside(const std::vector<Plane>& planes, const Vec3& p) {
   return most;
 }
 
-// The distinct points of a hull soup, in first-seen order.
+// The distinct points of a hull soup, sorted.
 std::vector<Vec3> hull_points(const TriangleSoup& hull) {
   std::vector<Vec3> out;
+  out.reserve(3 * hull.size());
   for (const auto& t : hull) {
-    for (const Vec3* p : {&t.a, &t.b, &t.c}) {
-      if (std::find(out.begin(), out.end(), *p) == out.end()) out.push_back(*p);
-    }
+    out.push_back(t.a);
+    out.push_back(t.b);
+    out.push_back(t.c);
   }
+  auto less = [](const Vec3& a, const Vec3& b) {
+    return a.x() != b.x() ? a.x() < b.x() : a.y() != b.y() ? a.y() < b.y() : a.z() < b.z();
+  };
+  std::sort(out.begin(), out.end(), less);
+  out.erase(std::unique(out.begin(), out.end()), out.end());
   return out;
 }
 
@@ -189,15 +196,17 @@ double soup_volume(const TriangleSoup& soup) {
 
 ConvexPiece reduced_hull(std::span<const Vec3> points, int max_vertices, double tolerance) {
   if (max_vertices < 4) throw std::invalid_argument("reduced_hull: the vertex budget must be at least 4");
-  const TriangleSoup full = convex_hull(std::vector<Vec3>(points.begin(), points.end()));
-  const std::vector<Vec3> corners = hull_points(full);
   ConvexPiece piece;
-  if (int(corners.size()) <= max_vertices) {
-    piece.soup = full;
-    piece.vertices = corners.size();
-    piece.volume = soup_volume(full);
+  if (std::size_t(max_vertices) >= points.size()) {
+    piece.soup = convex_hull(std::vector<Vec3>(points.begin(), points.end()));
+    piece.vertices = hull_points(piece.soup).size();
+    piece.volume = soup_volume(piece.soup);
     return piece;
   }
+  // no full hull first (an incremental hull of a million scan points, most of them on it, is the
+  // slow part): the greedy runs over all points; the farthest point outside is always a corner of
+  // the full hull, and when none is left outside, the hull of the kept points is the full hull
+  const std::vector<Vec3> corners(points.begin(), points.end());
   std::vector<Vec3> kept;
   for (int i : extreme_simplex(corners)) kept.push_back(corners[i]);
   // the base first: the corners of the hull's lowest plane are the support polygon, which decides
@@ -223,21 +232,31 @@ ConvexPiece reduced_hull(std::span<const Vec3> points, int max_vertices, double 
     }
   }
   TriangleSoup hull = convex_hull(kept);
-  while (true) {
-    const std::vector<Plane> planes = planes_of(hull);
-    double farthest = 0;
-    int which = -1;
-    for (int i = 0; i < int(corners.size()); ++i) {
-      const double d = outside(planes, corners[i]);
-      if (d > farthest) {
-        farthest = d;
-        which = i;
-      }
+  // lazy greedy: a corner's distance outside the hull only shrinks as the hull grows, so a stale
+  // distance is an upper bound, and the corner on top of the heap is the farthest once its
+  // distance, brought up to date, still tops the next one (a few updates per step, not all)
+  std::vector<Plane> planes = planes_of(hull);
+  std::priority_queue<std::pair<double, int>> queue;
+  for (int i = 0; i < int(corners.size()); ++i) {
+    const double d = outside(planes, corners[i]);
+    if (d > 0) queue.push({d, i});
+  }
+  while (!queue.empty()) {
+    auto [bound, i] = queue.top();
+    queue.pop();
+    const double d = outside(planes, corners[i]);
+    if (d <= 0) continue;
+    if (!queue.empty() && d < queue.top().first) {
+      queue.push({d, i});
+      continue;
     }
-    piece.reduction = farthest;
-    if (which < 0 || farthest <= tolerance || int(kept.size()) >= max_vertices) break;
-    kept.push_back(corners[which]);
+    // corners[i] is the farthest outside: the Hausdorff distance of the hull as it stands
+    piece.reduction = d;
+    if (d <= tolerance || int(kept.size()) >= max_vertices) break;
+    kept.push_back(corners[i]);
     hull = convex_hull(kept);
+    planes = planes_of(hull);
+    piece.reduction = 0;
   }
   piece.soup = hull;
   piece.vertices = hull_points(hull).size();
