@@ -66,7 +66,21 @@ void inspect(const std::string& path, bool json) {
       j["centroid_m"] = vec_json(b.position);
       j["principal_moments_kg_m2"] = vec_json(s.inertia);
       j["bounding_radius_m"] = s.bounding_radius;
-      j["checks"] = io::Json::array({"closed", "oriented", "convex", "finite"});
+      if (b.pieces.empty()) {
+        j["checks"] = io::Json::array({"closed", "oriented", "convex", "finite"});
+      } else {
+        // a compound body: the mesh gives the mass properties, its convex pieces the contact
+        double contact_volume = 0;
+        long contact_vertices = 0;
+        for (const auto& piece : b.pieces) {
+          contact_volume += piece.volume;
+          contact_vertices += long(piece.vertices.size());
+        }
+        j["contact_pieces"] = long(b.pieces.size());
+        j["contact_volume_m3"] = contact_volume;
+        j["contact_vertices"] = contact_vertices;
+        j["checks"] = io::Json::array({"closed", "oriented", "manifold", "finite", "pieces convex"});
+      }
       // a single free block resting on its pedestals: its rocking parameters (physics.md §2)
       if (!b.fixed && rocking) j["rocking"] = rocking_json(*rocking);
       std::printf("%s\n", io::json_line(j).c_str());
@@ -76,7 +90,16 @@ void inspect(const std::string& path, bool json) {
       std::printf("  volume %.6g m^3, mass %.6g kg\n", s.volume, s.mass);
       std::printf("  centroid (%.6g, %.6g, %.6g) m\n", b.position.x(), b.position.y(), b.position.z());
       std::printf("  principal moments %.6g %.6g %.6g kg m^2\n", s.inertia.x(), s.inertia.y(), s.inertia.z());
-      std::printf("  checks passed: closed, consistently oriented, convex, finite\n");
+      if (b.pieces.empty()) {
+        std::printf("  checks passed: closed, consistently oriented, convex, finite\n");
+      } else {
+        double contact_volume = 0;
+        for (const auto& piece : b.pieces) contact_volume += piece.volume;
+        std::printf("  compound body: contact shape of %zu convex pieces, %.6g m^3 (the mesh: %.6g m^3); the outline "
+                    "above is their hull\n",
+                    b.pieces.size(), contact_volume, s.volume);
+        std::printf("  checks passed: mesh closed, consistently oriented, manifold, finite; every piece convex\n");
+      }
     }
   }
   if (!json) {
