@@ -84,6 +84,19 @@ class AnalysisReadyCube(unittest.TestCase):
                     p = ds["probability"].sel(scale=scales[-1], record=records[0]).item()
                     self.assertTrue(same(p, g["probability"][0, -1]))
 
+    def test_rocking_parameters_travel_with_each_single_block_object(self):
+        # rectangular blocks: the weakest of the 16 directions is across the width, where the
+        # per-azimuth alpha equals alpha itself; the support polygon is the base's four corners
+        for name in self.objects:
+            with self.subTest(object=name), xr.open_dataset(self.cube, group=f"objects/{name}", engine="h5netcdf") as ds:
+                if "alpha_rad" not in ds.attrs:
+                    continue
+                alphas = np.asarray(ds.attrs["alpha_by_azimuth_rad"])
+                self.assertEqual(len(alphas), 16)
+                self.assertAlmostEqual(alphas.min(), ds.attrs["alpha_rad"], places=12)
+                self.assertEqual(len(ds.attrs["support_polygon_m"]), 8)
+                self.assertGreater(ds.attrs["rocking_radius_m"], 0)
+
     def test_export_cells_round_trips_through_pandas(self):
         r = subprocess.run([RIGID, "export", "cells", self.cube, "--csv"], capture_output=True)
         self.assertEqual(r.returncode, 0, r.stderr)
