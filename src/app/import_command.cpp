@@ -2,6 +2,8 @@
 // checked mesh (mass properties), its contact shape (a reduced hull or a convex decomposition),
 // a pedestal, a settled state, and a report of what the contact shape costs in accuracy.
 #include <cmath>
+#include <cstring>
+#include <optional>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -12,6 +14,7 @@
 #include "commands.hpp"
 #include "rigid/core/error.hpp"
 #include "rigid/geometry/contact_shape.hpp"
+#include "rigid/geometry/mesh_split.hpp"
 #include "rigid/io/json.hpp"
 #include "rigid/io/mesh_import.hpp"
 #include "rigid/io/scene_file.hpp"
@@ -38,7 +41,15 @@ struct ImportOptions {
   double pedestal_margin = 0.02; // m
   double density = 2600;         // kg/m^3
   double flatten_base = 0;       // m: cut the base flat this far above its lowest point
+  double split_z = std::nan("");  // m: one scan of rock and pedestal, cut by the plane z = split_z
 };
+
+// A closed mesh from a soup the split made (both parts are closed by construction).
+geometry::ClosedMesh closed_part(const geometry::TriangleSoup& soup, const std::string& what) {
+  geometry::MeshOptions options;
+  options.require_convex = false;
+  return geometry::make_closed_mesh(soup, options, what);
+}
 
 geometry::TriangleSoup soup_of(const geometry::ClosedMesh& mesh) {
   geometry::TriangleSoup soup;
@@ -133,6 +144,20 @@ void import_scan(const ImportOptions& o) {
   if (name.empty()) throw InputError("", 0, "--out needs DIR/NAME");
   std::vector<std::string> warnings, notes;
   geometry::ClosedMesh rock = io::read_scan(o.scan, o.scale, rotation, warnings);
+  const std::size_t scan_facets = rock.triangles.size();
+  std::optional<geometry::ClosedMesh> split_pedestal;
+  if (!std::isnan(o.split_z)) {
+    if (o.pedestal != "box") throw InputError("", 0, "give either --split-z or --pedestal FILE, not both");
+    geometry::SplitMesh parts;
+    try {
+      parts = geometry::split_by_plane(rock, o.split_z);
+    } catch (const std::invalid_argument& e) {
+      throw InputError(o.scan, 0, std::string("--split-z: ") + (std::strchr(e.what(), ':') + 2));
+    }
+    if (parts.level != o.split_z) notes.push_back("split at z = " + std::to_string(parts.level) + " m (moved off a vertex)");
+    rock = closed_part(parts.above, o.scan + " above z = " + std::to_string(parts.level));
+    split_pedestal = closed_part(parts.below, o.scan + " below z = " + std::to_string(parts.level));
+  }
   const double raw_volume = geometry::mass_properties(rock, 1.0).volume;
   if (o.flatten_base > 0) {
     const std::size_t moved = geometry::cut_base_flat(rock, o.flatten_base);
@@ -161,7 +186,12 @@ void import_scan(const ImportOptions& o) {
   const fs::path dir = out.parent_path();
   std::string blocks;
   std::vector<ContactReport> reports{rock_report};
-  if (o.pedestal == "box") {
+  if (split_pedestal) {
+    geometry::ClosedMesh& pedestal = *split_pedestal;
+    for (Vec3& v : pedestal.vertices) v += shift;
+    reports.push_back(contact_shape("pedestal", pedestal, o));
+    blocks += write_body(dir, name, "pedestal", pedestal, reports.back(), true) + "\n";
+  } else if (o.pedestal == "box") {
     const double depth = std::max(0.2, 0.25 * (hi.z() - lo.z()));
     const Vec3 half = 0.5 * (hi - lo);
     const std::string file = name + "_pedestal.stl";
@@ -218,7 +248,7 @@ void import_scan(const ImportOptions& o) {
 
   for (const auto& w : warnings) std::fprintf(stderr, "rigid: warning: %s\n", w.c_str());
   std::printf("%s: %zu facets, closed, manifold, oriented outward, no self-intersection\n", o.scan.c_str(),
-              rock.triangles.size());
+              scan_facets);
   for (const auto& note : notes) std::printf("%s\n", note.c_str());
   std::printf("%-9s %13s %16s %7s %9s %22s\n", "body", "mesh m^3", "contact m^3", "pieces", "vertices",
               "budget Hausdorff m");
@@ -256,6 +286,9 @@ void add_import_subcommand(CLI::App& model_command) {
   cmd->add_option("--max-pieces", o->max_pieces, "decompose: at most this many pieces")->capture_default_str();
   cmd->add_option("--pedestal", o->pedestal, "box (a fixed box under the rock) or a scan of the pedestal (same units and axes)")
       ->capture_default_str();
+  cmd->add_option("--split-z", o->split_z,
+                  "One scan of rock and pedestal: the part above the plane z = Z (m, after --scale and --up) is "
+                  "the rock, the part below its pedestal");
   cmd->add_option("--pedestal-margin", o->pedestal_margin, "box: overhang beyond the rock's footprint (m)")->capture_default_str();
   cmd->add_option("--flatten-base", o->flatten_base,
                   "Cut the base flat this far above its lowest point (m): a scan's rough base otherwise rests on its "

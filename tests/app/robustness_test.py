@@ -271,6 +271,8 @@ def cases(d, sphere_facets):
         ("import a missing file", imp("none.obj"), e, ["none.obj", "not found"]),
         ("import --up w", imp("cube.obj", "--up", "w"), e, ["--up"]),
         ("import --scale -1", imp("cube.obj", "--scale", "-1"), e, ["--scale"]),
+        ("import --split-z above the rock", imp("cube.obj", "--split-z", "3"), e, ["cube.obj", "--split-z", "misses"]),
+        ("import a good cube split in two", imp("cube.obj", "--split-z", "0.2"), "ok", []),
         ("import --contact-shape blob", imp("cube.obj", "--contact-shape", "blob"), e, ["--contact-shape"]),
     ]
 

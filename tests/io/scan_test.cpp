@@ -10,6 +10,7 @@
 #include <filesystem>
 
 #include "rigid/geometry/contact_shape.hpp"
+#include "rigid/geometry/mesh_split.hpp"
 #include "rigid/geometry/polyhedron.hpp"
 #include "rigid/io/mesh_import.hpp"
 
@@ -79,6 +80,20 @@ TEST(Scan, BothTessellationsImportWithTheirOwnVolume) {
               obj_props.principal_moments[1], obj_props.principal_moments[2], ply_props.principal_moments[0],
               ply_props.principal_moments[1], ply_props.principal_moments[2]);
   EXPECT_EQ(geometry::find_self_intersection(obj_mesh)[0], -1);
+}
+
+TEST(Scan, SplitByAPlaneKeepsEveryCubicMetre) {
+  SKIP_WITHOUT_SCANS();
+  // one scan as rock and pedestal (rigid model import --split-z): 9 cm above the base
+  const auto mesh = checked(scan("sp1_rock.obj"));
+  const geometry::SplitMesh parts = geometry::split_by_plane(mesh, -0.2);
+  geometry::MeshOptions any;
+  any.require_convex = false;
+  const auto above = geometry::make_closed_mesh(parts.above, any, "above");
+  const auto below = geometry::make_closed_mesh(parts.below, any, "below");
+  const double whole = raw_signed_volume(io::read_mesh(scan("sp1_rock.obj")));
+  const double sum = geometry::mass_properties(above, 1).volume + geometry::mass_properties(below, 1).volume;
+  EXPECT_NEAR(sum / whole, 1.0, 1e-9);
 }
 
 TEST(Scan, ReducedHullKeepsItsHausdorffBound) {
