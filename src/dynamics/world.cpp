@@ -100,7 +100,15 @@ World::World(std::vector<BodyDef> bodies, const contact::ContactLaw& law,
     // position correction or a new patch would otherwise grow them mid-run)
     for (auto* bodies : {&solver_bodies_, &free_bodies_, &pseudo_bodies_, &solver_scratch_}) bodies->reserve(n);
     patches_.reserve(pairs_.size());
-    patch_pairs_.reserve(pairs_.size());
+    member_begin_.reserve(pairs_.size() + 1);
+    member_pairs_.reserve(pairs_.size());
+    has_compound_ = std::any_of(defs_.begin(), defs_.end(), [](const BodyDef& d) { return d.pieces.size() > 1; });
+    if (has_compound_) {
+      merged_patches_.reserve(pairs_.size());
+      merged_members_.reserve(pairs_.size());
+      merged_begin_.reserve(pairs_.size() + 1);
+      patch_taken_.reserve(pairs_.size());
+    }
   }
   dt_ = time_step(defs_, law_, settings_);
   refresh();

@@ -26,7 +26,8 @@ Mat3 world_inverse_inertia(const Mat3& rotation, const Vec3& inertia) {
 void World::collect_rigid_rows(double dt, const Vec3& ground_velocity) {
   rows_.clear();
   patches_.clear();
-  patch_pairs_.clear();
+  member_begin_.clear();
+  member_pairs_.clear();
   max_overlap_ = 0;
   const double restitution = law_.restitution;
   for (auto& p : pairs_) {
@@ -140,8 +141,86 @@ void World::collect_rigid_rows(double dt, const Vec3& ground_velocity) {
     patch.impulse = Eigen::Vector3d(patch.tangent1.dot(p.friction_impulse), patch.tangent2.dot(p.friction_impulse),
                                     patch.radius > 0 ? p.twist_impulse : 0.0);
     patches_.push_back(patch);
-    patch_pairs_.push_back(static_cast<int>(&p - pairs_.data()));
+    member_begin_.push_back(static_cast<int>(member_pairs_.size()));
+    member_pairs_.push_back(static_cast<int>(&p - pairs_.data()));
   }
+  member_begin_.push_back(static_cast<int>(member_pairs_.size()));
+  if (has_compound_) merge_piece_patches();
+}
+
+// Coulomb's law holds for the whole interface of two bodies, not per convex piece: a compound
+// body's pieces resting on one face would otherwise each carry a friction cone of its own, and the
+// solver could balance tangential impulses among them (opposite pushes that cancel) and let the
+// body slide or walk below mu g. Patches of the same two bodies with the same normal become one
+// patch: the rows of all, one friction and twist constraint about the centre of their closed
+// points.
+void World::merge_piece_patches() {
+  const std::size_t count = patches_.size();
+  patch_taken_.assign(count, 0);
+  merged_patches_.clear();
+  merged_rows_.clear();
+  merged_members_.clear();
+  merged_begin_.clear();
+  constexpr double kAligned = 1e-6;  // 1 - cos of the angle between normals of one face
+  for (std::size_t j = 0; j < count; ++j) {
+    if (patch_taken_[j]) continue;
+    FrictionPatch patch = patches_[j];
+    patch.first_row = static_cast<int>(merged_rows_.size());
+    merged_begin_.push_back(static_cast<int>(merged_members_.size()));
+    int members = 0;
+    for (std::size_t k = j; k < count; ++k) {
+      const FrictionPatch& other = patches_[k];
+      if (patch_taken_[k] || other.a != patch.a || other.b != patch.b) continue;
+      if (1.0 - other.normal.dot(patch.normal) > kAligned) continue;
+      patch_taken_[k] = 1;
+      ++members;
+      merged_rows_.insert(merged_rows_.end(), rows_.begin() + other.first_row,
+                          rows_.begin() + other.first_row + other.row_count);
+      for (int m = member_begin_[k]; m < member_begin_[k + 1]; ++m) merged_members_.push_back(member_pairs_[m]);
+    }
+    patch.row_count = static_cast<int>(merged_rows_.size()) - patch.first_row;
+    if (members > 1) {
+      const Vec3& pa = states_[patch.a].position;
+      const Vec3& n = patch.normal;
+      Vec3 centre = Vec3::Zero(), all = Vec3::Zero();
+      int closed = 0;
+      for (int r = patch.first_row; r < patch.first_row + patch.row_count; ++r) {
+        const ContactRow& row = merged_rows_[r];
+        all += pa + row.ra;
+        if (row.target_normal_velocity > -std::numeric_limits<double>::infinity()) {
+          centre += pa + row.ra;
+          ++closed;
+        }
+      }
+      centre = closed > 0 ? Vec3(centre / closed) : Vec3(all / double(patch.row_count));
+      double spread = 0;
+      for (int r = patch.first_row; r < patch.first_row + patch.row_count; ++r) {
+        const ContactRow& row = merged_rows_[r];
+        if (closed > 0 && row.target_normal_velocity == -std::numeric_limits<double>::infinity()) continue;
+        const Vec3 d = pa + row.ra - centre;
+        spread += (d - n.dot(d) * n).norm();
+      }
+      patch.radius = spread / (closed > 0 ? closed : double(patch.row_count));
+      patch.ra = centre - pa;
+      patch.rb = centre - states_[patch.b].position;
+      set_tangents(patch);
+      // each member pair keeps its share of the last merged impulse (see step_rigid)
+      Vec3 friction = Vec3::Zero();
+      double twist = 0;
+      for (int m = merged_begin_.back(); m < static_cast<int>(merged_members_.size()); ++m) {
+        friction += pairs_[merged_members_[m]].friction_impulse;
+        twist += pairs_[merged_members_[m]].twist_impulse;
+      }
+      patch.impulse = Eigen::Vector3d(patch.tangent1.dot(friction), patch.tangent2.dot(friction),
+                                      patch.radius > 0 ? twist : 0.0);
+    }
+    merged_patches_.push_back(patch);
+  }
+  merged_begin_.push_back(static_cast<int>(merged_members_.size()));
+  std::swap(rows_, merged_rows_);
+  std::swap(patches_, merged_patches_);
+  std::swap(member_pairs_, merged_members_);
+  std::swap(member_begin_, merged_begin_);
 }
 
 void World::step_rigid(double dt, const Vec3& ground_velocity_start, const Vec3& ground_velocity_end) {
@@ -221,18 +300,24 @@ void World::step_rigid(double dt, const Vec3& ground_velocity_start, const Vec3&
   Vec3 on_pedestals = Vec3::Zero();
   for (std::size_t j = 0; j < patches_.size(); ++j) {
     const FrictionPatch& patch = patches_[j];
-    PairContact* pair = &pairs_[patch_pairs_[j]];
     Vec3 impulse = Vec3::Zero();
     double total = 0;
-    for (int k = 0; k < patch.row_count; ++k) {
-      const ContactRow& r = rows_[patch.first_row + k];
-      pair->subs[k].normal_impulse = r.normal_impulse;
-      impulse += r.normal_impulse * r.normal;
-      total += r.normal_impulse;
+    int row = patch.first_row;
+    for (int m = member_begin_[j]; m < member_begin_[j + 1]; ++m) {
+      for (auto& sub : pairs_[member_pairs_[m]].subs) {
+        const ContactRow& r = rows_[row++];
+        sub.normal_impulse = r.normal_impulse;
+        impulse += r.normal_impulse * r.normal;
+        total += r.normal_impulse;
+      }
     }
-    pair->friction_impulse = patch.impulse.x() * patch.tangent1 + patch.impulse.y() * patch.tangent2;
-    pair->twist_impulse = patch.impulse.z();
-    impulse += pair->friction_impulse;
+    const Vec3 friction = patch.impulse.x() * patch.tangent1 + patch.impulse.y() * patch.tangent2;
+    const double members = member_begin_[j + 1] - member_begin_[j];
+    for (int m = member_begin_[j]; m < member_begin_[j + 1]; ++m) {
+      pairs_[member_pairs_[m]].friction_impulse = friction / members;
+      pairs_[member_pairs_[m]].twist_impulse = patch.impulse.z() / members;
+    }
+    impulse += friction;
     contact_force_[patch.b] += impulse / dt;
     contact_force_[patch.a] -= impulse / dt;
     if (defs_[patch.a].fixed) on_pedestals -= impulse;

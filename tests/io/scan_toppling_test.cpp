@@ -67,7 +67,7 @@ scenario::Scene rock_scene(const std::string& path, bool decompose) {
   for (const auto& p : pieces) convex.push_back(geometry::make_closed_mesh(p.soup, {}, "piece"));
   geometry::CompoundBody body = geometry::build_compound(mesh, convex, 2600, {});
   scenario::Scene scene;
-  scene.law.friction = 1.0;  // tipping, not sliding: the scan topples at about 0.17-0.4 g
+  scene.law.friction = 1.5;  // tipping, not sliding: the scan topples at 0.19-1.1 g
   const Vec3 half = 0.5 * (hi - lo);
   scene.bodies.push_back(scenario::box_body("pedestal", Vec3(-half.x() - 0.02, -half.y() - 0.02, -0.2),
                                             Vec3(half.x() + 0.02, half.y() + 0.02, 0), 2600, true));
@@ -91,23 +91,20 @@ TEST(ScanToppling, TwoTessellationsHullAndDecompositionToppleAlike) {
   const auto statics_ply = scenario::rocking_parameters(ply);
   ASSERT_TRUE(statics && statics_ply);
   EXPECT_NEAR(statics_ply->alpha / statics->alpha, 1.0, 0.01);
-  scenario::TiltTestSettings settings;
-  settings.max_acceleration = 0.8;
   for (int k = 0; k < 8; ++k) {
     const double azimuth = 2 * kPi * k / 8;
+    const double a_statics = mesh_statics.toppling(azimuth);
+    scenario::TiltTestSettings settings;
+    settings.max_acceleration = 1.25 * a_statics;  // what stands there is far from statics anyway
     const double a_obj = scenario::tilt_test(obj, azimuth, settings).acceleration;
     const double a_ply = scenario::tilt_test(ply, azimuth, settings).acceleration;
     const double a_pieces = scenario::tilt_test(pieces, azimuth, settings).acceleration;
-    const double a_statics = mesh_statics.toppling(azimuth);
     // the contact shape's own statics (rigid inspect, the cube): every 45 degrees is every other
     // one of the 16 directions
     const double a_shape = std::tan(statics->alpha_by_azimuth[2 * k]);
     std::printf("azimuth %3d deg: obj %.4f g, ply %.4f g, decomposed %.4f g; statics of the mesh %.4f g, of the hull %.4f g\n",
                 45 * k, a_obj, a_ply, a_pieces, a_statics, a_shape);
     EXPECT_NEAR(a_shape / a_statics, 1.0, 0.01) << k;
-    // directions where the rock stands beyond the test's range are not compared (at 45 degrees,
-    // statics 1.1 g, the decomposed rock goes at 0.75 g: seen, not explained yet)
-    if (a_statics > 0.7) continue;
     EXPECT_NEAR(a_ply / a_obj, 1.0, 0.02) << k;
     EXPECT_NEAR(a_pieces / a_obj, 1.0, 0.02) << k;
     EXPECT_NEAR(a_obj / a_statics, 1.0, 0.01) << k;

@@ -237,6 +237,7 @@ class World {
   void step_penalty(double dt, const Vec3& ground_velocity_start, const Vec3& ground_velocity_end);
   void step_rigid(double dt, const Vec3& ground_velocity_start, const Vec3& ground_velocity_end);
   void collect_rigid_rows(double dt, const Vec3& ground_velocity);
+  void merge_piece_patches();
   void compute_forces(double dt);
   void drift_rotation(int i, double dt);
 
@@ -261,7 +262,14 @@ class World {
   // rigid model scratch (sized once, reused every step)
   std::vector<ContactRow> rows_;
   std::vector<FrictionPatch> patches_;
-  std::vector<int> patch_pairs_;  ///< the pair of each patch
+  /// The pairs of each patch: patch j's rows are those of pairs member_pairs_[member_begin_[j]] ..
+  /// member_pairs_[member_begin_[j + 1] - 1], in that order (one pair unless pieces merged).
+  std::vector<int> member_begin_, member_pairs_;
+  bool has_compound_ = false;  ///< some body has several contact pieces
+  std::vector<ContactRow> merged_rows_;
+  std::vector<FrictionPatch> merged_patches_;
+  std::vector<int> merged_members_, merged_begin_;
+  std::vector<char> patch_taken_;
   Vec3 pedestal_velocity_{0, 0, 0};  ///< the pedestals' mean velocity over the last step
   std::vector<SolverBody> solver_bodies_, pseudo_bodies_;
   std::vector<SolverBody> free_bodies_, solver_scratch_;  ///< velocities before the solve (local damping)
