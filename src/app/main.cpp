@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   rigid::app::register_model_command(app);
   rigid::app::register_campaign_command(app);
   rigid::app::register_plot_command(app);
+  rigid::app::register_fragility_commands(app);
   rigid::app::register_study_command(app);
   rigid::app::register_export_command(app);
   rigid::app::set_campaign_arguments(argc, argv);

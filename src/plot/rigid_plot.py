@@ -7,10 +7,7 @@ from Rigid's HDF5 fragility cubes (README "The fragility cube (HDF5)"; physics.m
     rigid_plot.py table CUBE [CUBE...] --out FILE.md [--scale G] [--layout auto|objects|records]
 
 `rigid plot ARGS...` runs this file with Debian's /usr/bin/python3 (python3-numpy, python3-h5py,
-python3-matplotlib, python3-scipy): the normal CDF, log-CDF (stable in the far tails) and quantile
-are scipy.special's; the maximum-likelihood fit is a damped Newton iteration on the exact Hessian,
-since the scale sigma(x) depends on x (a heteroscedastic probit, which statsmodels' GLM cannot
-fit).
+python3-matplotlib, python3-scipy). The fit is fragility_fit.py's (shared with `rigid fragility`).
 
 The fit ("this project's fit", NOT the coefficients of Purvance et al. 2008, which we do not have):
 
@@ -18,9 +15,9 @@ The fit ("this project's fit", NOT the coefficients of Purvance et al. 2008, whi
                                                  x = ln((PGV/PGA) p / alpha),
     mu(x) = m0 + m1 x (+ m2 x^2 ...),  ln sigma(x) = s0 (+ s1 x ...)   (--mu-degree, --sigma-degree)
 
-fitted by maximum likelihood to the binomial outcomes of every known cell (record, scale,
-rotation): overturned and inferred count as overturned, survived as survived, not-run and failed
-cells are left out (the same rule as the cube's `probability`). PGA is the cell's scale (target
+fitted by maximum likelihood to the binomial outcomes of every simulated cell (record, scale,
+rotation): overturned and survived; the stop rule's inferred cells, not-run and failed cells are
+left out (fragility_fit.py says why). PGA is the cell's scale (target
 GMRotI50 PGA, g), PGV/PGA the record's `pgv_pga_s` (scaling does not change it).
 alpha (rad) and p (rad/s) come from the command line (--alpha, --p; one value for all objects or
 NAME=VALUE per object), else from the attributes `alpha_rad` / `p_rad_s` of the object group, else
@@ -52,7 +49,8 @@ try:
     from matplotlib import lines as mlines
     from matplotlib import patheffects as pe
     from matplotlib import ticker as mticker
-    from scipy.special import log_ndtr, ndtr, ndtri
+    from scipy.special import ndtr
+    from fragility_fit import fit_mu, fit_probit, fit_sigma, norm_ppf, simulated_counts
 except ImportError as e:  # pragma: no cover
     sys.stderr.write(f"rigid_plot: error: {e}; install python3-numpy python3-h5py python3-matplotlib "
                      f"python3-scipy and run with /usr/bin/python3 (this is {sys.executable})\n")
@@ -70,151 +68,6 @@ STUDY_MISMATCH_2D_MINUS_3D = {0.1: (0.03, 0.12), 0.2: (0.02, 0.08), 0.3: (0.02, 
 
 class InputError(Exception):
     pass
-
-
-# --------------------------------------------------------------------------------------------
-# Normal distribution (scipy.special)
-
-_LOG_SQRT_2PI = 0.5 * math.log(2.0 * math.pi)
-
-
-def norm_cdf(z):
-    return ndtr(np.asarray(z, dtype=float))
-
-
-def norm_logcdf(z):
-    """ln Phi(z), accurate in both tails."""
-    return log_ndtr(np.atleast_1d(np.asarray(z, dtype=float)))
-
-
-def norm_ppf(p):
-    """Phi^-1(p) for 0 < p < 1."""
-    if not 0.0 < p < 1.0:
-        raise ValueError("norm_ppf needs 0 < p < 1")
-    return float(ndtri(p))
-
-
-def mills(z):
-    """phi(z) / Phi(z) (the inverse Mills ratio of -z), stable for very negative z."""
-    z = np.asarray(z, dtype=float)
-    with np.errstate(over="ignore"):  # |z| > 1e154 in a rejected trial step: phi -> 0, ratio finite
-        logphi = -0.5 * z * z - _LOG_SQRT_2PI
-    return np.exp(logphi - norm_logcdf(z))
-
-
-# --------------------------------------------------------------------------------------------
-# Maximum-likelihood probit fit with a heteroscedastic scale
-
-
-def _design(x, degree):
-    return np.vstack([x**j for j in range(degree + 1)]).T  # [n, degree+1]
-
-
-def probit_loglik(theta, u, x, k, n, mu_degree, sigma_degree):
-    dm = mu_degree + 1
-    mu = _design(x, mu_degree) @ theta[:dm]
-    eta = _design(x, sigma_degree) @ theta[dm:]
-    z = (u - mu) * np.exp(-eta)
-    return float(np.sum(k * norm_logcdf(z) + (n - k) * norm_logcdf(-z)))
-
-
-def _probit_derivatives(theta, u, x, k, n, mu_degree, sigma_degree):
-    """Log-likelihood, gradient and Hessian of the binomial probit in theta = (m..., s...)."""
-    dm = mu_degree + 1
-    Xm = _design(x, mu_degree)
-    Xs = _design(x, sigma_degree)
-    mu = Xm @ theta[:dm]
-    inv_sigma = np.exp(-(Xs @ theta[dm:]))
-    z = (u - mu) * inv_sigma
-    ll = float(np.sum(k * norm_logcdf(z) + (n - k) * norm_logcdf(-z)))
-    lp, lm = mills(z), mills(-z)
-    g1 = k * lp - (n - k) * lm                                   # d ll / dz
-    g2 = -k * lp * (z + lp) - (n - k) * lm * (-z + lm)           # d2 ll / dz2 (< 0)
-    J = np.hstack([-Xm * inv_sigma[:, None], -Xs * z[:, None]])  # dz / dtheta
-    grad = J.T @ g1
-    H = (J * g2[:, None]).T @ J
-    # second derivatives of z: d2z/dm ds = x^j x^l / sigma, d2z/ds ds = z x^j x^l
-    cross = (Xm * (g1 * inv_sigma)[:, None]).T @ Xs
-    H[:dm, dm:] += cross
-    H[dm:, :dm] += cross.T
-    H[dm:, dm:] += (Xs * (g1 * z)[:, None]).T @ Xs
-    return ll, grad, H
-
-
-def fit_probit(u, x, k, n, mu_degree=1, sigma_degree=0, max_iter=300):
-    """Maximum-likelihood fit of P = Phi((u - mu(x)) / sigma(x)) to k successes out of n trials
-    at (u, x). Levenberg-damped Newton on the exact Hessian. Returns a dict (see maps' JSON)."""
-    u, x, k, n = (np.asarray(a, dtype=float) for a in (u, x, k, n))
-    dm, ds = mu_degree + 1, sigma_degree + 1
-    w = n / n.sum()
-    u0 = float(np.sum(w * u))
-    sd0 = max(float(np.sqrt(np.sum(w * (u - u0) ** 2))), 0.05)
-    theta = np.zeros(dm + ds)
-    theta[0] = u0
-    theta[dm] = math.log(sd0)
-    ll, grad, H = _probit_derivatives(theta, u, x, k, n, mu_degree, sigma_degree)
-    lam = 1e-3
-    converged = False
-    it = 0
-    for it in range(1, max_iter + 1):
-        A = -H
-        improved = False
-        for _ in range(60):
-            try:
-                step = np.linalg.solve(A + lam * np.diag(np.maximum(np.diag(A), 1e-12)) + lam * 1e-9 * np.eye(len(theta)), grad)
-            except np.linalg.LinAlgError:
-                lam *= 10.0
-                continue
-            cand = theta + step
-            ll_c = probit_loglik(cand, u, x, k, n, mu_degree, sigma_degree)
-            if np.isfinite(ll_c) and ll_c >= ll - 1e-12:
-                improved = True
-                break
-            lam *= 10.0
-        if not improved:
-            break
-        theta = cand
-        ll_old = ll
-        ll, grad, H = _probit_derivatives(theta, u, x, k, n, mu_degree, sigma_degree)
-        lam = max(lam / 10.0, 1e-12)
-        if abs(ll - ll_old) < 1e-11 * (1.0 + abs(ll)) and np.max(np.abs(step)) < 1e-7:
-            converged = True
-            break
-        if np.min(_design(x, sigma_degree) @ theta[dm:]) < math.log(1e-6):
-            break  # sigma collapsing: the outcomes are (quasi-)separated, no finite MLE
-    sigma_data = np.exp(_design(x, sigma_degree) @ theta[dm:])
-    separated = bool(np.min(sigma_data) < 1e-4) or not converged
-    se = [float("nan")] * len(theta)
-    try:
-        cov = np.linalg.inv(-H)
-        d = np.diag(cov)
-        if np.all(d > 0):
-            se = [float(v) for v in np.sqrt(d)]
-    except np.linalg.LinAlgError:
-        pass
-    # null model (constant probability) for a likelihood-ratio summary
-    pbar = float(k.sum() / n.sum())
-    ll0 = float(np.sum(k * math.log(pbar) + (n - k) * math.log(1 - pbar))) if 0 < pbar < 1 else 0.0
-    return {
-        "mu_coefficients": [float(v) for v in theta[:dm]],
-        "log_sigma_coefficients": [float(v) for v in theta[dm:]],
-        "mu_se": se[:dm],
-        "log_sigma_se": se[dm:],
-        "log_likelihood": ll,
-        "null_log_likelihood": ll0,
-        "iterations": it,
-        "converged": bool(converged),
-        "separated": separated,
-        "gradient_norm": float(np.max(np.abs(grad))),
-    }
-
-
-def fit_mu(fit, x):
-    return np.polyval(fit["mu_coefficients"][::-1], x)
-
-
-def fit_sigma(fit, x):
-    return np.exp(np.polyval(fit["log_sigma_coefficients"][::-1], x))
 
 
 # --------------------------------------------------------------------------------------------
@@ -402,7 +255,7 @@ class Normalisation:
 
 def fit_object(cube, obj, norm, mu_degree, sigma_degree):
     """Binomial rows (u, x, k, n) of one object and its fit; None fit if too little data."""
-    over, known = overturned_and_known(obj.outcome)
+    over, known = simulated_counts(obj.outcome)
     n = known.astype(float)          # [R, S]
     k = over.astype(float)
     R, S = n.shape
@@ -413,7 +266,7 @@ def fit_object(cube, obj, norm, mu_degree, sigma_degree):
             "u": norm.describe()[0], "x": norm.describe()[1],
             "alpha_rad": norm.alpha, "alpha_source": norm.alpha_src,
             "p_rad_s": norm.p, "p_source": norm.p_src,
-            "outcomes": "known cells (record, scale, rotation); overturned and inferred = 1, survived = 0",
+            "outcomes": "simulated cells (record, scale, rotation): overturned = 1, survived = 0; inferred cells left out",
             "n_cells": int(sum(n[r, s] for r, s in rows)),
             "n_overturned": int(sum(k[r, s] for r, s in rows)),
             "n_records": int(len({r for r, _ in rows}))}
@@ -473,7 +326,7 @@ def contour_pga(fit, norm, pgv_pga, level_pct):
 def fit_probability(fit, norm, pga_g, pgv_pga):
     x = norm.x_of(pgv_pga)
     u = np.log(pga_g) + norm.u_shift
-    return norm_cdf((u - fit_mu(fit, x)) / fit_sigma(fit, x))
+    return ndtr((u - fit_mu(fit, x)) / fit_sigma(fit, x))
 
 
 # --------------------------------------------------------------------------------------------

@@ -122,6 +122,7 @@ def run_tool(*args, expect=0):
 
 
 def load_module():
+    sys.path.insert(0, os.path.dirname(SCRIPT))  # rigid_plot imports fragility_fit beside it
     spec = importlib.util.spec_from_file_location("rigid_plot", SCRIPT)
     mod = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(mod)
@@ -172,16 +173,6 @@ class RigidPlot(unittest.TestCase):
         shutil.rmtree(cls.tmp, ignore_errors=True)
 
     # -- numerics against known values ------------------------------------------------------
-    def test_normal_functions(self):
-        m = load_module()
-        self.assertAlmostEqual(float(m.norm_cdf(1.959963984540054)), 0.975, places=12)
-        self.assertAlmostEqual(m.norm_ppf(0.01), -2.3263478740408408, places=10)
-        self.assertAlmostEqual(m.norm_ppf(0.99), 2.3263478740408408, places=10)
-        self.assertAlmostEqual(m.norm_ppf(0.5), 0.0, places=12)
-        # far tail (asymptotic series below -30) against math.erfc, which still resolves Phi(-37) ~ 1e-300
-        self.assertAlmostEqual(float(m.norm_logcdf(-37.0)[0]), math.log(0.5 * math.erfc(37 / math.sqrt(2))), places=8)
-        self.assertAlmostEqual(float(m.norm_logcdf(-29.0)[0]), math.log(0.5 * math.erfc(29 / math.sqrt(2))), places=9)
-
     # -- the fit recovers the planted model ---------------------------------------------------
     def test_fit_recovers_planted_parameters(self):
         o = self.fit["rock_plain"]
@@ -199,28 +190,29 @@ class RigidPlot(unittest.TestCase):
         self.assertLess(abs(m1 - MU1), 0.12)
         self.assertLess(abs(math.exp(s0) - SIGMA), 0.05)
         self.assertGreater(f["log_likelihood"], f["null_log_likelihood"])
-        # known-cell count: every cell that is neither not-run nor failed
-        self.assertEqual(o["n_cells"], int(np.isin(self.planted, (1, 2, 3)).sum()))
-        self.assertEqual(o["n_overturned"], int(np.isin(self.planted, (2, 3)).sum()))
+        # the fit's cells: the simulated ones (survived, overturned), not the inferred ones
+        self.assertEqual(o["n_cells"], int(np.isin(self.planted, (1, 2)).sum()))
+        self.assertEqual(o["n_overturned"], int((self.planted == 2).sum()))
         self.assertEqual(o["alpha_source"], "unknown")
 
     def test_fit_is_a_likelihood_maximum(self):
-        m = load_module()
-        known = np.isin(self.planted, (1, 2, 3))
-        k = np.isin(self.planted, (2, 3)).sum(axis=2).ravel().astype(float)
+        load_module()
+        import fragility_fit  # beside rigid_plot.py (load_module puts it on the path)
+        known = np.isin(self.planted, (1, 2))
+        k = (self.planted == 2).sum(axis=2).ravel().astype(float)
         n = known.sum(axis=2).ravel().astype(float)
         u = np.tile(np.log(SCALES), R)
         x = np.repeat(np.log(self.pgv_pga), len(SCALES))
         ok = n > 0
         f = self.fit["rock_plain"]["fit"]
         theta = np.array(f["mu_coefficients"] + f["log_sigma_coefficients"])
-        ll = m.probit_loglik(theta, u[ok], x[ok], k[ok], n[ok], 1, 0)
+        ll = fragility_fit.probit_derivatives(theta, u[ok], x[ok], k[ok], n[ok], 1, 0)[0]
         self.assertAlmostEqual(ll, f["log_likelihood"], places=6)
         for i in range(3):
             for h in (1e-3, -1e-3):
                 t = theta.copy()
                 t[i] += h
-                self.assertLess(m.probit_loglik(t, u[ok], x[ok], k[ok], n[ok], 1, 0), ll)
+                self.assertLess(fragility_fit.probit_derivatives(t, u[ok], x[ok], k[ok], n[ok], 1, 0)[0], ll)
 
     def test_normalisation_shifts_coefficients_not_contours(self):
         a, b = self.fit["rock_plain"], self.fit["rock_norm"]
