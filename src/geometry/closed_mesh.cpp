@@ -137,17 +137,27 @@ Adjacency build_adjacency(const std::vector<std::array<int, 3>>& tris) {
 // ones map to the nearest earlier representative (ties: the smaller index).
 std::vector<int> weld(const TriangleSoup& soup, const Vec3& lo, double diag, double eps,
                       std::vector<Vec3>& vertices) {
-  const double cell = std::max(eps, kMinRelativeCell * diag);
+  // cells of 16 eps: a point within eps of another is in its cell or, where it lies within eps of
+  // a cell face, in the neighbour across it; so a lookup visits ~2 cells, not 27
+  const double cell = std::max(16 * eps, kMinRelativeCell * diag);
   auto cell_of = [&](const Vec3& p) {
     // (p - lo) / cell <= diag / (1e-12 diag): the cast cannot overflow
     return CellKey{static_cast<std::int64_t>(std::floor((p.x() - lo.x()) / cell)),
                    static_cast<std::int64_t>(std::floor((p.y() - lo.y()) / cell)),
                    static_cast<std::int64_t>(std::floor((p.z() - lo.z()) / cell))};
   };
-  std::unordered_map<CellKey, std::vector<int>, CellHash> grid;
+  // each cell's kept vertices as a list threaded through `next` (no vector per cell: a scan of
+  // 1e6 facets has ~5e5 occupied cells)
+  std::unordered_map<CellKey, int, CellHash> first_in_cell;
+  std::vector<int> next;
   // a point equal to a kept vertex welds to it (distance 0 cannot be beaten): one lookup instead
   // of 27 grid cells, for the common case of a mesh whose facets share exact corners
   std::unordered_map<CellKey, int, CellHash> exact;
+  // a closed triangle mesh has about half as many vertices as facets
+  first_in_cell.reserve(soup.size() / 2 + 16);
+  exact.reserve(soup.size() / 2 + 16);
+  next.assign(vertices.size(), -1);  // indexed like `vertices`
+  next.reserve(vertices.size() + soup.size() / 2 + 16);
   auto bits_of = [](const Vec3& p) {
     return CellKey{std::bit_cast<std::int64_t>(p.x()), std::bit_cast<std::int64_t>(p.y()),
                    std::bit_cast<std::int64_t>(p.z())};
@@ -162,14 +172,22 @@ std::vector<int> weld(const TriangleSoup& soup, const Vec3& lo, double diag, dou
         continue;
       }
       const CellKey k = cell_of(*p);
+      // the neighbours worth visiting per axis: those whose face is within eps (2 eps: rounding)
+      std::int64_t from[3], to[3];
+      const std::int64_t key[3] = {k.x, k.y, k.z};
+      for (int axis = 0; axis < 3; ++axis) {
+        const double offset = ((*p)[axis] - lo[axis]) - double(key[axis]) * cell;
+        from[axis] = offset <= 2 * eps ? -1 : 0;
+        to[axis] = cell - offset <= 2 * eps ? 1 : 0;
+      }
       int best = -1;
       double best_d2 = 0;
-      for (std::int64_t dx = -1; dx <= 1; ++dx) {
-        for (std::int64_t dy = -1; dy <= 1; ++dy) {
-          for (std::int64_t dz = -1; dz <= 1; ++dz) {
-            const auto it = grid.find({k.x + dx, k.y + dy, k.z + dz});
-            if (it == grid.end()) continue;
-            for (int v : it->second) {
+      for (std::int64_t dx = from[0]; dx <= to[0]; ++dx) {
+        for (std::int64_t dy = from[1]; dy <= to[1]; ++dy) {
+          for (std::int64_t dz = from[2]; dz <= to[2]; ++dz) {
+            const auto it = first_in_cell.find({k.x + dx, k.y + dy, k.z + dz});
+            if (it == first_in_cell.end()) continue;
+            for (int v = it->second; v >= 0; v = next[v]) {
               const double d2 = (vertices[v] - *p).squaredNorm();
               if (d2 > eps2) continue;
               if (best < 0 || d2 < best_d2 || (d2 == best_d2 && v < best)) {
@@ -183,7 +201,9 @@ std::vector<int> weld(const TriangleSoup& soup, const Vec3& lo, double diag, dou
       if (best < 0) {
         best = static_cast<int>(vertices.size());
         vertices.push_back(*p);
-        grid[k].push_back(best);
+        const auto [head, inserted] = first_in_cell.try_emplace(k, best);
+        next.push_back(inserted ? -1 : head->second);
+        head->second = best;
         exact.emplace(bits_of(*p), best);
       }
       index.push_back(best);

@@ -353,15 +353,38 @@ std::array<int, 2> find_self_intersection(const ClosedMesh& mesh) {
     lo = lo.cwiseMin(p);
     hi = hi.cwiseMax(p);
   }
-  // about two facets per cell along each axis
+  // cells twice a facet's mean size: a closed mesh's facets lie on its surface, so a cell sized
+  // from the box's volume per facet holds a row of ~n^(1/3) of them and the pair test per cell
+  // grows with its square; at the facet scale a cell holds a handful
   const Vec3 extent = (hi - lo).cwiseMax(Vec3::Constant(1e-12));
-  const double cell = std::cbrt(extent.prod() / double(n)) * 2.0;
-  const Eigen::Vector3i dims = ((extent / cell).array().floor().cast<int>() + 1).cwiseMin(1024).matrix();
+  double mean_size = 0;
+  for (const auto& t : tris) {
+    const Vec3 &a = v[t[0]], &b = v[t[1]], &c = v[t[2]];
+    mean_size += (a.cwiseMax(b).cwiseMax(c) - a.cwiseMin(b).cwiseMin(c)).maxCoeff();
+  }
+  mean_size /= double(n);
+  double cell = std::max(2.0 * mean_size, 1e-9 * extent.maxCoeff());
+  Eigen::Vector3i dims;
+  double covered = 0;
   auto index = [&](const Vec3& p, int k) {
     return std::clamp(int((p[k] - lo[k]) / extent[k] * dims[k]), 0, dims[k] - 1);
   };
+  // a few large facets among many small ones would each cover a great many small cells: coarsen
+  // until the facets cover at most 16 n cells in all
+  for (;;) {
+    dims = ((extent / cell).array().floor().cast<int>() + 1).cwiseMin(1024).matrix();
+    covered = 0;
+    for (const auto& t : tris) {
+      const Vec3 &a = v[t[0]], &b = v[t[1]], &c = v[t[2]];
+      const Vec3 tlo = a.cwiseMin(b).cwiseMin(c), thi = a.cwiseMax(b).cwiseMax(c);
+      covered += double(index(thi, 0) - index(tlo, 0) + 1) * double(index(thi, 1) - index(tlo, 1) + 1) *
+                 double(index(thi, 2) - index(tlo, 2) + 1);
+    }
+    if (covered <= 16.0 * double(n) || dims.maxCoeff() == 1) break;
+    cell *= 2;
+  }
   std::vector<std::pair<std::uint64_t, int>> entries;
-  entries.reserve(4 * n);
+  entries.reserve(static_cast<std::size_t>(covered));
   for (std::size_t t = 0; t < n; ++t) {
     const Vec3 &a = v[tris[t][0]], &b = v[tris[t][1]], &c = v[tris[t][2]];
     const Vec3 tlo = a.cwiseMin(b).cwiseMin(c), thi = a.cwiseMax(b).cwiseMax(c);
