@@ -113,6 +113,11 @@ case "$action" in
     # what people look at: fragility maps per object and the scenario table (objects x records)
     "$rigid" plot maps out/demo.h5 --out out/demo_plots
     "$rigid" plot table out/demo.h5 --out out/demo_plots/scenario_table.md  # prints it too
+    # what hazard codes read: fitted fragilities with intervals (CSV, OpenQuake NRML, /fragility in
+    # the cube), and the survival test of the alpha = 0.3 block against a synthetic hazard curve
+    "$rigid" fragility out/demo.h5 --csv out/demo_plots/fragility.csv --nrml out/demo_plots/fragility_nrml.xml
+    "$rigid" hazard out/demo.h5 --object block_a03 --curve models/hazard/synthetic_pga_curve.csv --age 10000 \
+      --plot out/demo_plots/hazard_block_a03.png
     ;;
   *) echo "usage: bash setup.sh demo|test|long|sanitize|build" >&2; exit 2 ;;
 esac

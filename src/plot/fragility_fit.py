@@ -16,7 +16,7 @@ others out keeps the likelihood exact (a data-dependent design does not enter it
 overturned trials shrinks beta (3 % on the planted layout of tests/python/test_fragility_fit.py).
 
 Normal distribution functions are scipy.special's; the optimiser is scipy.optimize's trust-region
-method on the exact gradient and Hessian below. statsmodels' GLM fits the constant-scale probit
+Newton-CG method on the exact gradient and Hessian below. statsmodels' GLM fits the constant-scale probit
 too (tests/python/test_fragility_fit.py checks both agree) but not a scale that varies with x.
 """
 import math
@@ -93,7 +93,9 @@ def fit_probit(u, x, k, n, mu_degree=1, sigma_degree=0, start=None):
             cache[key] = probit_derivatives(theta, u, x, k, n, mu_degree, sigma_degree)
         return cache[key]
 
-    res = optimize.minimize(lambda t: -evaluate(t)[0], np.asarray(start, float), method="trust-exact",
+    # trust-ncg, not trust-exact: a singular Hessian (a coefficient the data cannot identify, as in
+    # a bootstrap resample of one record) sends trust-exact's subproblem solver into an endless loop
+    res = optimize.minimize(lambda t: -evaluate(t)[0], np.asarray(start, float), method="trust-ncg",
                             jac=lambda t: -evaluate(t)[1], hess=lambda t: -evaluate(t)[2],
                             options={"gtol": 1e-9, "maxiter": 200})
     theta = res.x
@@ -301,7 +303,14 @@ def vector_fragility(cells, records, u_shift, x_shift, points_s, rng, replicates
     theta = np.empty((replicates, len(xs)))
     beta = np.empty((replicates, len(xs)))
     failed = 0
+    x_of_record = np.round(cells.pgv_pga_s[records], 12)
     for i, counts in enumerate(bootstrap_counts(rng, len(records), replicates)):
+        # a resample with fewer distinct PGV/PGA values than mu(x) has coefficients cannot say how
+        # the fragility moves with PGV/PGA: no estimate, like a separated resample
+        if len(np.unique(x_of_record[counts > 0])) <= max(md, sd):
+            theta[i], beta[i] = np.nan, np.nan
+            failed += 1
+            continue
         b = fit_probit(*vector_rows(cells, records, u_shift, x_shift, counts), md, sd, start=start)
         if b["separated"] or not b["converged"]:
             theta[i], beta[i] = np.nan, np.nan

@@ -137,7 +137,11 @@ def print_table(cube, fits, args):
             print(f"  vector fit: {v.get('reason')}")
         failed = sum(r.get("bootstrap_failed", 0) for r in f.bins) + v.get("bootstrap_failed", 0)
         if failed:
-            print(f"  note: {failed} bootstrap resamples had no finite fit (all overturned or none) and were left out")
+            total = sum(r.get("bootstrap_replicates", 0) for r in f.bins) + v.get("bootstrap_replicates", 0)
+            print(f"  note: {failed} of {total} bootstrap resamples had no finite fit (outcomes separated, or one PGV/PGA "
+                  f"only for the vector fit) and were left out"
+                  + ("; with so many the intervals may be too narrow (more records or rotations would tell)"
+                     if failed > 0.1 * total else ""))
 
 
 def csv_rows(fits):
@@ -156,12 +160,16 @@ def csv_rows(fits):
 
 
 def _csv_row(name, kind, lo, hi, at, r):
-    ti, bi = r.get("theta_interval_g", ("", "")), r.get("beta_interval", ("", ""))
+    def cell(v):  # an empty field where there is no value (no fit, no interval)
+        return "" if v is None or (isinstance(v, float) and math.isnan(v)) else v
+
+    ti = [cell(v) for v in r.get("theta_interval_g", ("", ""))]
+    bi = [cell(v) for v in r.get("beta_interval", ("", ""))]
     return {"object": name, "fit": kind, "pgv_pga_lower_s": lo, "pgv_pga_upper_s": hi, "pgv_pga_s": at,
             "theta_g": r.get("theta_g", ""), "theta_lower_g": ti[0], "theta_upper_g": ti[1],
             "beta": r.get("beta", ""), "beta_lower": bi[0], "beta_upper": bi[1],
             "n_records": r["n_records"], "n_cells": r["n_cells"], "n_overturned": r["n_overturned"],
-            "note": r.get("reason", "")}
+            "note": r.get("reason", r.get("interval_note", ""))}
 
 
 def nrml_functions(fits):
@@ -301,7 +309,8 @@ def cmd_fragility(args):
         store(args.cube, cube, fits, args)
     if not args.json:
         wrote = [p for p in (args.csv, args.nrml) if p] + ([] if args.no_store else [f"{args.cube} (/fragility)"])
-        print(f"\nwrote {', '.join(wrote)}")
+        if wrote:
+            print(f"\nwrote {', '.join(wrote)}")
     return 0
 
 
@@ -417,7 +426,9 @@ def print_hazard(r):
           + (f"[{pct} %: {slo:.4f}, {shi:.4f}]" if have_interval else no_interval))
     c = int(round(r["confidence"] * 100))
     if r["ruled_out"]:
-        print(f"  the rock's survival rules this hazard curve out at {c} % confidence (survival below {1 - r['confidence']:.2f})")
+        print(f"  the rock's survival rules this hazard curve out at {c} % confidence (survival below "
+              f"{1 - r['confidence']:.2f}); it would be consistent with the curve's rates x {r['rate_factor_to_rule_out']:.3g} "
+              f"or its PGAs x {r['pga_factor_to_rule_out']:.3g}")
     else:
         print(f"  consistent at {c} % confidence; the rock would rule the curve out with its rates x "
               f"{r['rate_factor_to_rule_out']:.3g} or its PGAs x {r['pga_factor_to_rule_out']:.3g}")

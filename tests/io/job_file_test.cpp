@@ -103,8 +103,8 @@ TEST_F(JobFile, AbsentOptionalObjectIsLeftOutWithANoteThatEntersTheHash) {
 
 TEST_F(JobFile, MissingMotionIsRefused) {
   std::string t = kGood;
-  t.replace(t.find("stochastic_s1-X"), 15, "stochastic_s9-X");
-  expect_error(t, "stochastic_s9-X.AT2");
+  t.replace(t.find("stochastic_s1-X"), 15, "no_such_record-X");
+  expect_error(t, "no_such_record-X.AT2");
 }
 
 TEST_F(JobFile, EmptyScaleListIsRefused) {
