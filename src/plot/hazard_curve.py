@@ -215,11 +215,19 @@ _DENSITY = np.exp(-0.5 * _Z**2) / math.sqrt(2.0 * math.pi)
 def toppling_rate(curve, theta_g, beta):
     """(lambda per year, share of lambda from beyond the curve's PGA range) for a lognormal
     fragility (theta in g, beta)."""
-    a = theta_g * np.exp(beta * _Z)
-    h = curve(a)
-    total = float(integrate.simpson(h * _DENSITY, x=_Z))
+    z, density = _Z, _DENSITY
+    if curve.top < len(curve.rate):
+        # H drops to 0 past its last positive PGA: integrate up to that jump, not across it
+        z_end = math.log(curve.pga_g[curve.top - 1] / theta_g) / beta
+        if z_end <= _Z[0]:
+            return 0.0, 0.0
+        z = np.linspace(_Z[0], min(z_end, _Z[-1]), len(_Z))
+        density = np.exp(-0.5 * z**2) / math.sqrt(2.0 * math.pi)
+    a = theta_g * np.exp(beta * z)
+    h = curve(np.minimum(a, curve.pga_g[curve.top - 1]) if curve.top < len(curve.rate) else a)
+    total = float(integrate.simpson(h * density, x=z))
     outside = (a < curve.pga_g[0]) | (a > curve.pga_g[curve.top - 1])
-    extended = float(integrate.simpson(np.where(outside, h, 0.0) * _DENSITY, x=_Z))
+    extended = float(integrate.simpson(np.where(outside, h, 0.0) * density, x=z))
     return total, (extended / total if total > 0 else 0.0)
 
 
@@ -248,7 +256,10 @@ def ruling_factors(curve, fragilities, years, confidence):
     rate_factor = target / lam if lam > 0 else math.inf
 
     def excess(ln_f):
-        return math.log(mixture_rate(curve.scaled(pga_factor=math.exp(ln_f)), fragilities)[0]) - math.log(target)
+        # a curve that ends at rate 0 gives lambda = 0 once scaled far enough down: a floor keeps the
+        # log finite for the root finder
+        rate = mixture_rate(curve.scaled(pga_factor=math.exp(ln_f)), fragilities)[0]
+        return math.log(max(rate, 1e-300)) - math.log(target)
 
     pga_factor = math.inf
     if lam > 0:

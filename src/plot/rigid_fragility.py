@@ -543,6 +543,9 @@ def main(argv=None):
     except OSError as e:
         sys.stderr.write(f"rigid {args.command}: error: {e}\n")
         return 2
+    except Exception as e:  # a bug of ours, not the input's: one line, exit 1
+        sys.stderr.write(f"rigid {args.command}: internal error: {type(e).__name__}: {e}\n")
+        return 1
 
 
 if __name__ == "__main__":

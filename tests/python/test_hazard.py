@@ -118,6 +118,22 @@ def closed_forms(tmp):
     check(worst < 0.005, f"log-quadratic hazard: rate within 0.5 % of quadrature of P(a)|H'(a)| on the exact curve "
                          f"(worst {100 * worst:.3f} %)")
 
+    # a curve that ends at rate 0 (nothing exceeds a_max): H = k0 a^-k up to a_max, 0 beyond, so
+    # lambda = k0 E[C^-k; C <= a_max] = k0 theta^-k exp(k^2 beta^2/2) Phi(ln(a_max/theta)/beta + k beta)
+    k, k0, a_max = 2.0, 1e-5, 0.8
+    a = np.geomspace(0.01, a_max, 25)
+    path = os.path.join(tmp, "ends.csv")
+    write_two_column(path, list(a) + [1.0, 2.0], list(k0 * a**-k) + [0.0, 0.0])
+    curve = hc.read_curve(path)
+    worst = 0.0
+    for theta, beta in ((0.4, 0.3), (0.7, 0.5), (1.2, 0.4)):
+        exact = k0 * theta**-k * math.exp(0.5 * k * k * beta * beta) * float(ndtr(math.log(a_max / theta) / beta + k * beta))
+        worst = max(worst, abs(hc.toppling_rate(curve, theta, beta)[0] / exact - 1))
+    rate_factor, pga_factor = hc.ruling_factors(curve, [(1.0, 0.7, 0.5)], 1000.0, 0.95)
+    check(worst < 0.005 and math.isfinite(rate_factor) and pga_factor > 0,
+          f"curve ending at rate 0: lambda = closed form of the truncated power law (worst {100 * worst:.3f} %), "
+          f"ruling factors finite")
+
     # ruling out: PGA x f multiplies a power-law H by f^k, so the PGA factor is the rate factor^(1/k)
     k, k0, theta, beta, years, conf = 2.5, 2e-5, 0.4, 0.45, 12000.0, 0.95
     path = os.path.join(tmp, "rule.csv")
