@@ -55,6 +55,8 @@ void inspect(const std::string& path, bool json) {
   const auto rocking = scenario::rocking_parameters(scene);
   for (const auto& b : scene.bodies) {
     const auto& s = b.shape;
+    const Vec3 centroid = b.position - b.orientation * b.centre_of_mass_offset;
+    const bool offset = b.centre_of_mass_offset.squaredNorm() > 0;
     if (json) {
       io::Json j;
       j["block"] = b.name;
@@ -63,7 +65,8 @@ void inspect(const std::string& path, bool json) {
       j["faces"] = long(s.faces.size());
       j["volume_m3"] = s.volume;
       j["mass_kg"] = s.mass;
-      j["centroid_m"] = vec_json(b.position);
+      j["centroid_m"] = vec_json(centroid);
+      j["centre_of_mass_m"] = vec_json(b.position);
       j["principal_moments_kg_m2"] = vec_json(s.inertia);
       j["bounding_radius_m"] = s.bounding_radius;
       if (b.pieces.empty()) {
@@ -88,7 +91,11 @@ void inspect(const std::string& path, bool json) {
       std::printf("%s (%s): %zu vertices, %zu faces\n", b.name.c_str(), b.fixed ? "fixed" : "free",
                   s.vertices.size(), s.faces.size());
       std::printf("  volume %.6g m^3, mass %.6g kg\n", s.volume, s.mass);
-      std::printf("  centroid (%.6g, %.6g, %.6g) m\n", b.position.x(), b.position.y(), b.position.z());
+      std::printf("  centroid (%.6g, %.6g, %.6g) m\n", centroid.x(), centroid.y(), centroid.z());
+      if (offset) {
+        std::printf("  centre of mass (%.6g, %.6g, %.6g) m ([centre_of_mass_offset])\n", b.position.x(), b.position.y(),
+                    b.position.z());
+      }
       std::printf("  principal moments %.6g %.6g %.6g kg m^2\n", s.inertia.x(), s.inertia.y(), s.inertia.z());
       if (b.pieces.empty()) {
         std::printf("  checks passed: closed, consistently oriented, convex, finite\n");

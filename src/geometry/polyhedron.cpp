@@ -200,6 +200,28 @@ ConvexPolyhedron make_piece(const ClosedMesh& convex_mesh, const ConvexPolyhedro
   return piece;
 }
 
+void offset_mass_centre(ConvexPolyhedron& shape, std::vector<ConvexPolyhedron>& pieces, const Vec3& offset) {
+  if (!offset.allFinite()) throw std::invalid_argument("offset_mass_centre: non-finite offset");
+  for (const Face& f : shape.faces) {
+    if (f.normal.dot(offset) >= f.offset) {
+      throw std::invalid_argument("offset_mass_centre: the centre of mass would lie outside the block");
+    }
+  }
+  auto shift = [&offset](ConvexPolyhedron& p) {
+    for (Vec3& v : p.vertices) v -= offset;
+    for (Face& f : p.faces) f.offset -= f.normal.dot(offset);
+  };
+  shift(shape);
+  shape.translation += shape.rotation * offset;
+  shape.bounding_radius = 0;
+  for (const Vec3& v : shape.vertices) shape.bounding_radius = std::max(shape.bounding_radius, v.norm());
+  for (ConvexPolyhedron& piece : pieces) {
+    shift(piece);
+    piece.bounding_centre -= offset;
+    piece.translation = shape.translation;
+  }
+}
+
 CompoundBody build_compound(const ClosedMesh& mesh, const std::vector<ClosedMesh>& convex_pieces, double density,
                             const MeshOptions& options) {
   if (convex_pieces.empty()) throw std::invalid_argument("build_compound: no contact pieces");

@@ -1,11 +1,13 @@
 #include "rigid/io/scene_file.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 
 #include <toml++/toml.h>
 
@@ -205,6 +207,33 @@ void build_bodies(scenario::Scene& scene, const std::vector<BlockSpec>& blocks,
   }
 }
 
+// [centre_of_mass_offset] NAME = [dx, dy, dz]: the centre of mass of block NAME moved by that much
+// from its mesh's centroid, in the mesh's coordinates (m): a rock denser on one side, or the
+// uncertainty of where its mass centre is.
+void apply_centre_of_mass_offsets(const toml::node& node, const std::string& path, scenario::Scene& scene) {
+  const auto* table = node.as_table();
+  if (!table) throw InputError(path, line_of(node), "centre_of_mass_offset must be a table: BLOCK_NAME = [dx, dy, dz] (m)");
+  for (const auto& [key, value] : *table) {
+    const long line = line_of(value);
+    const std::string name(key.str());
+    auto body = std::find_if(scene.bodies.begin(), scene.bodies.end(), [&](const auto& b) { return b.name == name; });
+    if (body == scene.bodies.end()) throw InputError(path, line, "centre_of_mass_offset: the scene has no block '" + name + "'");
+    const auto* list = value.as_array();
+    Vec3 offset;
+    if (!list || list->size() != 3) throw InputError(path, line, "centre_of_mass_offset." + name + " needs 3 numbers (m)");
+    for (int k = 0; k < 3; ++k) {
+      const auto c = (*list)[k].value<double>();
+      if (!c || !std::isfinite(*c)) throw InputError(path, line, "centre_of_mass_offset." + name + ": components must be finite numbers (m)");
+      offset[k] = *c;
+    }
+    try {
+      scenario::offset_centre_of_mass(*body, offset);
+    } catch (const std::invalid_argument& e) {
+      throw InputError(path, line, "centre_of_mass_offset." + name + ": " + e.what());
+    }
+  }
+}
+
 void parse_model_tokens(const std::vector<Token>& tokens, std::size_t& i, scenario::Scene& scene,
                         std::vector<BlockSpec>& blocks) {
   const std::string& src = scene.source;
@@ -263,7 +292,8 @@ namespace {
 scenario::Scene load_toml_scene(const std::string& path) {
   const toml::table root = parse_toml(read_input_file(path, kMaxTextFileBytes), path);
   const std::string base = fs::path(path).parent_path().string();
-  reject_unknown(root, {"model", "model_text", "state", "physics", "failure", "block"}, path, "scene");
+  reject_unknown(root, {"model", "model_text", "state", "physics", "failure", "block", "centre_of_mass_offset"}, path,
+                 "scene");
 
   scenario::Scene physics_only;
   physics_only.source = path;
@@ -386,6 +416,7 @@ scenario::Scene load_toml_scene(const std::string& path) {
     if (!(deg > 0 && deg <= 180)) throw InputError(path, line_of(*f), "tilt_deg must be in (0, 180]");
     scene.failure.tilt_angle = deg * kPi / 180.0;
   }
+  if (const auto* node = root.get("centre_of_mass_offset")) apply_centre_of_mass_offsets(*node, path, scene);
   if (const auto* s = root.get("state")) {
     const auto name = s->value<std::string>();
     if (!name) throw InputError(path, line_of(*s), "state must be a file name");
@@ -430,8 +461,9 @@ void save_state(const std::string& path, const scenario::Scene& scene) {
            "# quaternion w x y z of the principal-axes body frame).\n";
     for (const auto& b : scene.bodies) {
       const auto& q = b.orientation;
-      out << "\n[[body]]\nname = \"" << b.name << "\"\nposition = [" << b.position.x() << ", "
-          << b.position.y() << ", " << b.position.z() << "]\norientation = [" << q.w() << ", "
+      const Vec3 centroid = b.position - q * b.centre_of_mass_offset;
+      out << "\n[[body]]\nname = \"" << b.name << "\"\nposition = [" << centroid.x() << ", "
+          << centroid.y() << ", " << centroid.z() << "]\norientation = [" << q.w() << ", "
           << q.x() << ", " << q.y() << ", " << q.z() << "]\n";
     }
     if (!out) throw InputError(path, 0, "write failed");
@@ -473,8 +505,9 @@ void apply_state(const std::string& path, scenario::Scene& scene) {
       throw InputError(path, line, "orientation must be a unit quaternion w x y z (its norm is " +
                                        std::to_string(orientation.norm()) + ")");
     }
-    scene.bodies[i].position = Vec3(v[0], v[1], v[2]);
     scene.bodies[i].orientation = orientation.normalized();
+    // the state holds the centroid's pose: the centre of mass sits offset from it
+    scene.bodies[i].position = Vec3(v[0], v[1], v[2]) + scene.bodies[i].orientation * scene.bodies[i].centre_of_mass_offset;
   }
   scene.files.push_back(fs::path(path).lexically_normal().string());
   check_overlap(scene, path);

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 namespace rigid::scenario {
 
@@ -54,6 +55,15 @@ GroundDrive ground_drive(const motion::GroundMotion& m) {
   drive.velocity.resize(v.vx.size());
   for (std::size_t i = 0; i < v.vx.size(); ++i) drive.velocity[i] = Vec3(v.vx[i], v.vy[i], v.vz[i]);
   return drive;
+}
+
+void offset_centre_of_mass(dynamics::BodyDef& body, const Vec3& offset_mesh) {
+  if (body.fixed) throw std::invalid_argument("a fixed block's centre of mass plays no part: offset a free block");
+  // the mesh frame is where the block was built; the body frame turns with the block
+  const Vec3 offset_body = body.shape.rotation.conjugate() * offset_mesh;
+  geometry::offset_mass_centre(body.shape, body.pieces, offset_body);
+  body.position += body.orientation * offset_body;
+  body.centre_of_mass_offset += offset_body;
 }
 
 double tilt(const Quat& initial, const Quat& current) {

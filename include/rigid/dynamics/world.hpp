@@ -23,10 +23,14 @@ struct BodyDef {
   /// hull) that everything but contact uses (failure rule, bounds, trajectories).
   std::vector<geometry::ConvexPolyhedron> pieces;
   bool fixed = false;                ///< true: a pedestal driven by the ground motion
-  Vec3 position{0, 0, 0};            ///< world position of the centroid (unit: m)
+  Vec3 position{0, 0, 0};            ///< world position of the centre of mass (unit: m)
   Quat orientation = Quat::Identity();  ///< body-to-world rotation
   Vec3 velocity{0, 0, 0};            ///< initial velocity (unit: m/s)
   Vec3 angular_velocity{0, 0, 0};    ///< initial angular velocity, world frame (unit: rad/s)
+  /// Centre of mass minus the mesh's centroid, body frame (unit: m): zero for a uniform block
+  /// (scenario::offset_centre_of_mass). Saved states keep the centroid's pose, so one settled
+  /// state serves every offset.
+  Vec3 centre_of_mass_offset{0, 0, 0};
 };
 
 /// How orientations are advanced.

@@ -128,6 +128,14 @@ struct CompoundBody {
   std::vector<ConvexPolyhedron> pieces;  ///< contact pieces, in shape's body frame
 };
 
+/// Moves a block's centre of mass by `offset` (body frame, unit: m) and its body frame with it:
+/// vertices, face planes and pieces are re-expressed about the new origin, `translation` keeps the
+/// mesh where it was. The principal moments and axes stay those of the uniform block about its
+/// centroid (an offset moves the mass centre, not the spread of the mass about it). The bounding
+/// sphere of the block is re-centred on the new origin; pieces keep their own. Throws
+/// std::invalid_argument when the new centre lies outside the block (its outline for a compound).
+void offset_mass_centre(ConvexPolyhedron& shape, std::vector<ConvexPolyhedron>& pieces, const Vec3& offset);
+
 /// Builds a CompoundBody. Throws std::invalid_argument for an empty piece list or bad density.
 CompoundBody build_compound(const ClosedMesh& mesh, const std::vector<ClosedMesh>& convex_pieces, double density,
                             const MeshOptions& options);

@@ -124,6 +124,13 @@ struct RunOutcome {
 /// block, and the world vertical.
 double tilt(const Quat& initial, const Quat& current);
 
+/// Moves the centre of mass of a free block by `offset_mesh` (the mesh's frame, unit: m: the
+/// block's own coordinates before any state moved it) and keeps the block where it is: its shape
+/// and pieces are re-expressed about the new centre (geometry::offset_mass_centre, which says
+/// what happens to the inertia) and `position` follows. Offsets add up. Throws
+/// std::invalid_argument for a fixed block, a non-finite offset or a centre outside the block.
+void offset_centre_of_mass(dynamics::BodyDef& body, const Vec3& offset_mesh);
+
 /// Runs one shaking case from the scene's initial state.
 RunOutcome run(const Scene& scene, const GroundDrive& ground, const RunSettings& settings);
 
