@@ -19,6 +19,7 @@
 #include "rigid/io/scene_file.hpp"
 #include "rigid/io/stl.hpp"
 #include "rigid/scenario/builders.hpp"
+#include "rigid/scenario/rocking_parameters.hpp"
 #include "rigid/scenario/scene.hpp"
 #include "rigid/scenario/tilt_test.hpp"
 
@@ -73,6 +74,21 @@ TEST(CentreOfMass, TiltTestFollowsRigidStatics) {
                 c.offset.z(), c.azimuth * 180 / kPi, r.acceleration, c.statics);
     EXPECT_NEAR(r.acceleration / c.statics, 1.0, 0.01);
   }
+}
+
+TEST(CentreOfMass, RockingParametersFollowTheMassCentre) {
+  // azimuth 0 (ground acceleration +x) leans the block over its -x edge, azimuth 180 over its +x
+  // edge: tan alpha = (b + d) / h and (b - d) / h; the weakest direction turns to +x
+  Scene scene = block_on_pedestal(kB, kH, kDepth);
+  const double d = 0.05;
+  offset_centre_of_mass(scene.bodies[1], Vec3(d, 0, 0));
+  const auto p = rocking_parameters(scene);
+  ASSERT_TRUE(p.has_value());
+  const std::size_t n = p->alpha_by_azimuth.size();
+  ASSERT_EQ(n % 2, 0u);
+  EXPECT_NEAR(p->alpha_by_azimuth[0], std::atan((kB + d) / kH), 1e-9);
+  EXPECT_NEAR(p->alpha_by_azimuth[n / 2], std::atan((kB - d) / kH), 1e-9);
+  EXPECT_NEAR(p->alpha, std::atan((kB - d) / kH), 1e-9);
 }
 
 class SceneOffset : public ::testing::Test {
