@@ -55,7 +55,7 @@ void inspect(const std::string& path, bool json) {
   const auto rocking = scenario::rocking_parameters(scene);
   for (const auto& b : scene.bodies) {
     const auto& s = b.shape;
-    const Vec3 centroid = b.position - b.orientation * b.centre_of_mass_offset;
+    const Vec3 centroid = scenario::centroid_position(b);
     const bool offset = b.centre_of_mass_offset.squaredNorm() > 0;
     if (json) {
       io::Json j;

@@ -357,10 +357,12 @@ std::array<int, 2> find_self_intersection(const ClosedMesh& mesh) {
   // from the box's volume per facet holds a row of ~n^(1/3) of them and the pair test per cell
   // grows with its square; at the facet scale a cell holds a handful
   const Vec3 extent = (hi - lo).cwiseMax(Vec3::Constant(1e-12));
+  std::vector<std::array<Vec3, 2>> boxes(n);  // each facet's bounding box: low and high corner
   double mean_size = 0;
-  for (const auto& t : tris) {
-    const Vec3 &a = v[t[0]], &b = v[t[1]], &c = v[t[2]];
-    mean_size += (a.cwiseMax(b).cwiseMax(c) - a.cwiseMin(b).cwiseMin(c)).maxCoeff();
+  for (std::size_t t = 0; t < n; ++t) {
+    const Vec3 &a = v[tris[t][0]], &b = v[tris[t][1]], &c = v[tris[t][2]];
+    boxes[t] = {a.cwiseMin(b).cwiseMin(c), a.cwiseMax(b).cwiseMax(c)};
+    mean_size += (boxes[t][1] - boxes[t][0]).maxCoeff();
   }
   mean_size /= double(n);
   double cell = std::max(2.0 * mean_size, 1e-9 * extent.maxCoeff());
@@ -374,9 +376,7 @@ std::array<int, 2> find_self_intersection(const ClosedMesh& mesh) {
   for (;;) {
     dims = ((extent / cell).array().floor().cast<int>() + 1).cwiseMin(1024).matrix();
     covered = 0;
-    for (const auto& t : tris) {
-      const Vec3 &a = v[t[0]], &b = v[t[1]], &c = v[t[2]];
-      const Vec3 tlo = a.cwiseMin(b).cwiseMin(c), thi = a.cwiseMax(b).cwiseMax(c);
+    for (const auto& [tlo, thi] : boxes) {
       covered += double(index(thi, 0) - index(tlo, 0) + 1) * double(index(thi, 1) - index(tlo, 1) + 1) *
                  double(index(thi, 2) - index(tlo, 2) + 1);
     }
@@ -386,8 +386,7 @@ std::array<int, 2> find_self_intersection(const ClosedMesh& mesh) {
   std::vector<std::pair<std::uint64_t, int>> entries;
   entries.reserve(static_cast<std::size_t>(covered));
   for (std::size_t t = 0; t < n; ++t) {
-    const Vec3 &a = v[tris[t][0]], &b = v[tris[t][1]], &c = v[tris[t][2]];
-    const Vec3 tlo = a.cwiseMin(b).cwiseMin(c), thi = a.cwiseMax(b).cwiseMax(c);
+    const auto& [tlo, thi] = boxes[t];
     for (int x = index(tlo, 0); x <= index(thi, 0); ++x) {
       for (int y = index(tlo, 1); y <= index(thi, 1); ++y) {
         for (int z = index(tlo, 2); z <= index(thi, 2); ++z) {

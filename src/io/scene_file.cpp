@@ -461,7 +461,7 @@ void save_state(const std::string& path, const scenario::Scene& scene) {
            "# quaternion w x y z of the principal-axes body frame).\n";
     for (const auto& b : scene.bodies) {
       const auto& q = b.orientation;
-      const Vec3 centroid = b.position - q * b.centre_of_mass_offset;
+      const Vec3 centroid = scenario::centroid_position(b);
       out << "\n[[body]]\nname = \"" << b.name << "\"\nposition = [" << centroid.x() << ", "
           << centroid.y() << ", " << centroid.z() << "]\norientation = [" << q.w() << ", "
           << q.x() << ", " << q.y() << ", " << q.z() << "]\n";

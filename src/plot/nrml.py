@@ -20,12 +20,6 @@ def lognormal_moments(theta, beta):
     return mean, mean * math.sqrt(math.expm1(beta * beta))
 
 
-def lognormal_from_moments(mean, stddev):
-    """(theta, beta) of a lognormal with this mean and standard deviation (the inverse)."""
-    beta = math.sqrt(math.log1p((stddev / mean) ** 2))
-    return mean * math.exp(-0.5 * beta * beta), beta
-
-
 def fragility_model(model_id, description, functions):
     """The NRML document as an ElementTree. functions: dicts with id, theta_g, beta, min_iml,
     max_iml, no_damage_limit."""

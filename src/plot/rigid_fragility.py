@@ -42,11 +42,11 @@ METHOD = ("maximum likelihood (probit) on the simulated cells (overturned 1, sur
           "percentile), records resampled with replacement")
 
 
-def number_in(text, option, low=None, high=None, integer=False):
+def number_in(text, option, low=None, high=None):
     try:
-        v = int(text) if integer else float(text)
+        v = float(text)
     except ValueError:
-        raise InputError(f"{option} {text!r}: expected {'an integer' if integer else 'a number'}")
+        raise InputError(f"{option} {text!r}: expected a number")
     if not math.isfinite(v) or (low is not None and v < low) or (high is not None and v > high):
         raise InputError(f"{option} {text!r}: must be in [{low}, {high}]")
     return v
@@ -86,10 +86,6 @@ class ObjectFit:
 
     def chosen(self):
         return self.vector["points"][0] if "points" in self.vector else None
-
-
-def selected_objects(cube, names):
-    return cube.select(names)
 
 
 # --------------------------------------------------------------------------------------------
@@ -284,7 +280,7 @@ def store(path, cube, fits, args):
 
 def cmd_fragility(args):
     cube = Cube(args.cube)
-    fits = [ObjectFit(cube, o, args) for o in selected_objects(cube, args.object)]
+    fits = [ObjectFit(cube, o, args) for o in cube.select(args.object)]
     if args.json:
         json.dump(json_document(cube, fits, args), sys.stdout, indent=1, allow_nan=False)
         print()
@@ -327,8 +323,6 @@ def pgv_pga_points(args, fit_records_s):
             raise InputError(f"--pgv-pga-dist {args.pgv_pga_dist!r}: expected lognormal:MEDIAN_S,BETA")
         median = number_in(parts[0], "--pgv-pga-dist median", 1e-6, 100)
         beta = number_in(parts[1], "--pgv-pga-dist beta", 0, 5)
-        if median <= 0:
-            raise InputError("--pgv-pga-dist: the median must be positive")
         nodes, weights = hermegauss(15)
         weights = weights / weights.sum()
         return [(float(w), float(median * math.exp(beta * z))) for z, w in zip(nodes, weights)]
@@ -346,7 +340,7 @@ def cmd_hazard(args):
     except hc.CurveError as e:
         raise InputError(str(e))
     cube = Cube(args.cube)
-    objs = selected_objects(cube, [args.object] if args.object else None)
+    objs = cube.select([args.object] if args.object else None)
     if len(objs) > 1:
         raise InputError(f"{args.cube}: {len(objs)} objects; choose one with --object "
                          f"({', '.join(o.name for o in objs)})")

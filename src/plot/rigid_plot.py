@@ -49,7 +49,7 @@ try:
     from matplotlib import lines as mlines
     from matplotlib import patheffects as pe
     from matplotlib import ticker as mticker
-    from scipy.special import ndtr
+    import fragility_fit
     from fragility_fit import fit_mu, fit_probit, fit_sigma, norm_ppf, simulated_counts
 except ImportError as e:  # pragma: no cover
     sys.stderr.write(f"rigid_plot: error: {e}; install python3-numpy python3-h5py python3-matplotlib "
@@ -324,9 +324,7 @@ def contour_pga(fit, norm, pgv_pga, level_pct):
 
 
 def fit_probability(fit, norm, pga_g, pgv_pga):
-    x = norm.x_of(pgv_pga)
-    u = np.log(pga_g) + norm.u_shift
-    return ndtr((u - fit_mu(fit, x)) / fit_sigma(fit, x))
+    return fragility_fit.fit_probability(fit, np.log(pga_g) + norm.u_shift, norm.x_of(pgv_pga))
 
 
 # --------------------------------------------------------------------------------------------

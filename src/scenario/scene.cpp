@@ -66,6 +66,10 @@ void offset_centre_of_mass(dynamics::BodyDef& body, const Vec3& offset_mesh) {
   body.centre_of_mass_offset += offset_body;
 }
 
+Vec3 centroid_position(const dynamics::BodyDef& body) {
+  return body.position - body.orientation * body.centre_of_mass_offset;
+}
+
 double tilt(const Quat& initial, const Quat& current) {
   // initial vertical axis in body coordinates, carried to the world by the current pose
   const Vec3 axis = current * (initial.conjugate() * Vec3::UnitZ());

@@ -131,6 +131,10 @@ double tilt(const Quat& initial, const Quat& current);
 /// std::invalid_argument for a fixed block, a non-finite offset or a centre outside the block.
 void offset_centre_of_mass(dynamics::BodyDef& body, const Vec3& offset_mesh);
 
+/// World position of a block's mesh centroid: `position` less the centre-of-mass offset (what
+/// saved states and `rigid inspect` report; equal to `position` for a uniform block).
+Vec3 centroid_position(const dynamics::BodyDef& body);
+
 /// Runs one shaking case from the scene's initial state.
 RunOutcome run(const Scene& scene, const GroundDrive& ground, const RunSettings& settings);
 
