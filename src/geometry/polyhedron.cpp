@@ -201,10 +201,10 @@ ConvexPolyhedron make_piece(const ClosedMesh& convex_mesh, const ConvexPolyhedro
 }
 
 void offset_mass_centre(ConvexPolyhedron& shape, std::vector<ConvexPolyhedron>& pieces, const Vec3& offset) {
-  if (!offset.allFinite()) throw std::invalid_argument("offset_mass_centre: non-finite offset");
+  if (!offset.allFinite()) throw std::invalid_argument("the offset is not finite");
   for (const Face& f : shape.faces) {
     if (f.normal.dot(offset) >= f.offset) {
-      throw std::invalid_argument("offset_mass_centre: the centre of mass would lie outside the block");
+      throw std::invalid_argument("the centre of mass would lie outside the block");
     }
   }
   auto shift = [&offset](ConvexPolyhedron& p) {

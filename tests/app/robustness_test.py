@@ -157,6 +157,9 @@ def make_inputs(d):
     # TOML values of the wrong type
     write(d, "fixed_string.toml", '[[block]]\nstl = "pedestal.stl"\nfixed = "true"\n[[block]]\nstl = "block.stl"\n')
     write(d, "rule_number.toml", 'model = "block_a02.model"\n[failure]\nrule = 5\n')
+    # a centre of mass moved outside its block (the block is 0.2 m wide), of an unknown block
+    write(d, "com_outside.toml", 'model = "block_a02.model"\n[centre_of_mass_offset]\nblock = [0.5, 0.0, 0.0]\n')
+    write(d, "com_unknown.toml", 'model = "block_a02.model"\n[centre_of_mass_offset]\nrock = [0.01, 0.0, 0.0]\n')
     # job files
     job = ('[campaign]\nscales = %s\nrotations = %d\n[[object]]\nscene = "block.toml"\n%s'
            '[[record]]\nmotion = "stochastic_s1-X.AT2"\n%s[run]\n%s')
@@ -237,6 +240,8 @@ def cases(d, sphere_facets):
         ("/dev/zero as job", ["campaign", "/dev/zero", "--dry-run"], e, ["/dev/zero", "regular"]),
         ("FIFO as STL", ["run", "fifo.model"], e, ["fifo.stl", "regular"]),
         ("FIFO as AT2", ["run", "block.toml", "--motion", "fifo-X.AT2"], e, ["fifo-X.AT2", "regular"]),
+        ("centre of mass outside the block", ["inspect", "com_outside.toml"], e, ["com_outside.toml:3", "outside the block"]),
+        ("centre of mass of an unknown block", ["run", "com_unknown.toml"] + motion, e, ["com_unknown.toml:3", "'rock'"]),
         # wrong TOML types
         ('fixed = "true"', ["run", "fixed_string.toml"] + motion, e, ["fixed_string.toml:3", "fixed", "boolean"]),
         ("rule = 5", ["run", "rule_number.toml"] + motion, e, ["rule_number.toml:3", "rule", "string"]),
