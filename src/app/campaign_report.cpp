@@ -2,7 +2,9 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
+#include <numeric>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -43,6 +45,28 @@ void print_progress(const campaign::ProgressReport& p, bool bar) {
                          shown_total, p.remaining, p.total, rate, format_duration(eta), p.failures);
   }
   std::fflush(stderr);
+}
+
+// Tasks and core-hours of each object (and variant): what each row of the cube will cost. Many
+// variants are summarised per object (least, median, most) rather than listed.
+void print_object_costs(const scenario::Job& job, long tasks_per_object, const std::vector<double>& wall) {
+  constexpr int kListed = 40;
+  std::printf("%-28s %10s %12s\n", "object", "tasks", "core-hours");
+  if (int(job.objects.size()) <= kListed) {
+    for (std::size_t o = 0; o < job.objects.size(); ++o) {
+      std::printf("%-28s %10ld %12.3g\n", job.objects[o].label().c_str(), tasks_per_object, wall[o] / 3600.0);
+    }
+    return;
+  }
+  const int V = job.variant_count();
+  for (int b = 0; b < job.base_objects(); ++b) {
+    std::vector<double> hours(wall.begin() + long(b) * V, wall.begin() + long(b + 1) * V);
+    for (double& h : hours) h /= 3600.0;
+    std::sort(hours.begin(), hours.end());
+    std::printf("%-28s %10ld %12.3g  per variant: least %.3g, median %.3g, most %.3g core-hours (%d variants)\n",
+                job.objects[std::size_t(b) * V].name.c_str(), tasks_per_object * V,
+                std::accumulate(hours.begin(), hours.end(), 0.0), hours.front(), hours[hours.size() / 2], hours.back(), V);
+  }
 }
 
 }  // namespace
@@ -96,14 +120,17 @@ void print_failures(const io::Cube& cube) {
 }
 
 int print_dry_run(const scenario::Job& job, const scenario::Model& model) {
-  const long cells = long(job.objects.size()) * long(job.records.size()) * long(job.scales_g.size()) * job.rotations;
+  const long tasks_per_object = long(job.records.size()) * long(job.scales_g.size()) * job.rotations;
+  const long cells = long(job.objects.size()) * tasks_per_object;
   double per_object_sim = 0;  // simulated time of one object's tasks
   for (int r = 0; r < model.records(); ++r) per_object_sim += model.simulated_time(r);
   per_object_sim *= double(job.scales_g.size()) * job.rotations;
-  // this machine's cost per step on each object: a short real case, not its whole record
+  // this machine's cost per step on each object (each variant: stiffness, size and contact model
+  // change the step): a short real case, not its whole record
   scenario::RunSettings probe = model.run_settings();
   probe.duration = 2.0;
   double steps = 0, wall = 0;
+  std::vector<double> object_wall;
   for (int o = 0; o < model.objects(); ++o) {
     scenario::Model short_model(model.kind(), {model.scene(o)}, {model.records() ? model.record(0) : motion::GroundMotion{}},
                                 probe, {model.records() ? model.pga_factor_per_g(0) : 0.0});
@@ -115,12 +142,21 @@ int print_dry_run(const scenario::Job& job, const scenario::Model& model) {
     const double per_step = out.run.steps > 0 ? seconds / double(out.run.steps) : 0.0;
     steps += per_object_sim / dt;
     wall += per_object_sim / dt * per_step;
+    object_wall.push_back(per_object_sim / dt * per_step);
   }
-  std::printf("job %s: %zu objects x %zu records x %zu scales x %d rotations = %ld tasks\n", job.path.c_str(),
-              job.objects.size(), job.records.size(), job.scales_g.size(), job.rotations, cells);
-  std::printf("at most %.4g s simulated, %.4g time steps; about %s of one core if every task ran to its end\n",
-              per_object_sim * double(job.objects.size()), steps, format_duration(wall).c_str());
-  std::printf("(overturned runs stop early and the stop rule skips scales, so the real cost is lower)\n");
+  if (job.variants.count() > 0) {
+    std::printf("job %s: %d objects x %d variants x %zu records x %zu scales x %d rotations = %ld tasks\n", job.path.c_str(),
+                job.base_objects(), job.variant_count(), job.records.size(), job.scales_g.size(), job.rotations, cells);
+  } else {
+    std::printf("job %s: %zu objects x %zu records x %zu scales x %d rotations = %ld tasks\n", job.path.c_str(),
+                job.objects.size(), job.records.size(), job.scales_g.size(), job.rotations, cells);
+  }
+  std::printf("at most %.4g s simulated, %.4g time steps; about %s of one core (%.3g core-hours) if every task ran to its end\n",
+              per_object_sim * double(job.objects.size()), steps, format_duration(wall).c_str(), wall / 3600.0);
+  print_object_costs(job, tasks_per_object, object_wall);
+  std::printf("wall time if the ranks share the work evenly (one rank hands out tasks and simulates too):");
+  for (int ranks : {2, 64, 500}) std::printf("  %d ranks %s", ranks, format_duration(wall / ranks).c_str());
+  std::printf("\n(overturned runs stop early and the stop rule skips scales, so the real cost is lower)\n");
   return 0;
 }
 

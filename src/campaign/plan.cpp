@@ -28,7 +28,13 @@ double rotation_angle_deg(std::uint64_t seed, const Cell& c) {
 
 double cell_rotation_deg(const scenario::Job& job, const Cell& c) {
   if (!job.rotation_angles_deg.empty()) return job.rotation_angles_deg[std::size_t(c.rotation)];
-  return rotation_angle_deg(job.seed, c);
+  // every variant of an object shakes at the same angles (common random numbers): a difference
+  // between variants is then the parameters', not the rotations' sampling noise
+  Cell keyed = c;
+  if (std::size_t(c.object) < job.objects.size() && job.objects[std::size_t(c.object)].base >= 0) {
+    keyed.object = job.objects[std::size_t(c.object)].base;
+  }
+  return rotation_angle_deg(job.seed, keyed);
 }
 
 Plan::Plan(int objects, int records, int scales, int rotations, int stop_after,

@@ -10,6 +10,7 @@
 #include <toml++/toml.h>
 
 #include "input_file.hpp"
+#include "job_variants.hpp"
 #include "rigid/core/error.hpp"
 #include "rigid/io/at2.hpp"
 #include "rigid/io/record_list.hpp"
@@ -104,10 +105,26 @@ void check_cell_count(const scenario::Job& job, long campaign_line) {
                        double(job.rotations);
   if (cells > kMaxCells) {
     char buf[160];
-    std::snprintf(buf, sizeof buf, "the job has %.3g cells (objects x records x scales x rotations), more than 1e7",
+    std::snprintf(buf, sizeof buf, "the job has %.3g cells (objects x variants x records x scales x rotations), more than 1e7",
                   cells);
     throw InputError(job.path, campaign_line, buf);
   }
+}
+
+// Every [[object]] in every variant, object-major: what the campaign simulates.
+void expand_variants(scenario::Job& job) {
+  if (job.variants.count() == 0) return;
+  std::vector<scenario::JobObject> expanded;
+  for (std::size_t o = 0; o < job.objects.size(); ++o) {
+    for (int v = 0; v < job.variants.count(); ++v) {
+      scenario::JobObject e = job.objects[o];
+      e.base = int(o);
+      e.variant = v;
+      if (const std::string scene = scenario::variant_scene(job.variants, v); !scene.empty()) e.scene = scene;
+      expanded.push_back(std::move(e));
+    }
+  }
+  job.objects = std::move(expanded);
 }
 
 }  // namespace
@@ -120,7 +137,7 @@ scenario::Job load_job(const std::string& path) {
   job.hash = text_hash(job.text);
   const toml::table root = parse_toml(job.text, path);
   const fs::path base = fs::path(path).parent_path();
-  reject_unknown(root, {"campaign", "object", "record", "records", "run"}, path, "the job");
+  reject_unknown(root, {"campaign", "object", "record", "records", "run", "sweep", "variant"}, path, "the job");
 
   const auto* c = root["campaign"].as_table();
   if (!c) throw InputError(path, 0, "missing [campaign] table");
@@ -210,6 +227,8 @@ scenario::Job load_job(const std::string& path) {
   }
 
   if (job.objects.empty()) throw InputError(path, 0, "every [[object]] of the job is optional and absent");
+  job.variants = read_variants(root, path, base, job.seed, job.objects.size(), job.variant_lines);
+  expand_variants(job);
 
   // records: a list file or [[record]] tables
   if (root.contains("records") == root.contains("record")) {

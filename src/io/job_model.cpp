@@ -1,5 +1,7 @@
 #include "rigid/io/job_model.hpp"
 
+#include <stdexcept>
+
 #include "rigid/core/error.hpp"
 #include "rigid/io/at2.hpp"
 #include "rigid/io/scene_file.hpp"
@@ -17,6 +19,18 @@ motion::GroundMotion windowed_record(const scenario::JobRecord& r, const motion:
   }
 }
 
+// A variant the object cannot take (a centre of mass outside its block) is the job's error, at
+// the line of the [sweep] or [[variant]] that asked for it.
+void apply_job_variant(const scenario::Job& job, const scenario::JobObject& o, scenario::Scene& s) {
+  try {
+    scenario::apply_variant(job.variants, o.variant, s);
+  } catch (const std::invalid_argument& e) {
+    const std::size_t at = job.variant_lines.size() == 1 ? 0 : std::size_t(o.variant);
+    throw InputError(job.path, at < job.variant_lines.size() ? job.variant_lines[at] : 0,
+                     "variant " + std::to_string(o.variant) + " of object " + o.name + ": " + e.what());
+  }
+}
+
 }  // namespace
 
 scenario::Model load_model(const scenario::Job& job) {
@@ -25,6 +39,7 @@ scenario::Model load_model(const scenario::Job& job) {
     scenario::Scene s = load_scene(o.scene);
     if (!o.state.empty()) apply_state(o.state, s);
     if (!job.contact.empty()) contact::parse_contact_model(job.contact, s.law.model);
+    if (o.variant >= 0) apply_job_variant(job, o, s);
     scenes.push_back(std::move(s));
   }
   std::vector<motion::GroundMotion> records;

@@ -125,5 +125,63 @@ TEST_F(JobFile, MalformedTomlNamesTheLine) {
   expect_error(t, "", 4);
 }
 
+
+// kGood has 8 lines; a [sweep] appended starts on line 9
+TEST_F(JobFile, SweepExpandsEveryObjectIntoItsVariants) {
+  const std::string t = std::string(kGood) + "\n[[object]]\nname = \"b\"\nscene = \"../models/demo/block_a03.toml\"\n" +
+                        "\n[sweep]\ncount = 4\nfriction = [0.4, 0.8]\nrestitution = { values = [0.0, 0.2] }\n";
+  const auto job = load_job(write(t));
+  ASSERT_EQ(job.variants.count(), 4);
+  EXPECT_EQ(job.variants.method, "lhs");
+  EXPECT_EQ(job.variants.seed, job.seed);  // the campaign's seed unless [sweep] gives one
+  ASSERT_EQ(job.objects.size(), 8u);       // 2 objects x 4 variants, object-major
+  EXPECT_EQ(job.base_objects(), 2);
+  EXPECT_EQ(job.objects[5].name, "b");
+  EXPECT_EQ(job.objects[5].variant, 1);
+  EXPECT_EQ(job.objects[5].base, 1);
+  EXPECT_EQ(job.objects[5].label(), "b [v1]");
+  for (const auto& row : job.variants.variants) {
+    EXPECT_GE(row[0].number, 0.4);
+    EXPECT_LE(row[0].number, 0.8);
+    EXPECT_TRUE(row[1].number == 0.0 || row[1].number == 0.2);
+  }
+}
+
+TEST_F(JobFile, VariantTablesAndGrid) {
+  const auto list = load_job(write(std::string(kGood) + "[[variant]]\nfriction = 0.5\ncontact = \"penalty\"\n"
+                                                        "[[variant]]\nfriction = 0.7\ncontact = \"rigid\"\n"));
+  ASSERT_EQ(list.variants.count(), 2);
+  EXPECT_EQ(list.variants.method, "list");
+  EXPECT_EQ(list.variants.variants[1][0].number, 0.7);
+  EXPECT_EQ(list.variants.variants[0][1].text, "penalty");
+  const auto grid = load_job(write(std::string(kGood) + "[sweep]\nmethod = \"grid\"\nlevels = 3\nfriction = [0.4, 0.8]\n"
+                                                        "size_scale = { values = [0.9, 1.1] }\n"));
+  EXPECT_EQ(grid.variants.count(), 6);
+}
+
+TEST_F(JobFile, BadSweepsAreRefusedAtTheirLine) {
+  const std::string job = kGood;
+  expect_error(job + "[sweep]\ncount = 4\nfriction = [-0.2, 0.8]\n", "friction must be greater than 0", 11);
+  expect_error(job + "[sweep]\ncount = 4\nfriction = [0.8, 0.8]\n", "friction: the range [0.8, 0.8] is empty", 11);
+  expect_error(job + "[sweep]\ncount = 4\nviscosity = [0.1, 0.2]\n", "unknown parameter 'viscosity' in [sweep]", 11);
+  expect_error(job + "[sweep]\ncount = 4\n", "[sweep] varies no parameter", 9);
+  expect_error(job + "[sweep]\nfriction = [0.4, 0.8]\n", "needs count", 9);
+  expect_error(job + "[sweep]\ncount = 0\nfriction = [0.4, 0.8]\n", "count must be an integer", 10);
+  expect_error(job + "[sweep]\ncount = 4\nrestitution = [0.0, 1.5]\n", "restitution must not be greater than 1", 11);
+  expect_error(job + "[sweep]\ncount = 4\nfriction = { values = [] }\n", "the list of values is empty", 11);
+  expect_error(job + "[sweep]\ncount = 4\ncontact = [\"rigid\", \"soft\"]\n", "contact must be \"rigid\" or \"penalty\"", 11);
+  expect_error(job + "[sweep]\nmethod = \"sobol\"\ncount = 4\nfriction = [0.4, 0.8]\n", "method must be", 10);
+  expect_error(job + "[sweep]\ncount = 4\nfriction = [0.4, nan]\n", "friction must be a finite number", 11);
+  expect_error(job + "[sweep]\ncount = 4\nscene = [\"no_such_scene.toml\"]\n", "scene: file not found", 11);
+  expect_error(job + "[[variant]]\nfriction = 0.5\n[[variant]]\nrestitution = 0.1\n", "the same parameters", 11);
+  expect_error(job + "[[variant]]\nfriction = 0.5\n[sweep]\ncount = 2\nfriction = [0.4, 0.8]\n", "not both");
+}
+
+TEST_F(JobFile, VariantsCountTowardsTheCellLimit) {
+  std::string t = kGood;
+  t.replace(t.find("\"0.1:0.5:0.1\""), 13, "\"0.001:1.0:0.001\"\nrotations = 1000");
+  expect_error(t + "[sweep]\ncount = 20\nfriction = [0.4, 0.8]\n", "more than 1e7");
+}
+
 }  // namespace
 }  // namespace rigid::io

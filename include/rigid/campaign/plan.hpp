@@ -49,7 +49,8 @@ Cell cell_of(long task, int records, int scales, int rotations);
 /// job seed and the cell coordinates in turn, so any cell's angle is computed on its own.
 double rotation_angle_deg(std::uint64_t seed, const Cell& cell);
 
-/// The rotation of a cell in a job: its fixed angle when the job lists them, else the random one.
+/// The rotation of a cell in a job: its fixed angle when the job lists them, else the random one
+/// of its [[object]] (the same for all of the object's variants).
 double cell_rotation_deg(const scenario::Job& job, const Cell& cell);
 
 class Plan {

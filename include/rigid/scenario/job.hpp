@@ -9,14 +9,19 @@
 #include "rigid/scenario/accuracy.hpp"
 #include "rigid/scenario/case.hpp"
 #include "rigid/scenario/scene.hpp"
+#include "rigid/scenario/variant.hpp"
 
 namespace rigid::scenario {
 
-/// One object (a scene) of a campaign.
+/// One object (a scene) of a campaign, in one of the job's variants.
 struct JobObject {
-  std::string name;   ///< unique; the HDF5 group name
-  std::string scene;  ///< scene file (resolved path)
+  std::string name;   ///< the [[object]]'s name, unique among them; the HDF5 group name
+  std::string scene;  ///< scene file (resolved path): the variant's alternative scene if it has one
   std::string state;  ///< saved equilibrium state to start from (resolved path), may be empty
+  int base = -1;      ///< index of the [[object]] in the job file; -1: the object's own index
+  int variant = -1;   ///< index in Job::variants, -1 when the job has none
+  /// "NAME" without variants, "NAME [vK]" with them: how tables and messages name it.
+  std::string label() const { return variant < 0 ? name : name + " [v" + std::to_string(variant) + "]"; }
 };
 
 /// One record (a ground-motion set) of a campaign.
@@ -41,7 +46,18 @@ struct Job {
   std::string hash;        ///< hex hash of text (FNV-1a 64): a changed job is refused on resume
   std::string output;      ///< HDF5 cube path
   std::uint64_t seed = 1;  ///< keys the rotation angles
+  /// What the campaign simulates: every [[object]] in every variant, object-major (index
+  /// base * variants + variant), so the plan, stop rule, journal and cube work per variant.
   std::vector<JobObject> objects;
+  /// The [sweep] or [[variant]] tables: count() == 0 when the job has none.
+  VariantSpace variants;
+  /// Line of the [sweep] table or of each [[variant]] (one entry for a sweep): where errors about
+  /// a variant that a scene cannot take point.
+  std::vector<long> variant_lines;
+  /// Variants per [[object]] (1 when the job has none).
+  int variant_count() const { return variants.count() > 0 ? variants.count() : 1; }
+  /// Number of [[object]]s.
+  int base_objects() const { return static_cast<int>(objects.size()) / variant_count(); }
   std::vector<JobRecord> records;
   std::string record_list;        ///< the record-list file (resolved path), empty for [[record]] tables
   std::vector<double> scales_g;   ///< target GMRotI50 PGA of each scale, increasing (unit: g)
