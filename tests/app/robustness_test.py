@@ -174,6 +174,11 @@ def make_inputs(d):
     job_file("huge.job.toml", scales='"0.001:100:0.001"', rotations=1000)
     job_file("window.job.toml", rec="start = 100.0\n")
     job_file("ok.job.toml")
+    # bad sweeps (after an empty [run]): refused before any work
+    job_file("sweep_negative.job.toml", "[sweep]\ncount = 4\nfriction = [-0.5, 0.8]\n")
+    job_file("sweep_empty.job.toml", "[sweep]\ncount = 4\nrestitution = [0.3, 0.1]\n")
+    job_file("sweep_unknown.job.toml", "[sweep]\ncount = 4\nviscosity = [0.1, 0.2]\n")
+    job_file("sweep_outside.job.toml", "[sweep]\ncount = 2\ncom_offset_x_m = [0.3, 0.5]\n")
     sphere_facets = sphere_stl(os.path.join(d, "sphere.stl"), SPHERE_FACETS)
     write(d, "sphere.model", "block pedestal.stl\n1 0 0 0\nblock sphere.stl\n0 0 0 0\n")
     return sphere_facets
@@ -263,6 +268,11 @@ def cases(d, sphere_facets):
         ("--rotation 1e308", demo + ["--rotation", "1e308"], e, ["--rotation"]),
         ("1e8-task job, dry run", camp("huge.job.toml", "--dry-run"), e, ["huge.job.toml:", "cells"]),
         ("window past the record in a job", camp("window.job.toml", "--dry-run"), e, ["window.job.toml:", "window"]),
+        ("sweep: negative friction", camp("sweep_negative.job.toml"), e, ["sweep_negative.job.toml:11:", "friction must be greater than 0"]),
+        ("sweep: empty range", camp("sweep_empty.job.toml"), e, ["sweep_empty.job.toml:11:", "range [0.3, 0.1] is empty"]),
+        ("sweep: unknown parameter", camp("sweep_unknown.job.toml"), e, ["sweep_unknown.job.toml:11:", "unknown parameter 'viscosity'"]),
+        ("sweep: centre of mass outside the block", camp("sweep_outside.job.toml"), e,
+         ["sweep_outside.job.toml:9:", "variant 0", "outside the block"]),
         ("window past the record on the command line", demo + ["--start", "100"], e, ["--start", "window"]),
         ("AT2 path that is a directory", ["run", "block.toml", "--motion", "dir-X.AT2"], e, ["dir-X.AT2", "directory"]),
         # scans (rigid model import, issue 13)
