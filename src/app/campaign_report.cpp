@@ -89,7 +89,7 @@ void print_summary(const io::Cube& cube, const std::string& output) {
   if (stride > 1) std::printf("(every %zu-th scale of %zu)\n", stride, S);
   for (const auto& oc : cube.objects) {
     const std::vector<double> mean = io::mean_overturn_probability(cube, oc);  // per scale
-    std::printf("%-20s", oc.name.c_str());
+    std::printf("%-20s", io::object_label(oc).c_str());  // "rock [v3]" with variants
     for (std::size_t s = 0; s < S; s += stride) {
       if (std::isnan(mean[s])) {
         std::printf("%7s", "-");
@@ -112,7 +112,7 @@ void print_failures(const io::Cube& cube) {
       if (failed > kListed) continue;
       const std::size_t r = i / (S * A), s = (i / A) % S, a = i % A;
       const std::string message = i < oc.failure_message.size() ? oc.failure_message[i] : std::string();
-      std::printf("  %s, record %s, %.3g g, rotation %zu: %s\n", oc.name.c_str(), cube.records[r].name.c_str(),
+      std::printf("  %s, record %s, %.3g g, rotation %zu: %s\n", io::object_label(oc).c_str(), cube.records[r].name.c_str(),
                   cube.scales_g[s], a, message.empty() ? "(no message)" : message.c_str());
     }
   }

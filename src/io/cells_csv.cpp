@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <string>
+#include <vector>
 
 namespace rigid::io {
 namespace {
@@ -24,7 +25,7 @@ std::string csv_number(double x) {
   return std::string(buf, end);
 }
 
-void write_row(std::ostream& out, std::initializer_list<std::string> fields) {
+void write_row(std::ostream& out, const std::vector<std::string>& fields) {
   bool first = true;
   for (const std::string& f : fields) {
     if (!first) out << ',';
@@ -37,19 +38,25 @@ void write_row(std::ostream& out, std::initializer_list<std::string> fields) {
 }  // namespace
 
 void write_cells_csv(std::ostream& out, const Cube& cube) {
-  write_row(out, {"object", "record", "scale_g", "rotation", "rotation_deg", "outcome", "failure_time_s",
-                  "max_tilt_deg", "max_slip_m", "failure_reason", "failure_message"});
+  // the variant column only when the cube has variants: tables of other cubes stay as they were
+  const bool variants = cube.variants.count > 0;
+  std::vector<std::string> header{"object", "record", "scale_g", "rotation", "rotation_deg", "outcome",
+                                  "failure_time_s", "max_tilt_deg", "max_slip_m", "failure_reason", "failure_message"};
+  if (variants) header.insert(header.begin() + 1, "variant");
+  write_row(out, header);
   const std::size_t S = cube.scales_g.size(), A = static_cast<std::size_t>(cube.rotations);
   for (const ObjectCube& o : cube.objects) {
     for (std::size_t r = 0; r < cube.records.size(); ++r) {
       for (std::size_t s = 0; s < S; ++s) {
         for (std::size_t a = 0; a < A; ++a) {
           const std::size_t i = (r * S + s) * A + a;
-          write_row(out, {o.name, cube.records[r].name, csv_number(cube.scales_g[s]), std::to_string(a),
-                          csv_number(o.rotation_deg[i]), outcome_name(o.outcome[i]),
-                          csv_number(o.failure_time_s[i]), csv_number(o.max_tilt_deg[i]),
-                          csv_number(o.max_slip_m[i]), failure_reason_name(o.failure_reason[i]),
-                          o.failure_message.empty() ? std::string() : o.failure_message[i]});
+          std::vector<std::string> row{o.name, cube.records[r].name, csv_number(cube.scales_g[s]), std::to_string(a),
+                                       csv_number(o.rotation_deg[i]), outcome_name(o.outcome[i]),
+                                       csv_number(o.failure_time_s[i]), csv_number(o.max_tilt_deg[i]),
+                                       csv_number(o.max_slip_m[i]), failure_reason_name(o.failure_reason[i]),
+                                       o.failure_message.empty() ? std::string() : o.failure_message[i]};
+          if (variants) row.insert(row.begin() + 1, std::to_string(o.variant));
+          write_row(out, row);
         }
       }
     }

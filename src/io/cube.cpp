@@ -3,7 +3,8 @@
 // them without HDF5); cube_write.cpp and cube_read.cpp write and read it with the HDF5 C API
 // (shared plumbing: cube_hdf5.hpp).
 //
-// Layout, schema_version 1 (R records, S scales, A rotations, B = E - 1 PGV/PGA bins):
+// Layout, schema_version 1: a cube without variants (R records, S scales, A rotations, B = E - 1
+// PGV/PGA bins):
 //
 //   /                      attributes: schema_version (int32), software_version, job_text,
 //                          job_hash, physics_json (strings), seed (uint64),
@@ -41,6 +42,29 @@
 //       fragility          [S,B]   float64  derived: fragility_surface().probability
 //       fragility_count    [S,B]   int32    derived: fragility_surface().count
 //
+// Layout, schema_version 2: a cube with variants (Cube::variants.count = V > 0). Everything above
+// stays where it is, with these changes:
+//
+//   /variants              attributes: method (string), seed (uint64), count (int32 V),
+//                          parameters (string: the parameters' names, space-separated, job order)
+//   /variants/variant      [V] int32      dimension scale "variant" (0..V-1), long_name "variant index"
+//   /variants/<parameter>  [V] float64 with `units`, or string (a text parameter); description,
+//                          long_name; attached to /variants/variant
+//   /objects/<name>/       one group per base object; attributes scene, index (the base object's
+//                          position in the job), variants (int32 V), datasets_sha256 (over the
+//                          cell datasets of all V variants, as stored: variant 0's cells first),
+//                          datasets_sha256_covers. The per-variant values that are attributes in
+//                          schema_version 1 are datasets [V] attached to the group's scale variant:
+//       variant            [V]     int32  the group's own dimension scale "variant" (0..V-1)
+//       alpha_rad, p_rad_s, rocking_radius_m, weakest_azimuth_deg   [V] float64, NaN when none
+//       physics_json, inputs_sha256                                 [V] string
+//       alpha_by_azimuth_rad [V,Z] float64 rad, with its scale azimuth [Z] (degree, k*360/Z): only
+//                          when every variant has the same Z > 0
+//       support_polygon_m  [V]     string "x0 y0 x1 y1 ..." (%.17g), "" when none
+//       outcome, rotation_deg, failure_time_s, max_tilt_deg, max_slip_m, wall_s, failure_reason,
+//       failure_message    [V,R,S,A]
+//       probability        [V,R,S]; fragility, fragility_count [V,S,B] (per variant, as above)
+//
 // Every dataset has a `description`; numbers outside the object groups `units` ("1" =
 // dimensionless, "none" = text, codes, indices). In an object group every variable has a CF
 // `long_name` and every number a UDUNITS-2 `units`, and each dimension has exactly one scale
@@ -65,6 +89,7 @@
 #include <cstdint>
 #include <cmath>
 #include <limits>
+#include <span>
 #include <stdexcept>
 #include <type_traits>
 #include <utility>
@@ -102,6 +127,11 @@ std::string nul_problem(const std::string& s, const std::string& what) {
   return s.find('\0') == std::string::npos ? std::string() : what + " contains a NUL byte";
 }
 
+// A name that becomes an HDF5 link name: not empty, no '/', not "." (the group itself).
+bool valid_link_name(const std::string& name) {
+  return !name.empty() && name != "." && name.find('/') == std::string::npos;
+}
+
 // Sizes, names and codes of the cube as a whole, without looking at the objects.
 std::string cube_level_problem(const Cube& c) {
   if (c.rotations < 1) return "rotations must be at least 1 (is " + std::to_string(c.rotations) + ")";
@@ -129,8 +159,7 @@ std::string cube_level_problem(const Cube& c) {
 
 std::string object_problem(const Cube& c, const ObjectCube& o) {
   const std::string at = "object '" + o.name + "': ";
-  // the name becomes an HDF5 link name: no '/', and not "." (the group itself)
-  if (o.name.empty() || o.name == "." || o.name.find('/') != std::string::npos)
+  if (!valid_link_name(o.name))
     return at + "not a valid group name (empty, \".\" or containing '/')";
   if (std::string p = nul_problem(o.name, at + "name"); !p.empty()) return p;
   if (std::string p = nul_problem(o.scene, at + "scene"); !p.empty()) return p;
@@ -159,6 +188,89 @@ std::string object_problem(const Cube& c, const ObjectCube& o) {
     if (o.outcome[i] < 0 || o.outcome[i] > static_cast<std::int8_t>(CellOutcome::failed))
       return at + "outcome[" + std::to_string(i) + "] = " + std::to_string(o.outcome[i]) +
              " is not a CellOutcome";
+  }
+  return {};
+}
+
+std::string variant_parameter_problem(const VariantParameter& p, int count) {
+  const std::string at = "variant parameter '" + p.name + "': ";
+  // /variants/variant is the axis' own dimension scale
+  if (!valid_link_name(p.name) || p.name == "variant")
+    return at + "not a valid dataset name (empty, \".\", \"variant\" or containing '/')";
+  for (const auto& [s, what] : {std::pair{&p.name, "name"}, std::pair{&p.units, "units"},
+                                std::pair{&p.description, "description"}}) {
+    if (std::string q = nul_problem(*s, at + what); !q.empty()) return q;
+  }
+  const auto n = static_cast<std::size_t>(count);
+  const bool text = !p.labels.empty();
+  if (text && !p.values.empty()) return at + "has both numbers and labels";
+  if (text && !p.units.empty()) return at + "a text parameter has no units (has '" + p.units + "')";
+  const std::size_t has = text ? p.labels.size() : p.values.size();
+  if (has != n)
+    return at + "has " + std::to_string(has) + (text ? " labels" : " values") + ", expected " +
+           std::to_string(n) + " (one per variant)";
+  for (std::size_t v = 0; v < p.labels.size(); ++v) {
+    if (std::string q = nul_problem(p.labels[v], at + "label " + std::to_string(v)); !q.empty()) return q;
+  }
+  return {};
+}
+
+// The table by itself: its count, and each parameter's name and number of values.
+std::string variant_table_problem(const VariantTable& t) {
+  if (t.count < 0) return "variants: count must be 0 (none) or more (is " + std::to_string(t.count) + ")";
+  if (t.count == 0) {
+    if (!t.parameters.empty()) return "variants: parameters given but count is 0";
+    return {};
+  }
+  if (std::string p = nul_problem(t.method, "variants: method"); !p.empty()) return p;
+  for (std::size_t i = 0; i < t.parameters.size(); ++i) {
+    // the names are stored space-separated in /variants' attribute `parameters`
+    if (t.parameters[i].name.find_first_of(" \t\n") != std::string::npos)
+      return "variant parameter '" + t.parameters[i].name + "': the name contains white space";
+    if (std::string p = variant_parameter_problem(t.parameters[i], t.count); !p.empty()) return p;
+    for (std::size_t j = 0; j < i; ++j) {
+      if (t.parameters[j].name == t.parameters[i].name)
+        return "two variant parameters are named '" + t.parameters[i].name + "'";
+    }
+  }
+  return {};
+}
+
+// Base objects (every `stride`-th ObjectCube) must have distinct names: each is one HDF5 group.
+std::string unique_names_problem(const std::vector<ObjectCube>& objects, std::size_t stride) {
+  for (std::size_t i = 0; i < objects.size(); i += stride) {
+    for (std::size_t j = 0; j < i; j += stride) {
+      if (objects[j].name == objects[i].name) return "two objects are named '" + objects[i].name + "'";
+    }
+  }
+  return {};
+}
+
+// With variants: each base object is `count` consecutive ObjectCubes, variants 0..count-1 in
+// order, one name and scene; without, no ObjectCube claims a variant.
+std::string variant_order_problem(const Cube& c) {
+  const auto count = static_cast<std::size_t>(c.variants.count);
+  for (std::size_t i = 0; i < c.objects.size(); ++i) {
+    const ObjectCube& o = c.objects[i];
+    const ObjectCube& base = c.objects[i - i % count];
+    const std::string at = "object " + std::to_string(i) + " ('" + o.name + "'): ";
+    if (o.variant != static_cast<int>(i % count))
+      return at + "variant " + std::to_string(o.variant) + ", expected " + std::to_string(i % count) +
+             " (each base object needs its " + std::to_string(count) + " variants consecutive, in order)";
+    if (o.name != base.name || o.scene != base.scene)
+      return at + "variant " + std::to_string(o.variant) + " of '" + base.name +
+             "' has another name or scene than its variant 0";
+  }
+  if (c.objects.size() % count != 0)
+    return "object '" + c.objects.back().name + "' has " + std::to_string(c.objects.size() % count) +
+           " of the " + std::to_string(count) + " variants";
+  return unique_names_problem(c.objects, count);
+}
+
+std::string no_variant_problem(const Cube& c) {
+  for (const ObjectCube& o : c.objects) {
+    if (o.variant != -1)
+      return "object '" + o.name + "': variant " + std::to_string(o.variant) + " in a cube without variants";
   }
   return {};
 }
@@ -208,16 +320,20 @@ int pgv_pga_bin(const std::vector<double>& edges_s, double pgv_pga_s) {
   return std::min(static_cast<int>(above - edges_s.begin()) - 1, bins - 1);
 }
 
+std::string object_label(const ObjectCube& object) {
+  if (object.variant < 0) return object.name;
+  return object.name + " [v" + std::to_string(object.variant) + "]";
+}
+
 std::string cube_problem(const Cube& cube) {
   if (std::string p = cube_level_problem(cube); !p.empty()) return p;
-  for (std::size_t i = 0; i < cube.objects.size(); ++i) {
-    if (std::string p = object_problem(cube, cube.objects[i]); !p.empty()) return p;
-    for (std::size_t j = 0; j < i; ++j) {
-      if (cube.objects[j].name == cube.objects[i].name)
-        return "two objects are named '" + cube.objects[i].name + "'";
-    }
+  if (std::string p = variant_table_problem(cube.variants); !p.empty()) return p;
+  for (const ObjectCube& o : cube.objects) {
+    if (std::string p = object_problem(cube, o); !p.empty()) return p;
   }
-  return {};
+  if (cube.variants.count > 0) return variant_order_problem(cube);
+  if (std::string p = no_variant_problem(cube); !p.empty()) return p;
+  return unique_names_problem(cube.objects, 1);
 }
 
 std::vector<double> overturn_probability(const Cube& cube, const ObjectCube& object) {
@@ -318,6 +434,46 @@ void append_strings(std::string& bytes, const std::vector<std::string>& values) 
 std::vector<std::string> stored_failure_messages(const Cube& cube, const ObjectCube& object) {
   if (!object.failure_message.empty()) return object.failure_message;
   return std::vector<std::string>(cell_count(cube));
+}
+
+namespace {
+
+/// Calls f(to, from) for each cell array of two ObjectCubes, in the order kChecksumCovers names
+/// them (wall_s last): the one list the stacking and splitting of variants go through.
+template <class Into, class From, class F>
+void for_each_cell_array(Into& to, From& from, F f) {
+  f(to.outcome, from.outcome);
+  f(to.rotation_deg, from.rotation_deg);
+  f(to.failure_time_s, from.failure_time_s);
+  f(to.max_tilt_deg, from.max_tilt_deg);
+  f(to.max_slip_m, from.max_slip_m);
+  f(to.failure_reason, from.failure_reason);
+  f(to.failure_message, from.failure_message);
+  f(to.wall_s, from.wall_s);
+}
+
+}  // namespace
+
+ObjectCube stacked_cells(const Cube& cube, std::span<const ObjectCube> variants) {
+  ObjectCube stacked;
+  for (const ObjectCube& o : variants) {
+    for_each_cell_array(stacked, o, [](auto& to, const auto& from) { to.insert(to.end(), from.begin(), from.end()); });
+    // as stored_failure_messages: "" for every cell of a variant that kept no messages
+    if (o.failure_message.empty()) stacked.failure_message.resize(stacked.failure_message.size() + cell_count(cube));
+  }
+  return stacked;
+}
+
+std::vector<ObjectCube> split_cells(const ObjectCube& stacked, std::size_t count) {
+  std::vector<ObjectCube> variants(count);
+  const std::size_t n = count > 0 ? stacked.outcome.size() / count : 0;
+  for (std::size_t v = 0; v < count; ++v) {
+    for_each_cell_array(variants[v], stacked, [&](auto& to, const auto& from) {
+      // an array absent from the file (failure_message of older cubes) stays absent
+      if (from.size() == n * count) to.assign(from.begin() + v * n, from.begin() + (v + 1) * n);
+    });
+  }
+  return variants;
 }
 
 std::string cell_datasets_sha256(const ObjectCube& o, const std::vector<std::string>& failure_message) {

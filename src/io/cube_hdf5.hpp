@@ -5,6 +5,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -52,6 +53,15 @@ Hid file_access(const H5& h);
 
 /// The failure messages as stored: the object's, or "" for every cell when it has none.
 std::vector<std::string> stored_failure_messages(const Cube& cube, const ObjectCube& object);
+
+/// The cells of one base object's variants end to end, as the [variant, record, scale, rotation]
+/// datasets store them: each cell array is variant 0's, then variant 1's, ...; failure_message
+/// holds "" for every cell of a variant that kept none. The other fields are left empty.
+ObjectCube stacked_cells(const Cube& cube, std::span<const ObjectCube> variants);
+
+/// The inverse of stacked_cells: `count` ObjectCubes holding only their cell arrays (an array
+/// that is not count times as long as outcome, e.g. failure_message of an older cube, stays empty).
+std::vector<ObjectCube> split_cells(const ObjectCube& stacked, std::size_t count);
 
 /// What an object group's datasets_sha256 covers, in order (its attribute datasets_sha256_covers):
 /// every cell dataset but wall_s, which differs from run to run and would make the checksum so.

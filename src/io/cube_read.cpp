@@ -2,8 +2,10 @@
 #include <hdf5.h>
 
 #include <cstdint>
+#include <cstdlib>
 #include <filesystem>
 #include <limits>
+#include <sstream>
 
 #include "cube_hdf5.hpp"
 
@@ -94,10 +96,24 @@ class Reader {
   /// Length of a 1D dataset (an axis).
   hsize_t length(const std::string& path) const {
     const std::string what = "reading dataset " + path;
-    Hid d = h_.own(H5Dopen2(file_, path.c_str(), H5P_DEFAULT), H5Dclose, what);
-    const std::vector<hsize_t> s = shape(d, what);
+    const std::vector<hsize_t> s = shape(path);
     if (s.size() != 1) h_.fail(what + ": not one-dimensional");
     return s[0];
+  }
+
+  /// The dimensions of a dataset.
+  std::vector<hsize_t> shape(const std::string& path) const {
+    const std::string what = "reading dataset " + path;
+    Hid d = h_.own(H5Dopen2(file_, path.c_str(), H5P_DEFAULT), H5Dclose, what);
+    return shape(d, what);
+  }
+
+  /// The type class of a dataset's values (H5T_FLOAT, H5T_STRING, ...).
+  H5T_class_t type_class(const std::string& path) const {
+    const std::string what = "reading dataset " + path;
+    Hid d = h_.own(H5Dopen2(file_, path.c_str(), H5P_DEFAULT), H5Dclose, what);
+    Hid type = h_.own(H5Dget_type(d), H5Tclose, what);
+    return H5Tget_class(type);
   }
 
   template <class T>
@@ -182,6 +198,175 @@ void verify_checksum(const H5& h, const std::string& group, const ObjectCube& o,
                          stored.substr(0, 12) + "..., the datasets hash to " + now.substr(0, 12) + "...");
 }
 
+/// The cell datasets of an object group, each of shape `dims` ([R,S,A]; [V,R,S,A] in a group of
+/// variants, the variants' cells end to end), checked against the group's checksum.
+ObjectCube read_cells(const H5& h, const Reader& rd, const std::string& g, const std::vector<hsize_t>& dims) {
+  ObjectCube o;
+  o.outcome = rd.numbers<std::int8_t>(g + "/outcome", H5T_INTEGER, H5T_NATIVE_INT8, dims);
+  o.rotation_deg = rd.doubles(g + "/rotation_deg", dims);
+  o.failure_time_s = rd.doubles(g + "/failure_time_s", dims);
+  o.max_tilt_deg = rd.doubles(g + "/max_tilt_deg", dims);
+  o.max_slip_m = rd.doubles(g + "/max_slip_m", dims);
+  o.wall_s = rd.doubles(g + "/wall_s", dims);
+  o.failure_reason = rd.numbers<std::int32_t>(g + "/failure_reason", H5T_INTEGER, H5T_NATIVE_INT32, dims);
+  // absent from cubes written before them: no messages, no checksum to verify
+  if (rd.has_link(g + "/failure_message")) o.failure_message = rd.strings(g + "/failure_message", dims);
+  if (rd.has_attribute(g, "datasets_sha256")) verify_checksum(h, g, o, rd.string_attribute(g, "datasets_sha256"));
+  return o;
+}
+
+/// The group's position in the job (attribute `index`), in range and not `seen` before.
+std::size_t group_index(const H5& h, const Reader& rd, const std::string& g, std::vector<bool>& seen) {
+  const auto index = rd.integer_attribute<std::int64_t>(g, "index", H5T_NATIVE_INT64);
+  if (index < 0 || static_cast<std::size_t>(index) >= seen.size() || seen[static_cast<std::size_t>(index)])
+    h.fail(g + ": attribute index " + std::to_string(index) + " is out of range or repeated");
+  seen[static_cast<std::size_t>(index)] = true;
+  return static_cast<std::size_t>(index);
+}
+
+/// An object group of a cube without variants (schema_version 1).
+ObjectCube read_object(const H5& h, const Reader& rd, const std::string& g, const std::vector<hsize_t>& rsa) {
+  ObjectCube o = read_cells(h, rd, g, rsa);
+  o.scene = rd.string_attribute(g, "scene");
+  if (rd.has_attribute(g, "inputs_sha256")) o.inputs = rd.string_attribute(g, "inputs_sha256");
+  if (rd.has_attribute(g, "physics_json")) o.physics_json = rd.string_attribute(g, "physics_json");
+  if (rd.has_attribute(g, "alpha_rad")) o.alpha_rad = rd.double_attribute(g, "alpha_rad");
+  if (rd.has_attribute(g, "p_rad_s")) o.p_rad_s = rd.double_attribute(g, "p_rad_s");
+  if (rd.has_attribute(g, "rocking_radius_m")) o.rocking_radius_m = rd.double_attribute(g, "rocking_radius_m");
+  if (rd.has_attribute(g, "weakest_azimuth_deg")) o.weakest_azimuth_deg = rd.double_attribute(g, "weakest_azimuth_deg");
+  // bounded: a support polygon of a scanned rock has at most a few thousand corners
+  if (rd.has_attribute(g, "alpha_by_azimuth_rad")) o.alpha_by_azimuth_rad = rd.double_array_attribute(g, "alpha_by_azimuth_rad", 3600);
+  if (rd.has_attribute(g, "support_polygon_m")) o.support_polygon_m = rd.double_array_attribute(g, "support_polygon_m", 1 << 20);
+  return o;
+}
+
+// ---- a cube with variants (schema_version 2)
+
+/// The numbers of a "x0 y0 x1 y1 ..." string (support_polygon_m of a group of variants).
+std::vector<double> parse_corners(const H5& h, const std::string& where, const std::string& text) {
+  std::vector<double> xy;
+  const char* p = text.c_str();
+  while (true) {
+    while (*p == ' ') ++p;
+    if (*p == '\0') return xy;
+    char* end = nullptr;
+    xy.push_back(std::strtod(p, &end));
+    if (end == p || (*end != ' ' && *end != '\0')) h.fail(where + ": not a list of numbers: '" + text + "'");
+    p = end;
+  }
+}
+
+/// /variants: the variant table; its count must match its own dimension scale.
+VariantTable read_variant_table(const H5& h, const Reader& rd) {
+  if (!rd.has_link("/variants")) h.fail("schema_version 2 cube without its variant table /variants");
+  VariantTable t;
+  t.method = rd.string_attribute("/variants", "method");
+  t.seed = rd.integer_attribute<std::uint64_t>("/variants", "seed", H5T_NATIVE_UINT64);
+  const auto count = rd.integer_attribute<std::int64_t>("/variants", "count", H5T_NATIVE_INT64);
+  const hsize_t V = rd.length("/variants/variant");
+  if (count < 1 || static_cast<hsize_t>(count) != V || count > std::numeric_limits<int>::max())
+    h.fail("/variants: count " + std::to_string(count) + " does not match /variants/variant (" + std::to_string(V) +
+           " values)");
+  t.count = static_cast<int>(count);
+  std::istringstream names(rd.string_attribute("/variants", "parameters"));
+  for (std::string name; names >> name;) {
+    const std::string path = "/variants/" + name;
+    VariantParameter p;
+    p.name = name;
+    if (!rd.has_link(path)) h.fail("/variants: parameter " + name + " has no dataset " + path);
+    const H5T_class_t cls = rd.type_class(path);
+    if (cls == H5T_STRING) {
+      p.labels = rd.strings(path, V);
+    } else if (cls == H5T_FLOAT) {
+      p.values = rd.doubles(path, {V});
+      if (rd.has_attribute(path, "units")) p.units = rd.string_attribute(path, "units");
+    } else {
+      h.fail("reading dataset " + path + ": neither numbers nor strings");
+    }
+    if (rd.has_attribute(path, "description")) p.description = rd.string_attribute(path, "description");
+    t.parameters.push_back(std::move(p));
+  }
+  return t;
+}
+
+/// alpha_by_azimuth_rad [V, Z] of a group of variants into each variant, when the group has it.
+void read_alpha_by_azimuth(const H5& h, const Reader& rd, const std::string& g, std::vector<ObjectCube>& variants) {
+  const std::string path = g + "/alpha_by_azimuth_rad";
+  if (!rd.has_link(path)) return;
+  const std::vector<hsize_t> dims = rd.shape(path);
+  // bounded like the attribute of a cube without variants
+  if (dims.size() != 2 || dims[0] != variants.size() || dims[1] > 3600)
+    h.fail("reading dataset " + path + ": not [variant, azimuth] with at most 3600 azimuths");
+  const std::vector<double> alpha = rd.doubles(path, dims);
+  for (std::size_t v = 0; v < variants.size(); ++v)
+    variants[v].alpha_by_azimuth_rad.assign(alpha.begin() + v * dims[1], alpha.begin() + (v + 1) * dims[1]);
+}
+
+/// The per-variant datasets [V] of a group of variants into each variant.
+void read_variant_values(const H5& h, const Reader& rd, const std::string& g, std::vector<ObjectCube>& variants) {
+  const hsize_t V = variants.size();
+  for (const auto& [name, field] : {std::pair{"alpha_rad", &ObjectCube::alpha_rad}, std::pair{"p_rad_s", &ObjectCube::p_rad_s},
+                                    std::pair{"rocking_radius_m", &ObjectCube::rocking_radius_m},
+                                    std::pair{"weakest_azimuth_deg", &ObjectCube::weakest_azimuth_deg}}) {
+    const std::vector<double> v = rd.doubles(g + "/" + name, {V});
+    for (hsize_t k = 0; k < V; ++k) variants[k].*field = v[k];
+  }
+  for (const auto& [name, field] : {std::pair{"physics_json", &ObjectCube::physics_json},
+                                    std::pair{"inputs_sha256", &ObjectCube::inputs}}) {
+    const std::vector<std::string> v = rd.strings(g + "/" + name, V);
+    for (hsize_t k = 0; k < V; ++k) variants[k].*field = v[k];
+  }
+  read_alpha_by_azimuth(h, rd, g, variants);
+  const std::vector<std::string> corners = rd.strings(g + "/support_polygon_m", V);
+  for (hsize_t k = 0; k < V; ++k)
+    variants[k].support_polygon_m = parse_corners(h, g + "/support_polygon_m[" + std::to_string(k) + "]", corners[k]);
+}
+
+/// A group holding every variant of one base object: V ObjectCubes in variant order.
+std::vector<ObjectCube> read_variant_object(const H5& h, const Reader& rd, const std::string& name,
+                                            const std::vector<hsize_t>& rsa, hsize_t V) {
+  const std::string g = "/objects/" + name;
+  const auto variants_here = rd.integer_attribute<std::int64_t>(g, "variants", H5T_NATIVE_INT64);
+  if (variants_here < 0 || static_cast<hsize_t>(variants_here) != V)
+    h.fail(g + ": attribute variants " + std::to_string(variants_here) + " does not match /variants count " +
+           std::to_string(V));
+  std::vector<hsize_t> vrsa{V};
+  vrsa.insert(vrsa.end(), rsa.begin(), rsa.end());
+  std::vector<ObjectCube> variants = split_cells(read_cells(h, rd, g, vrsa), V);
+  const std::string scene = rd.string_attribute(g, "scene");
+  for (hsize_t v = 0; v < V; ++v) {
+    variants[v].name = name;
+    variants[v].scene = scene;
+    variants[v].variant = static_cast<int>(v);
+  }
+  read_variant_values(h, rd, g, variants);
+  return variants;
+}
+
+// ---- the whole file
+
+/// The object groups, in job order (the group attribute `index`; HDF5 lists links by name).
+void read_objects(const H5& h, const Reader& rd, Cube& c) {
+  const std::vector<hsize_t> rsa{c.records.size(), c.scales_g.size(), static_cast<hsize_t>(c.rotations)};
+  const std::vector<std::string> groups = rd.members("/objects");
+  std::vector<bool> seen(groups.size(), false);
+  // per group: its object, or its variants; sized by what was read, never by a count in the file
+  std::vector<std::vector<ObjectCube>> by_index(groups.size());
+  for (const std::string& name : groups) {
+    const std::string g = "/objects/" + name;
+    const std::size_t index = group_index(h, rd, g, seen);
+    if (c.variants.count > 0) {
+      by_index[index] = read_variant_object(h, rd, name, rsa, static_cast<hsize_t>(c.variants.count));
+    } else {
+      by_index[index].push_back(read_object(h, rd, g, rsa));
+      by_index[index].back().name = name;
+    }
+  }
+  for (std::vector<ObjectCube>& objects : by_index) {
+    for (ObjectCube& o : objects) c.objects.push_back(std::move(o));
+  }
+}
+
 Cube read_contents(const H5& h, hid_t file) {
   Reader rd(h, file);
   if (!rd.has_attribute("/", "schema_version")) h.fail("not a Rigid fragility cube (no schema_version)");
@@ -239,41 +424,8 @@ Cube read_contents(const H5& h, hid_t file) {
   number("listed_pga_g", &RecordMeta::listed_pga_g);
   number("listed_pgv_cm_s", &RecordMeta::listed_pgv_cm_s);
 
-  // objects come back in job order: the group attribute `index` (HDF5 lists links by name)
-  const std::vector<std::string> objects = rd.members("/objects");
-  c.objects.resize(objects.size());
-  std::vector<bool> seen(objects.size(), false);
-  const std::vector<hsize_t> rsa{R, S, A};
-  for (const std::string& name : objects) {
-    const std::string g = "/objects/" + name;
-    const auto index = rd.integer_attribute<std::int64_t>(g, "index", H5T_NATIVE_INT64);
-    if (index < 0 || static_cast<std::size_t>(index) >= objects.size() ||
-        seen[static_cast<std::size_t>(index)])
-      h.fail(g + ": attribute index " + std::to_string(index) + " is out of range or repeated");
-    seen[static_cast<std::size_t>(index)] = true;
-    ObjectCube& o = c.objects[static_cast<std::size_t>(index)];
-    o.name = name;
-    o.scene = rd.string_attribute(g, "scene");
-    if (rd.has_attribute(g, "inputs_sha256")) o.inputs = rd.string_attribute(g, "inputs_sha256");
-    if (rd.has_attribute(g, "physics_json")) o.physics_json = rd.string_attribute(g, "physics_json");
-    if (rd.has_attribute(g, "alpha_rad")) o.alpha_rad = rd.double_attribute(g, "alpha_rad");
-    if (rd.has_attribute(g, "p_rad_s")) o.p_rad_s = rd.double_attribute(g, "p_rad_s");
-    if (rd.has_attribute(g, "rocking_radius_m")) o.rocking_radius_m = rd.double_attribute(g, "rocking_radius_m");
-    if (rd.has_attribute(g, "weakest_azimuth_deg")) o.weakest_azimuth_deg = rd.double_attribute(g, "weakest_azimuth_deg");
-    // bounded: a support polygon of a scanned rock has at most a few thousand corners
-    if (rd.has_attribute(g, "alpha_by_azimuth_rad")) o.alpha_by_azimuth_rad = rd.double_array_attribute(g, "alpha_by_azimuth_rad", 3600);
-    if (rd.has_attribute(g, "support_polygon_m")) o.support_polygon_m = rd.double_array_attribute(g, "support_polygon_m", 1 << 20);
-    o.outcome = rd.numbers<std::int8_t>(g + "/outcome", H5T_INTEGER, H5T_NATIVE_INT8, rsa);
-    o.rotation_deg = rd.doubles(g + "/rotation_deg", rsa);
-    o.failure_time_s = rd.doubles(g + "/failure_time_s", rsa);
-    o.max_tilt_deg = rd.doubles(g + "/max_tilt_deg", rsa);
-    o.max_slip_m = rd.doubles(g + "/max_slip_m", rsa);
-    o.wall_s = rd.doubles(g + "/wall_s", rsa);
-    o.failure_reason = rd.numbers<std::int32_t>(g + "/failure_reason", H5T_INTEGER, H5T_NATIVE_INT32, rsa);
-    // absent from cubes written before them: no messages, no checksum to verify
-    if (rd.has_link(g + "/failure_message")) o.failure_message = rd.strings(g + "/failure_message", rsa);
-    if (rd.has_attribute(g, "datasets_sha256")) verify_checksum(h, g, o, rd.string_attribute(g, "datasets_sha256"));
-  }
+  if (version >= kCubeSchemaVersionWithVariants) c.variants = read_variant_table(h, rd);
+  read_objects(h, rd, c);
   if (std::string p = cube_problem(c); !p.empty()) h.fail("inconsistent cube: " + p);
   return c;
 }

@@ -9,6 +9,8 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <span>
+#include <string>
 #include <utility>
 
 #include "cube_hdf5.hpp"
@@ -158,7 +160,9 @@ std::vector<std::int32_t> iota32(std::size_t n) {
 }
 
 void write_root_attributes(Writer& w, const Cube& c) {
-  w.attribute("/", "schema_version", std::int32_t{kCubeSchemaVersion});
+  // a cube without variants keeps version 1, so readers from before the variant axis open it
+  w.attribute("/", "schema_version", std::int32_t{c.variants.count > 0 ? kCubeSchemaVersionWithVariants
+                                                                       : kCubeSchemaVersionWithoutVariants});
   w.attribute("/", "software_version", c.software_version);
   w.attribute("/", "job_text", c.job_text);
   w.attribute("/", "job_hash", c.job_hash);
@@ -244,12 +248,28 @@ void write_axes_and_records(Writer& w, const Cube& c) {
 // carries its own, named like the dimensions. /axes keeps the shared copies h5py users read.
 struct ObjectScales {
   Hid record, scale, rotation, bin;
+  Hid variant;            ///< only in a group of variants
+  hsize_t variants = 0;   ///< V in a group of variants, 0 in a cube without variants
 };
 
-ObjectScales write_coordinates(Writer& w, const std::string& g, const Cube& c) {
+/// The variant index 0..V-1 as a dimension scale named "variant" at `path`.
+Hid write_variant_scale(Writer& w, const std::string& path, hsize_t variants) {
+  Hid d = w.ints(path, iota32(variants), {variants}, "1",
+                 "variant index 0..count-1; the parameters of each variant are in /variants");
+  w.long_name(path, "variant index");
+  w.make_scale(d, path, "variant");
+  return d;
+}
+
+/// `variants` > 0: the group holds that many variants of its object and gets its own scale.
+ObjectScales write_coordinates(Writer& w, const std::string& g, const Cube& c, hsize_t variants) {
   const std::vector<double> edges = pgv_pga_edges(c);
   const hsize_t S = c.scales_g.size(), A = static_cast<hsize_t>(c.rotations), B = edges.size() - 1;
   ObjectScales s;
+  if (variants > 0) {
+    s.variant = write_variant_scale(w, g + "/variant", variants);
+    s.variants = variants;
+  }
   s.record = w.strings(g + "/record", record_names(c), {c.records.size()}, nullptr, "record (set) names, in job order");
   w.long_name(g + "/record", "record (set) name");
   w.make_scale(s.record, g + "/record", "record");
@@ -272,6 +292,20 @@ ObjectScales write_coordinates(Writer& w, const std::string& g, const Cube& c) {
   w.long_name(g + "/pgv_pga_bin", "PGV/PGA bin index");
   w.make_scale(s.bin, g + "/pgv_pga_bin", "pgv_pga_bin");
   return s;
+}
+
+/// The shape of a dataset and the dimension scale (with its label) of each of its dimensions.
+struct Dims {
+  std::vector<hsize_t> shape;
+  std::vector<std::pair<hid_t, const char*>> scales;
+};
+
+/// `inner` led by the variant dimension in a group of variants; `inner` itself otherwise.
+Dims led_by_variant(const ObjectScales& s, Dims inner) {
+  if (s.variants == 0) return inner;
+  inner.shape.insert(inner.shape.begin(), s.variants);
+  inner.scales.insert(inner.scales.begin(), {s.variant, "variant"});
+  return inner;
 }
 
 /// CF names, units and flag tables of the cell variables [record, scale, rotation].
@@ -313,12 +347,15 @@ std::string flag_meanings(const std::vector<T>& codes, const char* (*name)(int))
   return s;
 }
 
-/// The cell datasets [record, scale, rotation] of one object, with their flags and checksum.
+/// The cell datasets [record, scale, rotation] of one object, with their flags and checksum; in a
+/// group of variants [variant, record, scale, rotation], `o` holding the variants' cells end to end
+/// (stacked_cells).
 void write_cells(Writer& w, const std::string& g, const Cube& c, const ObjectCube& o, const ObjectScales& s) {
-  const std::vector<hsize_t> rsa{c.records.size(), c.scales_g.size(), static_cast<hsize_t>(c.rotations)};
-  const std::vector<std::pair<hid_t, const char*>> dims{{s.record, "record"}, {s.scale, "scale"}, {s.rotation, "rotation"}};
+  const Dims dims = led_by_variant(s, {{c.records.size(), c.scales_g.size(), static_cast<hsize_t>(c.rotations)},
+                                       {{s.record, "record"}, {s.scale, "scale"}, {s.rotation, "rotation"}}});
+  const std::vector<hsize_t>& rsa = dims.shape;
   const auto describe = [&](Hid d, const CellVariable& v) {
-    w.variable(std::move(d), g + "/" + v.name, v.long_name, dims);
+    w.variable(std::move(d), g + "/" + v.name, v.long_name, dims.scales);
     w.attribute(g + "/" + v.name, "coordinates", std::string("target_pga"));
   };
   const auto path = [&](const CellVariable& v) { return g + "/" + v.name; };
@@ -344,29 +381,44 @@ void write_cells(Writer& w, const std::string& g, const Cube& c, const ObjectCub
   w.attribute(g, "datasets_sha256_covers", std::string(kChecksumCovers));
 }
 
-/// The derived products, recomputed from the cells at every write.
-void write_derived(Writer& w, const std::string& g, const Cube& c, const ObjectCube& o, const ObjectScales& s) {
-  const hsize_t R = c.records.size(), S = c.scales_g.size();
+template <class T>
+void append(std::vector<T>& to, const std::vector<T>& from) {
+  to.insert(to.end(), from.begin(), from.end());
+}
+
+/// The derived products, recomputed from the cells at every write: of one object, or of each of
+/// a group's variants end to end (led by the variant dimension).
+void write_derived(Writer& w, const std::string& g, const Cube& c, std::span<const ObjectCube> objects,
+                   const ObjectScales& s) {
+  const hsize_t R = c.records.size(), S = c.scales_g.size(), B = pgv_pga_edges(c).size() - 1;
+  std::vector<double> p, fragility_p;
+  std::vector<std::int32_t> fragility_n;
+  for (const ObjectCube& o : objects) {
+    append(p, overturn_probability(c, o));
+    const FragilitySurface f = fragility_surface(c, o);
+    append(fragility_p, f.probability);
+    append(fragility_n, f.count);
+  }
+
   const std::string probability = g + "/probability";
+  const Dims rs = led_by_variant(s, {{R, S}, {{s.record, "record"}, {s.scale, "scale"}}});
   w.variable(
-      w.doubles(probability, overturn_probability(c, o), {R, S}, "1",
+      w.doubles(probability, p, rs.shape, "1",
                 "overturning probability per (record, scale): (overturned + inferred) / (overturned + "
                 "inferred + survived) over the rotations; not run and failed cells left out; NaN when "
                 "none is known"),
-      probability, "probability of overturning", {{s.record, "record"}, {s.scale, "scale"}});
+      probability, "probability of overturning", rs.scales);
   w.attribute(probability, "coordinates", std::string("target_pga"));
 
-  const FragilitySurface f = fragility_surface(c, o);
-  const hsize_t B = f.bins();
-  const std::vector<std::pair<hid_t, const char*>> surface{{s.scale, "scale"}, {s.bin, "pgv_pga_bin"}};
+  const Dims surface = led_by_variant(s, {{S, B}, {{s.scale, "scale"}, {s.bin, "pgv_pga_bin"}}});
   const std::string fragility = g + "/fragility", count = g + "/fragility_count";
-  w.variable(w.doubles(fragility, f.probability, {S, B}, "1",
+  w.variable(w.doubles(fragility, fragility_p, surface.shape, "1",
                               "P(overturn | scale, PGV/PGA bin): mean of probability over the records of the "
                               "bin whose probability is known; NaN for empty bins"),
-                    fragility, "fragility: probability of overturning per scale and PGV/PGA bin", surface);
+                    fragility, "fragility: probability of overturning per scale and PGV/PGA bin", surface.scales);
   w.attribute(fragility, "coordinates", std::string("target_pga"));
-  w.variable(w.ints(count, f.count, {S, B}, "1", "number of records averaged in fragility"), count,
-                    "number of records averaged in fragility", surface);
+  w.variable(w.ints(count, fragility_n, surface.shape, "1", "number of records averaged in fragility"), count,
+                    "number of records averaged in fragility", surface.scales);
   w.attribute(count, "coordinates", std::string("target_pga"));
 }
 
@@ -388,17 +440,127 @@ void write_object(Writer& w, const Cube& c, std::size_t index) {
     w.attribute(g, "alpha_by_azimuth_rad", o.alpha_by_azimuth_rad);
     w.attribute(g, "support_polygon_m", o.support_polygon_m);
   }
-  const ObjectScales scales = write_coordinates(w, g, c);
+  const ObjectScales scales = write_coordinates(w, g, c, 0);
   write_cells(w, g, c, o, scales);
-  write_derived(w, g, c, o, scales);
+  write_derived(w, g, c, std::span(&o, 1), scales);
+}
+
+// ---- a cube with variants (schema_version 2)
+
+/// /variants: the table of the parameters' values per variant, with the axis' dimension scale.
+void write_variant_table(Writer& w, const VariantTable& t) {
+  const hsize_t V = static_cast<hsize_t>(t.count);
+  std::string names;
+  for (const VariantParameter& p : t.parameters) names += (names.empty() ? "" : " ") + p.name;
+  w.group("/variants");
+  w.attribute("/variants", "method", t.method);
+  w.attribute("/variants", "seed", std::uint64_t{t.seed});
+  w.attribute("/variants", "count", std::int32_t{t.count});
+  w.attribute("/variants", "parameters", names);
+  const Hid index = write_variant_scale(w, "/variants/variant", V);
+  for (const VariantParameter& p : t.parameters) {
+    const std::string path = "/variants/" + p.name;
+    // numeric when it has values (cube_problem: exactly one of values and labels has V entries)
+    Hid d = p.values.size() == V ? w.doubles(path, p.values, {V}, p.units.c_str(), p.description)
+                                 : w.strings(path, p.labels, {V}, nullptr, p.description);
+    w.variable(std::move(d), path, p.name.c_str(), {{index, "variant"}});
+  }
+}
+
+/// A polygon's corners as one string, "x0 y0 x1 y1 ..." with 17 significant digits (exact).
+std::string corners_text(const std::vector<double>& xy) {
+  std::string s;
+  char buf[32];
+  for (const double x : xy) {
+    std::snprintf(buf, sizeof buf, "%.17g", x);
+    s += (s.empty() ? "" : " ") + std::string(buf);
+  }
+  return s;
+}
+
+/// alpha_by_azimuth_rad [variant, azimuth] and its azimuth scale, when every variant has the same
+/// number of azimuths (a rectangular array); nothing otherwise.
+void write_alpha_by_azimuth(Writer& w, const std::string& g, std::span<const ObjectCube> variants,
+                            const ObjectScales& s) {
+  const std::size_t Z = variants.front().alpha_by_azimuth_rad.size();
+  for (const ObjectCube& o : variants) {
+    if (o.alpha_by_azimuth_rad.size() != Z) return;
+  }
+  if (Z == 0) return;
+  std::vector<double> azimuth_deg(Z), alpha;
+  for (std::size_t k = 0; k < Z; ++k) azimuth_deg[k] = static_cast<double>(k) * 360.0 / static_cast<double>(Z);
+  for (const ObjectCube& o : variants) append(alpha, o.alpha_by_azimuth_rad);
+  const std::string azimuth = g + "/azimuth";
+  Hid scale = w.doubles(azimuth, azimuth_deg, {Z}, "degree", "azimuth of the ground acceleration, k * 360 / Z");
+  w.long_name(azimuth, "azimuth of the ground acceleration");
+  w.make_scale(scale, azimuth, "azimuth");
+  w.variable(w.doubles(g + "/alpha_by_azimuth_rad", alpha, {s.variants, Z}, "rad",
+                       "rocking angle alpha for a ground acceleration along each azimuth"),
+             g + "/alpha_by_azimuth_rad", "rocking angle alpha per azimuth", {{s.variant, "variant"}, {scale, "azimuth"}});
+}
+
+/// The per-variant values that are group attributes in a cube without variants, as datasets [variant].
+void write_variant_values(Writer& w, const std::string& g, std::span<const ObjectCube> variants,
+                          const ObjectScales& s) {
+  const std::vector<std::pair<hid_t, const char*>> by_variant{{s.variant, "variant"}};
+  const auto number = [&](const char* name, double ObjectCube::*field, const char* units, const char* long_name,
+                          const char* description) {
+    std::vector<double> v;
+    for (const ObjectCube& o : variants) v.push_back(o.*field);
+    w.variable(w.doubles(g + "/" + name, v, {s.variants}, units, description), g + "/" + name, long_name,
+               by_variant);
+  };
+  const auto text = [&](const char* name, auto field, const char* long_name, const char* description) {
+    std::vector<std::string> v;
+    for (const ObjectCube& o : variants) v.push_back(field(o));
+    w.variable(w.strings(g + "/" + name, v, {s.variants}, nullptr, description), g + "/" + name, long_name,
+               by_variant);
+  };
+  number("alpha_rad", &ObjectCube::alpha_rad, "rad", "rocking angle alpha",
+         "rocking angle alpha of a single block (scenario::rocking_parameters); NaN when none (stacks)");
+  number("p_rad_s", &ObjectCube::p_rad_s, "rad s-1", "rocking frequency parameter p",
+         "rocking frequency parameter p of a single block; NaN when none");
+  number("rocking_radius_m", &ObjectCube::rocking_radius_m, "m", "rocking radius R",
+         "distance from the rocking edge to the centre of mass; NaN when none");
+  number("weakest_azimuth_deg", &ObjectCube::weakest_azimuth_deg, "degree", "weakest azimuth",
+         "azimuth of the ground acceleration with the smallest alpha; NaN when none");
+  text("physics_json", [](const ObjectCube& o) { return o.physics_json; }, "physics and run settings",
+       "the variant's own physics and run settings as a JSON object");
+  text("inputs_sha256", [](const ObjectCube& o) { return o.inputs; }, "SHA-256 of the inputs",
+       "SHA-256 of every file the variant was built from, sha256sum lines (HEX  PATH)");
+  write_alpha_by_azimuth(w, g, variants, s);
+  text("support_polygon_m", [](const ObjectCube& o) { return corners_text(o.support_polygon_m); },
+       "support polygon", "corners of the support polygon relative to the centroid, \"x0 y0 x1 y1 ...\" (m); "
+       "empty when none");
+}
+
+/// One group holding every variant of base object `base` (Cube::objects[base * V .. base * V + V)).
+void write_variant_object(Writer& w, const Cube& c, std::size_t base) {
+  const auto V = static_cast<std::size_t>(c.variants.count);
+  const std::span<const ObjectCube> variants(c.objects.data() + base * V, V);
+  const std::string g = "/objects/" + variants.front().name;
+  w.group(g);
+  w.attribute(g, "scene", variants.front().scene);
+  w.attribute(g, "index", static_cast<std::int32_t>(base));
+  w.attribute(g, "variants", static_cast<std::int32_t>(V));
+  const ObjectScales scales = write_coordinates(w, g, c, V);
+  write_variant_values(w, g, variants, scales);
+  write_cells(w, g, c, stacked_cells(c, variants), scales);
+  write_derived(w, g, c, variants, scales);
 }
 
 void write_contents(const H5& h, hid_t file, const Cube& c) {
   Writer w(h, file);
   write_root_attributes(w, c);
   write_axes_and_records(w, c);
+  if (c.variants.count > 0) write_variant_table(w, c.variants);
   w.group("/objects");
-  for (std::size_t i = 0; i < c.objects.size(); ++i) write_object(w, c, i);
+  if (c.variants.count > 0) {
+    const auto V = static_cast<std::size_t>(c.variants.count);
+    for (std::size_t base = 0; base < c.objects.size() / V; ++base) write_variant_object(w, c, base);
+  } else {
+    for (std::size_t i = 0; i < c.objects.size(); ++i) write_object(w, c, i);
+  }
 }
 
 // Writes bytes to a new file and fsyncs it; errors name the file and errno.

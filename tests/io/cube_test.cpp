@@ -1,6 +1,9 @@
 // The HDF5 fragility cube: round trip, derived products against hand-computed values, atomic
-// replacement (also under SIGKILL), rejection of foreign files, dimension scales. The test
-// CubeFixture.WritesThePythonFixture writes the file tests/python/test_cube.py checks with h5py.
+// replacement (also under SIGKILL), rejection of foreign files, dimension scales; the variant axis
+// (schema_version 2): round trip, layout through the HDF5 C API, per-variant derived products,
+// consistency checks and damaged files. CubeFixture.WritesThePythonFixture writes the file
+// tests/python/test_cube.py checks with h5py, CubeFixture.WritesTheVariantFixture the one
+// tests/python/test_variant_cube.py opens with h5py and xarray.
 #include "rigid/io/cube.hpp"
 
 #include <gtest/gtest.h>
@@ -10,6 +13,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -17,8 +21,10 @@
 #include <fstream>
 #include <iterator>
 #include <limits>
+#include <sstream>
 
 #include "rigid/core/error.hpp"
+#include "rigid/io/cells_csv.hpp"
 
 namespace fs = std::filesystem;
 
@@ -130,6 +136,58 @@ Cube synthetic() {
   return c;
 }
 
+constexpr int kVariants = 3;
+
+// synthetic() with a variant axis of 3: friction (numeric), contact (text), density. Each base
+// object's variants differ in every per-variant field: cells shifted by 5 * v positions (so the
+// probabilities differ), rocking parameters, physics, inputs; variant 1 of "rock a" kept no
+// failure messages, and only "rock a" has rocking parameters (rock_b is a stack: NaN, none).
+Cube variant_synthetic() {
+  Cube c = synthetic();
+  c.variants.method = "lhs";
+  c.variants.seed = 0x8000000000000001ULL;  // above INT64_MAX: must stay unsigned
+  c.variants.count = kVariants;
+  c.objects[1].alpha_rad = c.objects[1].p_rad_s = kNaN;  // rock_b: a stack, no rocking parameters
+  c.variants.parameters = {
+      {"friction", "1", "Coulomb friction coefficient", {0.5, 0.6000000000000001, 0.75}, {}},
+      {"contact", "", "contact model", {}, {"rigid", "penalty", "rigid"}},
+      {"density_kg_m3", "kg m-3", "density of every block", {2400.0, 2650.5, 2900.25}, {}},
+  };
+  std::vector<ObjectCube> objects;
+  for (const ObjectCube& base : c.objects) {
+    for (int v = 0; v < kVariants; ++v) {
+      ObjectCube o = base;
+      o.variant = v;
+      const std::size_t n = o.outcome.size(), shift = 5 * static_cast<std::size_t>(v);
+      const auto rotate = [&](auto& a) {
+        if (!a.empty()) std::rotate(a.begin(), a.begin() + static_cast<std::ptrdiff_t>(shift % n), a.end());
+      };
+      rotate(o.outcome);
+      rotate(o.rotation_deg);
+      rotate(o.failure_time_s);
+      rotate(o.max_tilt_deg);
+      rotate(o.max_slip_m);
+      rotate(o.wall_s);
+      rotate(o.failure_reason);
+      rotate(o.failure_message);
+      o.physics_json = R"({"friction": )" + std::to_string(c.variants.parameters[0].values[v]) + "}";
+      o.inputs = std::string(64, static_cast<char>('a' + v)) + "  " + base.scene + "\n";
+      if (std::isfinite(base.alpha_rad)) {
+        o.alpha_rad = base.alpha_rad + 0.01 * v;
+        o.p_rad_s = base.p_rad_s - 0.1 * v;
+        o.rocking_radius_m = 0.5 + v;
+        o.weakest_azimuth_deg = 90.0 * v;
+        o.alpha_by_azimuth_rad = {o.alpha_rad, 0.3 + v, 1.0 / 3.0, o.alpha_rad};
+        o.support_polygon_m = {-0.1, -0.2, 0.1, -0.2, 0.1, 0.2 + v, -1.0 / 7.0, 0.2};
+      }
+      objects.push_back(std::move(o));
+    }
+  }
+  c.objects = std::move(objects);
+  c.objects[1].failure_message.clear();  // "rock a" variant 1: none kept, written as "" per cell
+  return c;
+}
+
 void expect_same_doubles(const std::vector<double>& a, const std::vector<double>& b,
                          const std::string& what) {
   ASSERT_EQ(a.size(), b.size()) << what;
@@ -145,6 +203,20 @@ void expect_same(const Cube& a, const Cube& b) {
   EXPECT_EQ(a.job_inputs, b.job_inputs);
   EXPECT_EQ(a.inputs_sha256, b.inputs_sha256);
   EXPECT_EQ(a.rotations, b.rotations);
+  EXPECT_EQ(a.variants.count, b.variants.count);
+  if (a.variants.count > 0) {  // a table without variants is not stored
+    EXPECT_EQ(a.variants.method, b.variants.method);
+    EXPECT_EQ(a.variants.seed, b.variants.seed);
+    ASSERT_EQ(a.variants.parameters.size(), b.variants.parameters.size());
+    for (std::size_t i = 0; i < a.variants.parameters.size(); ++i) {
+      const VariantParameter &x = a.variants.parameters[i], &y = b.variants.parameters[i];
+      EXPECT_EQ(x.name, y.name);
+      EXPECT_EQ(x.units, y.units) << x.name;
+      EXPECT_EQ(x.description, y.description) << x.name;
+      expect_same_doubles(x.values, y.values, "variant parameter " + x.name);
+      EXPECT_EQ(x.labels, y.labels) << x.name;
+    }
+  }
   expect_same_doubles(a.scales_g, b.scales_g, "scales_g");
   expect_same_doubles(pgv_pga_edges(a), b.pgv_pga_edges_s, "pgv_pga_edges_s");
   ASSERT_EQ(a.records.size(), b.records.size());
@@ -165,11 +237,17 @@ void expect_same(const Cube& a, const Cube& b) {
   for (std::size_t i = 0; i < a.objects.size(); ++i) {
     const ObjectCube &x = a.objects[i], &y = b.objects[i];
     EXPECT_EQ(x.name, y.name);
+    EXPECT_EQ(x.variant, y.variant) << x.name;
     EXPECT_EQ(x.scene, y.scene);
     EXPECT_EQ(x.inputs, y.inputs);
+    EXPECT_EQ(x.physics_json, y.physics_json) << x.name;
     // NaN (no rocking parameters) must come back NaN: compare the bits
     EXPECT_EQ(std::memcmp(&x.alpha_rad, &y.alpha_rad, sizeof(double)), 0);
     EXPECT_EQ(std::memcmp(&x.p_rad_s, &y.p_rad_s, sizeof(double)), 0);
+    EXPECT_EQ(bits(x.rocking_radius_m), bits(y.rocking_radius_m)) << x.name;
+    EXPECT_EQ(bits(x.weakest_azimuth_deg), bits(y.weakest_azimuth_deg)) << x.name;
+    expect_same_doubles(x.alpha_by_azimuth_rad, y.alpha_by_azimuth_rad, x.name + " alpha_by_azimuth_rad");
+    expect_same_doubles(x.support_polygon_m, y.support_polygon_m, x.name + " support_polygon_m");
     EXPECT_EQ(x.outcome, y.outcome);
     expect_same_doubles(x.rotation_deg, y.rotation_deg, x.name + " rotation_deg");
     expect_same_doubles(x.failure_time_s, y.failure_time_s, x.name + " failure_time_s");
@@ -199,6 +277,81 @@ void expect_input_error(F f, const std::string& path, const std::string& needle)
 std::string slurp(const std::string& p) {
   std::ifstream in(p, std::ios::binary);
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+/// The dimensions of a dataset, read with the HDF5 C API ({} when it cannot be opened).
+std::vector<hsize_t> dataset_dims(hid_t file, const std::string& path) {
+  const hid_t d = H5Dopen2(file, path.c_str(), H5P_DEFAULT);
+  if (d < 0) return {};
+  const hid_t space = H5Dget_space(d);
+  std::vector<hsize_t> dims(static_cast<std::size_t>(H5Sget_simple_extent_ndims(space)));
+  H5Sget_simple_extent_dims(space, dims.data(), nullptr);
+  H5Sclose(space);
+  H5Dclose(d);
+  return dims;
+}
+
+/// A whole dataset read as `mem_type` values.
+template <class T>
+std::vector<T> read_dataset(hid_t file, const std::string& path, hid_t mem_type) {
+  hsize_t n = 1;
+  for (const hsize_t x : dataset_dims(file, path)) n *= x;
+  std::vector<T> v(n);
+  const hid_t d = H5Dopen2(file, path.c_str(), H5P_DEFAULT);
+  EXPECT_GE(H5Dread(d, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()), 0) << path;
+  H5Dclose(d);
+  return v;
+}
+
+/// A string attribute (variable-length, as the writer stores them).
+std::string string_attribute(hid_t file, const std::string& object, const char* name) {
+  if (H5Aexists_by_name(file, object.c_str(), name, H5P_DEFAULT) <= 0) return "(missing)";
+  const hid_t a = H5Aopen_by_name(file, object.c_str(), name, H5P_DEFAULT, H5P_DEFAULT);
+  if (a < 0) return "(missing)";
+  const hid_t type = H5Aget_type(a);
+  char* p = nullptr;
+  H5Aread(a, type, &p);
+  std::string s = p != nullptr ? p : "";
+  H5free_memory(p);
+  H5Tclose(type);
+  H5Aclose(a);
+  return s;
+}
+
+template <class T>
+T number_attribute(hid_t file, const std::string& object, const char* name, hid_t mem_type) {
+  T v{};
+  const hid_t a = H5Aopen_by_name(file, object.c_str(), name, H5P_DEFAULT, H5P_DEFAULT);
+  EXPECT_GE(a, 0) << object << " " << name;
+  if (a >= 0) {
+    H5Aread(a, mem_type, &v);
+    H5Aclose(a);
+  }
+  return v;
+}
+
+/// Replaces an int32 attribute by one of another value (deleted and created again: HDF5 1.10's
+/// H5Awrite refuses an attribute opened by name on a group of a cube).
+void replace_int32_attribute(hid_t file, const std::string& object, const char* name, std::int32_t value) {
+  ASSERT_GE(H5Adelete_by_name(file, object.c_str(), name, H5P_DEFAULT), 0) << object << " " << name;
+  const hid_t space = H5Screate(H5S_SCALAR);
+  const hid_t a = H5Acreate_by_name(file, object.c_str(), name, H5T_STD_I32LE, space, H5P_DEFAULT, H5P_DEFAULT,
+                                    H5P_DEFAULT);
+  EXPECT_GE(H5Awrite(a, H5T_NATIVE_INT32, &value), 0) << object << " " << name;
+  H5Aclose(a);
+  H5Sclose(space);
+}
+
+/// Equal arrays, a NaN matching a NaN.
+void expect_equal_or_both_nan(const std::vector<double>& got, const std::vector<double>& want,
+                              const std::string& what) {
+  ASSERT_EQ(got.size(), want.size()) << what;
+  for (std::size_t i = 0; i < got.size(); ++i) {
+    if (std::isnan(want[i]))
+      EXPECT_TRUE(std::isnan(got[i])) << what << "[" << i << "]";
+    else
+      EXPECT_EQ(got[i], want[i]) << what << "[" << i << "]";
+  }
 }
 
 TEST(CubeDerived, ProbabilityCountsOverturnedAndInferredAndLeavesOutFailed) {
@@ -431,10 +584,11 @@ TEST_F(CubeFile, DamagedOrNewerCubesAreRejected) {
   ASSERT_GE(f, 0);
   const hid_t a = H5Aopen(f, "schema_version", H5P_DEFAULT);
   const int future = kCubeSchemaVersion + 1;
+  ASSERT_EQ(future, 3);  // 2, the variant layout, is read
   ASSERT_GE(H5Awrite(a, H5T_NATIVE_INT, &future), 0);
   H5Aclose(a);
   H5Fclose(f);
-  expect_input_error([&] { read_cube(p); }, p, "schema_version 2 is not one this Rigid reads");
+  expect_input_error([&] { read_cube(p); }, p, "schema_version 3 is not one this Rigid reads (1 to 2)");
 }
 
 TEST_F(CubeFile, DimensionScalesAreAttached) {
@@ -478,6 +632,267 @@ TEST_F(CubeFile, DimensionScalesAreAttached) {
   expect_scales("/records/pgv_pga_s", {record});
   H5Dclose(record);
   H5Fclose(f);
+}
+
+TEST(CubeVariants, ConsistentVariantCubeHasNoProblem) {
+  EXPECT_EQ(cube_problem(variant_synthetic()), "");
+  EXPECT_EQ(object_label(variant_synthetic().objects[4]), "rock_b [v1]");
+  EXPECT_EQ(object_label(synthetic().objects[1]), "rock_b");
+}
+
+TEST(CubeVariants, ProblemsOfTheVariantAxisAreCaught) {
+  const auto problem_of = [](auto change) {
+    Cube c = variant_synthetic();
+    change(c);
+    return cube_problem(c);
+  };
+  const auto expect_problem = [](const std::string& problem, const std::string& needle) {
+    EXPECT_NE(problem.find(needle), std::string::npos) << "problem: '" << problem << "', expected: " << needle;
+  };
+  // a missing variant: rock a's variant 1 gone, so its variant 2 sits where 1 belongs
+  expect_problem(problem_of([](Cube& c) { c.objects.erase(c.objects.begin() + 1); }),
+                 "object 1 ('rock a'): variant 2, expected 1");
+  // the last base object one variant short
+  expect_problem(problem_of([](Cube& c) { c.objects.pop_back(); }), "'rock_b' has 2 of the 3 variants");
+  // variants out of order
+  expect_problem(problem_of([](Cube& c) { std::swap(c.objects[0].variant, c.objects[1].variant); }),
+                 "object 0 ('rock a'): variant 1, expected 0");
+  // one base object's variants under two names
+  expect_problem(problem_of([](Cube& c) { c.objects[2].name = "rock c"; }), "has another name or scene");
+  // two base objects of one name
+  expect_problem(problem_of([](Cube& c) {
+                   for (int v = 0; v < kVariants; ++v) c.objects[kVariants + v].name = "rock a";
+                 }),
+                 "two objects are named 'rock a'");
+  // a parameter with fewer values (or labels) than variants
+  expect_problem(problem_of([](Cube& c) { c.variants.parameters[0].values.pop_back(); }),
+                 "variant parameter 'friction': has 2 values, expected 3");
+  expect_problem(problem_of([](Cube& c) { c.variants.parameters[1].labels.push_back("rigid"); }),
+                 "variant parameter 'contact': has 4 labels, expected 3");
+  expect_problem(problem_of([](Cube& c) { c.variants.count = 2; }), "has 3 values, expected 2");
+  expect_problem(problem_of([](Cube& c) { c.variants.parameters[0].labels = {"a", "b", "c"}; }),
+                 "has both numbers and labels");
+  // a duplicate parameter, and names that cannot be HDF5 dataset names
+  expect_problem(problem_of([](Cube& c) { c.variants.parameters[2].name = "friction"; }),
+                 "two variant parameters are named 'friction'");
+  for (const char* bad : {"", ".", "a/b", "variant"})
+    expect_problem(problem_of([&](Cube& c) { c.variants.parameters[0].name = bad; }), "not a valid dataset name");
+  expect_problem(problem_of([](Cube& c) { c.variants.parameters[0].name = "static friction"; }), "white space");
+  // without variants, no object may claim one
+  Cube plain = synthetic();
+  plain.objects[1].variant = 0;
+  expect_problem(cube_problem(plain), "object 'rock_b': variant 0 in a cube without variants");
+  plain = synthetic();
+  plain.variants.parameters = variant_synthetic().variants.parameters;
+  expect_problem(cube_problem(plain), "parameters given but count is 0");
+}
+
+TEST_F(CubeFile, VariantCubeRoundTripsFieldByField) {
+  const Cube c = variant_synthetic();
+  const std::string p = path("variants.h5");
+  write_cube(p, c);
+  const Cube back = read_cube(p);
+  ASSERT_EQ(back.objects.size(), 2u * kVariants);
+  expect_same(c, back);
+  for (std::size_t i = 0; i < back.objects.size(); ++i) {
+    EXPECT_EQ(back.objects[i].variant, static_cast<int>(i % kVariants));
+    EXPECT_EQ(back.objects[i].name, i < kVariants ? "rock a" : "rock_b");
+  }
+  // the variants' cells really differ, so a mix-up would show
+  EXPECT_NE(back.objects[0].outcome, back.objects[1].outcome);
+  EXPECT_EQ(H5Fget_obj_count(H5F_OBJ_ALL, H5F_OBJ_ALL), 0);  // every HDF5 handle closed
+}
+
+TEST_F(CubeFile, VariantLayoutAsTheSpecificationSaysThroughTheHdf5CApi) {
+  const Cube c = variant_synthetic();
+  const std::string p = path("variants.h5");
+  write_cube(p, c);
+  const hid_t f = H5Fopen(p.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  ASSERT_GE(f, 0);
+  EXPECT_EQ(number_attribute<std::int32_t>(f, "/", "schema_version", H5T_NATIVE_INT32), 2);
+  // the table
+  EXPECT_EQ(string_attribute(f, "/variants", "method"), "lhs");
+  EXPECT_EQ(number_attribute<std::uint64_t>(f, "/variants", "seed", H5T_NATIVE_UINT64), 0x8000000000000001ULL);
+  EXPECT_EQ(number_attribute<std::int32_t>(f, "/variants", "count", H5T_NATIVE_INT32), 3);
+  EXPECT_EQ(string_attribute(f, "/variants", "parameters"), "friction contact density_kg_m3");
+  EXPECT_EQ(read_dataset<std::int32_t>(f, "/variants/variant", H5T_NATIVE_INT32), (std::vector<std::int32_t>{0, 1, 2}));
+  EXPECT_EQ(read_dataset<double>(f, "/variants/friction", H5T_NATIVE_DOUBLE),
+            (std::vector<double>{0.5, 0.6000000000000001, 0.75}));
+  EXPECT_EQ(string_attribute(f, "/variants/friction", "units"), "1");
+  EXPECT_EQ(string_attribute(f, "/variants/density_kg_m3", "units"), "kg m-3");
+  EXPECT_EQ(string_attribute(f, "/variants/density_kg_m3", "description"), "density of every block");
+  EXPECT_EQ(string_attribute(f, "/variants/contact", "units"), "(missing)");  // text: no units (CF)
+  EXPECT_EQ(string_attribute(f, "/variants/contact", "long_name"), "contact");
+  const hid_t table_scale = H5Dopen2(f, "/variants/variant", H5P_DEFAULT);
+  EXPECT_GT(H5DSis_scale(table_scale), 0);
+  for (const char* param : {"/variants/friction", "/variants/contact", "/variants/density_kg_m3"}) {
+    const hid_t d = H5Dopen2(f, param, H5P_DEFAULT);
+    EXPECT_GT(H5DSis_attached(d, table_scale, 0), 0) << param;
+    H5Dclose(d);
+  }
+  H5Dclose(table_scale);
+
+  // one group per base object, its cells led by the variant dimension
+  const std::string g = "/objects/rock a/";
+  EXPECT_EQ(number_attribute<std::int32_t>(f, "/objects/rock a", "variants", H5T_NATIVE_INT32), 3);
+  EXPECT_EQ(number_attribute<std::int32_t>(f, "/objects/rock_b", "index", H5T_NATIVE_INT32), 1);
+  EXPECT_EQ(string_attribute(f, "/objects/rock_b", "scene"), "models/rock_b.toml");
+  EXPECT_EQ(dataset_dims(f, g + "outcome"), (std::vector<hsize_t>{3, 3, 4, 2}));  // [V, R, S, A]
+  EXPECT_EQ(dataset_dims(f, g + "failure_message"), (std::vector<hsize_t>{3, 3, 4, 2}));
+  EXPECT_EQ(dataset_dims(f, g + "probability"), (std::vector<hsize_t>{3, 3, 4}));
+  EXPECT_EQ(dataset_dims(f, g + "fragility"), (std::vector<hsize_t>{3, 4, 9}));
+  EXPECT_EQ(dataset_dims(f, g + "fragility_count"), (std::vector<hsize_t>{3, 4, 9}));
+  EXPECT_EQ(dataset_dims(f, g + "alpha_by_azimuth_rad"), (std::vector<hsize_t>{3, 4}));
+  EXPECT_EQ(H5Lexists(f, "/objects/rock_b/alpha_by_azimuth_rad", H5P_DEFAULT), 0);  // none to store
+  const std::vector<double> alpha = read_dataset<double>(f, g + "alpha_rad", H5T_NATIVE_DOUBLE);
+  EXPECT_EQ(alpha, (std::vector<double>{0.2, 0.2 + 0.01, 0.2 + 0.02}));
+  EXPECT_EQ(string_attribute(f, g + "alpha_rad", "units"), "rad");
+  for (const double a : read_dataset<double>(f, "/objects/rock_b/alpha_rad", H5T_NATIVE_DOUBLE))
+    EXPECT_TRUE(std::isnan(a));
+
+  const hid_t scale = H5Dopen2(f, (g + "variant").c_str(), H5P_DEFAULT);
+  EXPECT_GT(H5DSis_scale(scale), 0);
+  EXPECT_EQ(read_dataset<std::int32_t>(f, g + "variant", H5T_NATIVE_INT32), (std::vector<std::int32_t>{0, 1, 2}));
+  for (const char* ds : {"outcome", "rotation_deg", "failure_time_s", "max_tilt_deg", "max_slip_m", "wall_s",
+                         "failure_reason", "failure_message", "probability", "fragility", "fragility_count",
+                         "alpha_rad", "p_rad_s", "rocking_radius_m", "weakest_azimuth_deg", "physics_json",
+                         "inputs_sha256", "support_polygon_m", "alpha_by_azimuth_rad"}) {
+    const hid_t d = H5Dopen2(f, (g + ds).c_str(), H5P_DEFAULT);
+    ASSERT_GE(d, 0) << ds;
+    EXPECT_GT(H5DSis_attached(d, scale, 0), 0) << ds;
+    EXPECT_EQ(H5DSget_num_scales(d, 0), 1) << ds;  // netCDF-4 wants exactly one
+    char label[32] = {};
+    H5DSget_label(d, 0, label, sizeof label);
+    EXPECT_STREQ(label, "variant") << ds;
+    EXPECT_NE(string_attribute(f, g + ds, "long_name"), "(missing)") << ds;
+    EXPECT_NE(string_attribute(f, g + ds, "description"), "(missing)") << ds;
+    H5Dclose(d);
+  }
+  H5Dclose(scale);
+  EXPECT_EQ(H5Lexists(f, "/objects/rock a/rock a", H5P_DEFAULT), 0);  // one group, not one per variant
+  H5Fclose(f);
+}
+
+TEST_F(CubeFile, EachVariantsDerivedProductsAreThoseOfItsObjectCube) {
+  const Cube c = variant_synthetic();
+  const std::string p = path("variants.h5");
+  write_cube(p, c);
+  const hid_t f = H5Fopen(p.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  ASSERT_GE(f, 0);
+  for (std::size_t base = 0; base < 2; ++base) {
+    const std::string g = "/objects/" + c.objects[base * kVariants].name + "/";
+    const std::vector<double> p_all = read_dataset<double>(f, g + "probability", H5T_NATIVE_DOUBLE);
+    const std::vector<double> frag_all = read_dataset<double>(f, g + "fragility", H5T_NATIVE_DOUBLE);
+    const std::vector<std::int32_t> count_all = read_dataset<std::int32_t>(f, g + "fragility_count", H5T_NATIVE_INT32);
+    const std::size_t RS = 3 * 4, SB = 4 * 9;
+    ASSERT_EQ(p_all.size(), kVariants * RS);
+    ASSERT_EQ(frag_all.size(), kVariants * SB);
+    for (std::size_t v = 0; v < kVariants; ++v) {
+      const ObjectCube& o = c.objects[base * kVariants + v];
+      const std::string what = g + " variant " + std::to_string(v);
+      expect_equal_or_both_nan({p_all.begin() + v * RS, p_all.begin() + (v + 1) * RS}, overturn_probability(c, o),
+                               what + " probability");
+      const FragilitySurface s = fragility_surface(c, o);
+      expect_equal_or_both_nan({frag_all.begin() + v * SB, frag_all.begin() + (v + 1) * SB}, s.probability,
+                               what + " fragility");
+      EXPECT_EQ(std::vector<std::int32_t>(count_all.begin() + v * SB, count_all.begin() + (v + 1) * SB), s.count)
+          << what;
+    }
+  }
+  H5Fclose(f);
+}
+
+TEST_F(CubeFile, ACubeWithoutVariantsKeepsTheFirstLayout) {
+  const std::string p = path("plain.h5");
+  write_cube(p, synthetic());
+  const hid_t f = H5Fopen(p.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  ASSERT_GE(f, 0);
+  EXPECT_EQ(number_attribute<std::int32_t>(f, "/", "schema_version", H5T_NATIVE_INT32), 1);
+  EXPECT_EQ(H5Lexists(f, "/variants", H5P_DEFAULT), 0);
+  EXPECT_EQ(H5Lexists(f, "/objects/rock a/variant", H5P_DEFAULT), 0);
+  EXPECT_EQ(H5Aexists_by_name(f, "/objects/rock a", "variants", H5P_DEFAULT), 0);
+  EXPECT_EQ(dataset_dims(f, "/objects/rock a/outcome"), (std::vector<hsize_t>{3, 4, 2}));
+  EXPECT_EQ(dataset_dims(f, "/objects/rock a/probability"), (std::vector<hsize_t>{3, 4}));
+  H5Fclose(f);
+  for (const ObjectCube& o : read_cube(p).objects) EXPECT_EQ(o.variant, -1);
+}
+
+TEST(CubeVariants, CellsTableHasAVariantColumnOnlyWithVariants) {
+  std::ostringstream plain, varied;
+  write_cells_csv(plain, synthetic());
+  write_cells_csv(varied, variant_synthetic());
+  const auto lines = [](const std::string& text) {
+    std::vector<std::string> v;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line, '\n');) v.push_back(line);
+    return v;
+  };
+  const std::vector<std::string> p = lines(plain.str()), v = lines(varied.str());
+  EXPECT_EQ(p.front(), "object,record,scale_g,rotation,rotation_deg,outcome,failure_time_s,max_tilt_deg,max_slip_m,"
+                       "failure_reason,failure_message\r");
+  EXPECT_EQ(v.front(), "object,variant,record,scale_g,rotation,rotation_deg,outcome,failure_time_s,max_tilt_deg,"
+                       "max_slip_m,failure_reason,failure_message\r");
+  // rock_b's variant 2 starts after 5 object-variants of 24 cells (messages of rock a hold line
+  // breaks, so count rows by their first field instead of by line)
+  std::size_t rows_of_rock_b_v2 = 0;
+  for (const std::string& line : v) rows_of_rock_b_v2 += line.rfind("rock_b,2,", 0) == 0;
+  EXPECT_EQ(rows_of_rock_b_v2, 24u);
+}
+
+TEST_F(CubeFile, DamagedVariantCubesAreRejected) {
+  const std::string p = path("variants.h5");
+  const auto damage = [&](auto change) {
+    write_cube(p, variant_synthetic());
+    const hid_t f = H5Fopen(p.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    ASSERT_GE(f, 0);
+    change(f);
+    H5Fclose(f);
+  };
+  // outcome with the wrong number of variants
+  damage([](hid_t f) {
+    ASSERT_GE(H5Ldelete(f, "/objects/rock a/outcome", H5P_DEFAULT), 0);
+    const hsize_t dims[4] = {2, 3, 4, 2};
+    const hid_t space = H5Screate_simple(4, dims, nullptr);
+    const hid_t d = H5Dcreate2(f, "/objects/rock a/outcome", H5T_STD_I8LE, space, H5P_DEFAULT, H5P_DEFAULT,
+                               H5P_DEFAULT);
+    ASSERT_GE(d, 0);
+    H5Dclose(d);
+    H5Sclose(space);
+  });
+  expect_input_error([&] { read_cube(p); }, p,
+                     "reading dataset /objects/rock a/outcome: shape [2, 3, 4, 2], expected [3, 3, 4, 2]");
+  // no table
+  damage([](hid_t f) { ASSERT_GE(H5Ldelete(f, "/variants", H5P_DEFAULT), 0); });
+  expect_input_error([&] { read_cube(p); }, p, "without its variant table /variants");
+  // a table whose count disagrees with its axis
+  damage([](hid_t f) { replace_int32_attribute(f, "/variants", "count", 4); });
+  expect_input_error([&] { read_cube(p); }, p, "/variants: count 4 does not match /variants/variant (3 values)");
+  // a parameter named but not stored
+  damage([](hid_t f) { ASSERT_GE(H5Ldelete(f, "/variants/contact", H5P_DEFAULT), 0); });
+  expect_input_error([&] { read_cube(p); }, p, "parameter contact has no dataset /variants/contact");
+  // a group that claims another number of variants than the table
+  damage([](hid_t f) { replace_int32_attribute(f, "/objects/rock_b", "variants", 2); });
+  expect_input_error([&] { read_cube(p); }, p, "/objects/rock_b: attribute variants 2 does not match");
+  // a per-variant dataset missing
+  damage([](hid_t f) { ASSERT_GE(H5Ldelete(f, "/objects/rock_b/p_rad_s", H5P_DEFAULT), 0); });
+  expect_input_error([&] { read_cube(p); }, p, "reading dataset /objects/rock_b/p_rad_s");
+  // a flipped outcome byte of one variant fails the group's checksum
+  damage([](hid_t f) {
+    const hid_t d = H5Dopen2(f, "/objects/rock_b/outcome", H5P_DEFAULT);
+    const hid_t space = H5Dget_space(d);
+    const hsize_t cell[4] = {2, 1, 1, 0}, one[4] = {1, 1, 1, 1};
+    H5Sselect_hyperslab(space, H5S_SELECT_SET, cell, nullptr, one, nullptr);
+    const hid_t mem = H5Screate_simple(4, one, nullptr);
+    std::int8_t value = 0;
+    H5Dread(d, H5T_NATIVE_INT8, mem, space, H5P_DEFAULT, &value);
+    value = static_cast<std::int8_t>(value ^ 1);
+    ASSERT_GE(H5Dwrite(d, H5T_NATIVE_INT8, mem, space, H5P_DEFAULT, &value), 0);
+    H5Sclose(mem);
+    H5Sclose(space);
+    H5Dclose(d);
+  });
+  expect_input_error([&] { read_cube(p); }, p, "/objects/rock_b: datasets changed since written (checksum mismatch)");
+  EXPECT_EQ(H5Fget_obj_count(H5F_OBJ_ALL, H5F_OBJ_ALL), 0);  // failures close their handles too
 }
 
 /// Overwrites one cell of an int8 dataset in place, as a damaged or tampered file would have it.
@@ -594,6 +1009,17 @@ TEST(CubeFixture, WritesThePythonFixture) {
   fs::create_directories(fs::path(p).parent_path());
   write_cube(p, synthetic());
   expect_same(synthetic(), read_cube(p));
+}
+
+// The variant cube of tests/python/test_variant_cube.py (ctest fixture variant_cube_fixture), at
+// the path in RIGID_VARIANT_CUBE_FIXTURE; skipped when that is not set.
+TEST(CubeFixture, WritesTheVariantFixture) {
+  const char* p = std::getenv("RIGID_VARIANT_CUBE_FIXTURE");
+  if (p == nullptr || *p == '\0')
+    GTEST_SKIP() << "RIGID_VARIANT_CUBE_FIXTURE not set (ctest sets it for variant_cube_fixture)";
+  fs::create_directories(fs::path(p).parent_path());
+  write_cube(p, variant_synthetic());
+  expect_same(variant_synthetic(), read_cube(p));
 }
 
 }  // namespace

@@ -1,7 +1,8 @@
 #pragma once
 /// The fragility cube of a campaign: one HDF5 file per job, one group per object, datasets
-/// indexed [record, scale, rotation]. Written whole to FILE.tmp, flushed, then renamed over FILE,
-/// so a kill at any instant leaves either the previous or the new complete file.
+/// indexed [record, scale, rotation], led by [variant] when the job sweeps parameters. Written
+/// whole to FILE.tmp, flushed, then renamed over FILE, so a kill at any instant leaves either
+/// the previous or the new complete file.
 #include <cstddef>
 #include <cstdint>
 #include <limits>
@@ -31,11 +32,35 @@ struct RecordMeta {
   std::string alignment;     ///< how its components were aligned, "" when they matched
 };
 
-/// Results of one object (scene) of the campaign. Every array has
-/// records.size() * scales_g.size() * rotations elements, row-major [record][scale][rotation].
+/// One parameter of a campaign's variant axis (the job's [sweep] or [[variant]] tables): its
+/// value in each variant. Stored as /variants/<name>, so the name must be a valid HDF5 link name.
+struct VariantParameter {
+  std::string name;                 ///< the job file's name, e.g. "friction"
+  std::string units;                ///< UDUNITS-2 ("1", "m", "kg m-3", "s m-1", ...); "" for text
+  std::string description;          ///< one line for the file's readers
+  std::vector<double> values;       ///< [variant]; empty for a text parameter
+  std::vector<std::string> labels;  ///< [variant]; empty for a numeric parameter (e.g. contact)
+};
+
+/// The variant axis of a campaign: every object is simulated once per variant, with the
+/// parameters' values of that variant. count 0: the job has no variants (the cube's layout is
+/// then schema_version 1, as before the axis existed).
+struct VariantTable {
+  std::string method;     ///< how the values were drawn: "lhs", "grid" or "list"
+  std::uint64_t seed = 0; ///< the sweep's seed, so a draw can be repeated
+  int count = 0;          ///< number of variants V; 0: the job has no variants
+  std::vector<VariantParameter> parameters;  ///< in job order
+};
+
+/// Results of one object (scene) of the campaign, or with variants of one (object, variant).
+/// Every array has records.size() * scales_g.size() * rotations elements, row-major
+/// [record][scale][rotation].
 struct ObjectCube {
-  std::string name;                     ///< object name (HDF5 group name)
-  std::string scene;                    ///< scene file as given in the job
+  std::string name;                     ///< object name (HDF5 group name), the base object's
+  std::string scene;                    ///< scene file as given in the job, the base object's
+  /// Variant index 0..count-1 (Cube::variants), -1 in a cube without variants. With variants the
+  /// fields below all belong to this variant: physics, rocking parameters and cells differ.
+  int variant = -1;
   /// SHA-256 of every file the object was built from (scene, model, STLs, state), sha256sum lines
   std::string inputs;
   /// The object's own physics and run settings (contact model and law, density, failure rule,
@@ -68,6 +93,11 @@ struct Cube {
   std::vector<RecordMeta> records;
   std::vector<double> scales_g;         ///< target GMRotI50 PGA of each scale (unit: g)
   int rotations = 2;                    ///< rotations per (record, scale)
+  /// The variant axis; variants.count == 0 when the job has none.
+  VariantTable variants;
+  /// Without variants one per object, in job order. With variants variants.count per base object,
+  /// consecutive and in variant order (variant 0..count-1, same name and scene): the campaign's
+  /// internal object o * count + v is base object o in variant v.
   std::vector<ObjectCube> objects;
   // provenance and settings, stored as root attributes
   std::string job_text;                 ///< the job file as read
@@ -85,9 +115,17 @@ struct Cube {
   std::vector<double> pgv_pga_edges_s;
 };
 
-/// Version of the file layout written by write_cube (root attribute `schema_version`; the
-/// layout is described at the top of src/io/cube.cpp). read_cube rejects newer versions.
-inline constexpr int kCubeSchemaVersion = 1;
+/// Versions of the file layout (root attribute `schema_version`; the layouts are described at the
+/// top of src/io/cube.cpp): write_cube writes 1 for a cube without variants (unchanged since
+/// before the variant axis, so older readers still open it) and 2 for one with variants.
+/// read_cube reads both and rejects newer versions.
+inline constexpr int kCubeSchemaVersionWithoutVariants = 1;
+inline constexpr int kCubeSchemaVersionWithVariants = 2;
+inline constexpr int kCubeSchemaVersion = kCubeSchemaVersionWithVariants;  ///< the newest read
+
+/// How tables name an object: its name, followed by " [vK]" for variant K in a cube with variants
+/// (e.g. "rock [v3]"), so rows of one base object's variants stay apart.
+std::string object_label(const ObjectCube& object);
 
 /// Name of an `outcome` code as in the cube's flag_meanings ("not_run", "survived", "overturned",
 /// "inferred", "failed"); "unknown" for any other code.
@@ -110,8 +148,9 @@ std::vector<double> pgv_pga_edges(const Cube& cube);
 /// also holding v == edges_s.back(); -1 when v is NaN or outside the edges.
 int pgv_pga_bin(const std::vector<double>& edges_s, double pgv_pga_s);
 
-/// Problems that make a cube unwritable (array sizes, object names, bin edges, outcome codes), one
-/// message; empty when the cube is consistent. write_cube and the derived products check this.
+/// Problems that make a cube unwritable (array sizes, object names, bin edges, outcome codes, the
+/// variant table and the objects' variant order), one message; empty when the cube is
+/// consistent. write_cube and the derived products check this.
 std::string cube_problem(const Cube& cube);
 
 /// Overturning probability of one object per (record, scale), row-major [record][scale]
@@ -156,7 +195,8 @@ void silence_hdf5_errors();
 /// Reads a cube written by write_cube (for resume and tests). Throws rigid::InputError when the
 /// file is missing, not HDF5, or not a Rigid cube.
 /// Objects come back in the order they were written; pgv_pga_edges_s holds the edges stored in
-/// the file (the defaults when the written cube had none).
+/// the file (the defaults when the written cube had none). A cube with variants comes back as
+/// written: `count` ObjectCubes per base object, in object then variant order.
 Cube read_cube(const std::string& path);
 
 }  // namespace rigid::io
