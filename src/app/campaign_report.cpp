@@ -83,13 +83,14 @@ void print_summary(const io::Cube& cube, const std::string& output) {
   std::printf("overturning probability (mean over records; inferred cells count as overturned)\n");
   const std::size_t S = cube.scales_g.size();
   const std::size_t stride = (S + 15) / 16;  // at most 16 columns: every k-th scale of a long list
-  std::printf("%-20s", "object \\ scale (g)");
+  const int width = cube.variants.count > 0 ? 24 : 20;  // room for "rock [v12]"
+  std::printf("%-*s", width, "object \\ scale (g)");
   for (std::size_t s = 0; s < S; s += stride) std::printf("%7.3g", cube.scales_g[s]);
   std::printf("\n");
   if (stride > 1) std::printf("(every %zu-th scale of %zu)\n", stride, S);
   for (const auto& oc : cube.objects) {
     const std::vector<double> mean = io::mean_overturn_probability(cube, oc);  // per scale
-    std::printf("%-20s", io::object_label(oc).c_str());  // "rock [v3]" with variants
+    std::printf("%-*s", width, io::object_label(oc).c_str());  // "rock [v3]" with variants
     for (std::size_t s = 0; s < S; s += stride) {
       if (std::isnan(mean[s])) {
         std::printf("%7s", "-");

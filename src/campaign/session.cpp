@@ -81,6 +81,31 @@ Inputs collect_inputs(const scenario::Job& job, const scenario::Model& model) {
   return in;
 }
 
+namespace {
+
+// The job's variants as the cube's table: one column per parameter, a value per variant.
+io::VariantTable variant_table(const scenario::VariantSpace& space) {
+  io::VariantTable table;
+  table.method = space.method;
+  table.seed = space.seed;
+  table.count = space.count();
+  for (std::size_t j = 0; j < space.keys.size(); ++j) {
+    const scenario::VariantParameterInfo& info = scenario::variant_parameter(space.keys[j]);
+    io::VariantParameter p{info.name, info.units, info.description, {}, {}};
+    for (const auto& row : space.variants) {
+      if (info.text) {
+        p.labels.push_back(row[j].text);
+      } else {
+        p.values.push_back(row[j].number);
+      }
+    }
+    table.parameters.push_back(std::move(p));
+  }
+  return table;
+}
+
+}  // namespace
+
 io::Cube make_cube(const CampaignContext& context, const Plan& plan) {
   const scenario::Job& job = context.job;
   const scenario::Model& model = context.model;
@@ -96,6 +121,7 @@ io::Cube make_cube(const CampaignContext& context, const Plan& plan) {
   cube.job_hash = job.hash;
   cube.software_version = RIGID_VERSION " (" RIGID_GIT_HASH ")";
   cube.seed = job.seed;
+  cube.variants = variant_table(job.variants);
   cube.physics_json = io::physics_json(model.scene(0), job);  // object 0's, as before per-object records
   const std::vector<std::int8_t> outcome = plan.final_outcomes();
   const std::vector<bool> kept = plan.kept_mask();
@@ -104,6 +130,7 @@ io::Cube make_cube(const CampaignContext& context, const Plan& plan) {
   for (std::size_t o = 0; o < job.objects.size(); ++o) {
     io::ObjectCube oc;
     oc.name = job.objects[o].name;
+    oc.variant = job.objects[o].variant;
     oc.scene = job.objects[o].scene;
     oc.inputs = io::format_digests(inputs.objects[o]);
     oc.physics_json = io::physics_json(model.scene(int(o)), job);
