@@ -4,7 +4,7 @@ from Rigid's HDF5 fragility cubes (README "The fragility cube (HDF5)"; physics.m
 
     rigid_plot.py maps  CUBE --out DIR [--object NAME]... [--variant K] [--pgv-pga S] [--alpha [NAME=]RAD]...
                         [--p [NAME=]RAD_S]...
-    rigid_plot.py diff  CUBE_A CUBE_B --out DIR [--label-a 3D] [--label-b 2D] [--object NAME]...
+    rigid_plot.py diff  CUBE_A CUBE_B --out DIR [--label-a 3D] [--label-b 2D] [--object NAME]... [--variant K]
     rigid_plot.py table CUBE [CUBE...] --out FILE.md [--scale G] [--layout auto|objects|records] [--variant K]
 
 A cube with a variant axis (epistemic variants of every object, /work/spec/variant_layout.md) is
@@ -937,7 +937,7 @@ def cmd_diff(args):
         raise InputError("the cubes share no scale")
     # objects are matched by name and variant (a variant cube against its own kind)
     labels_b = {o.label for o in cb.objects}
-    objs = ca.select(args.object)
+    objs = ca.select(args.object, args.variant)
     common = [o for o in objs if o.label in labels_b]
     if not common:
         raise InputError(f"no object name in both cubes ({[o.label for o in ca.objects]} vs {sorted(labels_b)})")
@@ -1157,7 +1157,8 @@ def build_parser():
     d.add_argument("--out", required=True, help="output directory")
     d.add_argument("--label-a", default="3D", help="name of cube A in plots and tables (default 3D)")
     d.add_argument("--label-b", default="2D", help="name of cube B (default 2D)")
-    d.add_argument("--object", action="append", help="only this object (repeatable)")
+    d.add_argument("--object", action="append", help="only this object (repeatable; every variant of it)")
+    variant_option(d)
     fit_options(d)
     d.set_defaults(func=cmd_diff)
 

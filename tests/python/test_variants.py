@@ -8,7 +8,8 @@ a. Planted fragilities: variant v's outcomes drawn from a lognormal (theta_v, be
    error, its median the planted mixture's median (bisection here).
 b. Sensitivity: theta_v = f(A) with B irrelevant -> Spearman rho(A) > 0.9 and PRCC(A) > 0.9, rho(B)
    and PRCC(B) with intervals covering 0; swapping the roles swaps the ranking; rho equals
-   scipy.stats.spearmanr on the same (parameter, reported theta) pairs.
+   scipy.stats.spearmanr on the same (parameter, reported theta) pairs, PRCC the partial correlation
+   read off the inverse of the rank correlation matrix (a second method).
 c. Deterministic variants (outcomes separated by a threshold scale) get the empirical threshold
    (geometric mean of the neighbouring scales), flagged, and the sensitivity still ranks them.
 d. The reader: one ObjectData per (object, variant), per-variant attributes, Cube.variants; `rigid
@@ -299,6 +300,15 @@ def sensitivity_oracle(tmp):
         betas = [v["beta"] for v in an["variant_fragility"]]
         worst = max(worst, abs(stats.spearmanr(a_values, betas)[0] - rows["friction"]["rho_beta"]))
         check(worst < 1e-12, f"rho equals scipy.stats.spearmanr on the reported thetas and betas ({worst:.1e})")
+        # PRCC by a second method: the partial correlation from the inverse of the rank correlation
+        # matrix of (friction, density, theta), -P_xy / sqrt(P_xx P_yy)
+        ranks = np.array([stats.rankdata(v) for v in (a_values, b_values, thetas)])
+        precision = np.linalg.inv(np.corrcoef(ranks))
+        worst = 0.0
+        for i, name in enumerate(("friction", "density_kg_m3")):
+            partial = -precision[i, 2] / math.sqrt(precision[i, i] * precision[2, 2])
+            worst = max(worst, abs(partial - rows[name]["prcc_theta"]))
+        check(worst < 1e-9, f"PRCC equals the partial correlation from the inverse rank correlation matrix ({worst:.1e})")
         al = rows["alpha_rad"]
         check(al["kind"] == "derived" and abs(al["rho_theta"] - rows["friction"]["rho_theta"]) < 1e-12
               and al["prcc_theta"] is None and "determined" in al["note"],
