@@ -788,6 +788,14 @@ def cmd_hazard(args):
     args.pgv_pga = None
     fit = ObjectFit(cube, obj, args, points_s=[s for _, s in points])
     v = fit.vector
+    if "points" not in v and fit.threshold is not None:
+        # one variant whose outcomes are separated: its empirical threshold, a step, without bootstrap
+        t = fit.threshold["theta_g"]
+        used_s = cube.pgv_pga[cells.records_with_cells()]
+        v = dict(v, points=[{"pgv_pga_s": s, "theta_g": t, "beta": 0.0, "theta_interval_g": ff.NO_INTERVAL,
+                             "beta_interval": ff.NO_INTERVAL, "source": THRESHOLD_SOURCE} for _, s in points],
+                 replicate_theta_g=np.empty((0, len(points))), replicate_beta=np.empty((0, len(points))),
+                 pgv_pga_range_s=[float(used_s.min()), float(used_s.max())])
     if "points" not in v:
         raise InputError(f"{args.cube}: object {obj.label}: no vector fit ({v.get('reason')})")
     lo_s, hi_s = v["pgv_pga_range_s"]
@@ -806,8 +814,9 @@ def cmd_hazard(args):
               "curve_pga_range_g": [float(curve.pga_g[0]), float(curve.pga_g[curve.top - 1])],
               "age_years": args.age, "pgv_pga": [{"weight": w, "pgv_pga_s": s} for w, s in points],
               "pgv_pga_weight_outside_records": outside,
-              "fragility": [{"pgv_pga_s": p["pgv_pga_s"], "theta_g": p["theta_g"], "beta": p["beta"],
-                             "theta_interval_g": p["theta_interval_g"], "beta_interval": p["beta_interval"]}
+              "fragility": [dict({"pgv_pga_s": p["pgv_pga_s"], "theta_g": p["theta_g"], "beta": p["beta"],
+                                  "theta_interval_g": p["theta_interval_g"], "beta_interval": p["beta_interval"]},
+                                 **({"source": p["source"]} if "source" in p else {}))
                             for p in v["points"]],
               "n_records": v["n_records"],
               "annual_toppling_rate": lam, "annual_toppling_rate_interval": [lam_lo, lam_hi],
@@ -929,7 +938,7 @@ def print_hazard(r):
               f"their vector fits" + (f"; {thresholds} empirical threshold(s), steps" if thresholds else "") + ")")
     elif len(r["fragility"]) == 1:
         f = r["fragility"][0]
-        print(f"  fragility at PGV/PGA {f['pgv_pga_s']:.3f} s (vector fit): theta "
+        print(f"  fragility at PGV/PGA {f['pgv_pga_s']:.3f} s ({f.get('source', 'vector fit')}): theta "
               f"{fmt_interval(f['theta_g'], *f['theta_interval_g'])} g, beta {fmt_interval(f['beta'], *f['beta_interval'])}")
     else:
         print(f"  fragility: the vector fit averaged over {len(r['fragility'])} PGV/PGA values of the given distribution")
@@ -938,7 +947,8 @@ def print_hazard(r):
               f"range: the vector fit is extrapolated there")
     lam, (a, b) = r["annual_toppling_rate"], r["annual_toppling_rate_interval"]
     have_interval = math.isfinite(a) and math.isfinite(b)
-    no_interval = f"[no interval: {r['n_records']} record(s)]"
+    no_interval = (f"[no interval: an empirical threshold]" if r.get("fragility", [{}])[0].get("source") == THRESHOLD_SOURCE
+                   else f"[no interval: {r['n_records']} record(s)]")
     print(f"  annual rate of toppling   {lam:.3e} per year  " + (f"[{pct} %: {a:.3e}, {b:.3e}]" if have_interval else no_interval)
           + f"  (mean return period {1 / lam:,.0f} years)" if lam > 0 else "  annual rate of toppling 0")
     if r["share_of_rate_beyond_curve"] > 0.01:

@@ -353,6 +353,28 @@ def deterministic(tmp):
     p = tool("fragility", cube, "--bootstrap", "20", "--no-store")
     check(p.returncode == 0 and "empirical threshold" in p.stdout and "block [v5]" in p.stdout,
           "the table says which thetas are empirical thresholds")
+    # a threshold is a step: the rate of toppling is the hazard curve's rate at the threshold
+    k, k0 = 2.0, 1e-5
+    curve = os.path.join(tmp, "steps.csv")
+    with open(curve, "w") as f:
+        for a in np.geomspace(0.01, 5.0, 25):
+            f.write(f"{a!r},{k0 * a ** -k!r}\n")
+    p = tool("hazard", cube, "--curve", curve, "--age", "1000", "--variant", "2", "--json", "--bootstrap", "20")
+    if p.returncode == 0:
+        r = json.loads(p.stdout)
+        t = an["variant_fragility"][2]["theta_g"]
+        check(abs(r["annual_toppling_rate"] / (k0 * t ** -k) - 1) < 1e-9 and r["fragility"][0]["source"] == "empirical threshold",
+              f"hazard --variant 2 (a threshold): rate {r['annual_toppling_rate']:.6e} = H(theta) {k0 * t ** -k:.6e}")
+    else:
+        check(False, f"hazard --variant 2 of the thresholds: exit {p.returncode} {p.stderr.strip()}")
+    p = tool("hazard", cube, "--curve", curve, "--age", "1000", "--json", "--bootstrap", "20")
+    if p.returncode == 0:
+        r = json.loads(p.stdout)
+        want = np.mean([k0 * v["theta_g"] ** -k for v in an["variant_fragility"]])
+        check(abs(r["annual_toppling_rate"] / want - 1) < 1e-9,
+              f"pooled hazard of thresholds: rate {r['annual_toppling_rate']:.6e} = mean of H(theta_v) {want:.6e}")
+    else:
+        check(False, f"pooled hazard of the thresholds: exit {p.returncode} {p.stderr.strip()}")
 
 
 # --------------------------------------------------------------------------------------------
