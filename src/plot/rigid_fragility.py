@@ -947,7 +947,7 @@ def print_hazard(r):
               f"range: the vector fit is extrapolated there")
     lam, (a, b) = r["annual_toppling_rate"], r["annual_toppling_rate_interval"]
     have_interval = math.isfinite(a) and math.isfinite(b)
-    no_interval = (f"[no interval: an empirical threshold]" if r.get("fragility", [{}])[0].get("source") == THRESHOLD_SOURCE
+    no_interval = ("[no interval: an empirical threshold]" if r.get("fragility", [{}])[0].get("source") == THRESHOLD_SOURCE
                    else f"[no interval: {r['n_records']} record(s)]")
     print(f"  annual rate of toppling   {lam:.3e} per year  " + (f"[{pct} %: {a:.3e}, {b:.3e}]" if have_interval else no_interval)
           + f"  (mean return period {1 / lam:,.0f} years)" if lam > 0 else "  annual rate of toppling 0")
