@@ -920,7 +920,8 @@ def hazard_pooled(args, cube, curve, objs):
         print_hazard(result)
     if args.plot:
         no_replicates = {"replicate_theta_g": np.empty((0, len(points))), "replicate_beta": np.empty((0, len(points)))}
-        plot_hazard(args.plot, curve, mixture, no_replicates, points, dict(result, object=f"{objs[0].name} (pooled)"))
+        plot_hazard(args.plot, curve, mixture, no_replicates, points, dict(result, object=f"{objs[0].name} (pooled)"),
+                    variant_mixtures=[mix for _, _, mix in per_variant])
         if not args.json:
             print(f"wrote {args.plot}")
     return 0
@@ -973,7 +974,9 @@ def print_hazard(r):
               f"{r['rate_factor_to_rule_out']:.3g} or its PGAs x {r['pga_factor_to_rule_out']:.3g}")
 
 
-def plot_hazard(path, curve, mixture, v, points, r):
+def plot_hazard(path, curve, mixture, v, points, r, variant_mixtures=()):
+    """The hazard curve, the fragility with its bootstrap band (or, pooled over variants, the 5-95 %
+    band of the variants' fragilities: `variant_mixtures`, one mixture per variant), the integrand."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -1001,6 +1004,10 @@ def plot_hazard(path, curve, mixture, v, points, r):
         q = 50 * (1 - r["interval_level"])
         right.fill_between(a, np.percentile(curves, q, axis=0), np.percentile(curves, 100 - q, axis=0),
                            color="tab:red", alpha=0.2, label=f"{int(r['interval_level'] * 100)} % band (bootstrap)")
+    if len(variant_mixtures):
+        curves = np.array([sum(w * hc.fragility_probability(a, t, b) for w, t, b in mix) for mix in variant_mixtures])
+        right.fill_between(a, np.percentile(curves, 5, axis=0), np.percentile(curves, 95, axis=0),
+                           color="tab:purple", alpha=0.2, label="5-95 % over variants (epistemic)")
     right.set_ylim(0, 1.02)
     right.set_ylabel("P(topple | PGA)")
     lines = top.get_legend_handles_labels()
