@@ -214,7 +214,10 @@ _DENSITY = np.exp(-0.5 * _Z**2) / math.sqrt(2.0 * math.pi)
 
 def toppling_rate(curve, theta_g, beta):
     """(lambda per year, share of lambda from beyond the curve's PGA range) for a lognormal
-    fragility (theta in g, beta)."""
+    fragility (theta in g, beta); beta 0 is a step at theta (a deterministic threshold): H(theta)."""
+    if beta == 0:
+        outside = not curve.pga_g[0] <= theta_g <= curve.pga_g[curve.top - 1]
+        return float(curve(theta_g)), (1.0 if outside else 0.0)
     z, density = _Z, _DENSITY
     if curve.top < len(curve.rate):
         # H drops to 0 past its last positive PGA: integrate up to that jump, not across it
@@ -272,4 +275,6 @@ def ruling_factors(curve, fragilities, years, confidence):
 
 
 def fragility_probability(a, theta_g, beta):
+    if beta == 0:  # a deterministic threshold
+        return (np.asarray(a, float) >= theta_g).astype(float)
     return ndtr(np.log(np.asarray(a, float) / theta_g) / beta)

@@ -2,9 +2,9 @@
 """`rigid fragility` and `rigid hazard`: from a campaign cube to fitted fragilities, exports hazard
 codes read, and the probability that a rock survived a hazard model over its exposure age.
 
-    rigid_fragility.py fragility CUBE [--object NAME]... [--pgv-pga S] [--json] [--csv FILE]
+    rigid_fragility.py fragility CUBE [--object NAME]... [--variant K] [--pgv-pga S] [--json] [--csv FILE]
                        [--nrml FILE] [--no-store] [--bootstrap N] [--seed N] [--level 0.9]
-    rigid_fragility.py hazard CUBE --curve CURVE.csv --age YEARS [--object NAME]
+    rigid_fragility.py hazard CUBE --curve CURVE.csv --age YEARS [--object NAME] [--variant K]
                        [--pgv-pga S | --pgv-pga-dist lognormal:MEDIAN,BETA] [--site ID]
                        [--confidence 0.95] [--plot PNG] [--json]
 
@@ -12,6 +12,16 @@ Fits (fragility_fit.py): per PGV/PGA bin a lognormal (theta, beta) on the record
 the vector fit P = Phi((u - mu(x)) / sigma(x)) over all records, evaluated at a chosen PGV/PGA;
 90 % intervals by bootstrap over records. Hazard (hazard_curve.py): lambda = E[H(C)], survival
 exp(-lambda T). Exit status: 0 done, 2 bad input, 1 internal error.
+
+With variants (a cube with a variant axis: epistemic uncertainty, /work/spec/variant_layout.md):
+each variant is fitted as an object is; the variants of an object are equally weighted samples of
+the epistemic distribution, so the pooled fragility is the mixture P(a) = mean_v P_v(a) of the
+lognormals standing for them (the vector fit at the chosen PGV/PGA, or the empirical threshold of a
+variant with separated outcomes), reported with its median, the moment-matched lognormal, the
+5/50/95 % of theta and beta over variants and the 5-95 % band of P_v(a); the sensitivity of theta
+and beta to each varied parameter is sensitivity.py's. `hazard` integrates the pooled fragility
+and reports the survival probability's epistemic 5-95 % range over variants beside the aleatory
+interval; --variant K uses one variant as if it were an object.
 """
 import argparse
 import csv
@@ -28,6 +38,7 @@ try:
     import fragility_fit as ff
     import hazard_curve as hc
     import nrml
+    import sensitivity
     from rigid_plot import Cube, InputError, Normalisation, block_parameter, parse_per_object
 except ImportError as e:  # pragma: no cover
     sys.stderr.write(f"rigid: error: {e}; install python3-numpy python3-h5py python3-scipy python3-matplotlib "
@@ -53,19 +64,40 @@ def number_in(text, option, low=None, high=None):
 
 
 class ObjectFit:
-    """Everything `rigid fragility` reports of one object."""
+    """Everything `rigid fragility` reports of one object (or one variant of it).
 
-    def __init__(self, cube, obj, args, points_s=None):
+    A variant is fitted exactly as an object is. Its bootstrap uses the same seeds as the other
+    variants of its object (the object's index, not the variant's), so replicate i resamples the
+    same records in every variant: the records are shared by the variants, and a pooled replicate
+    (the hazard's aleatory interval) mixes the variants' fits of one resample. With
+    `require_fragility` False (variants) an object with nothing to fit gets `no_fit` instead of
+    the error."""
+
+    def __init__(self, cube, obj, args, points_s=None, require_fragility=True):
         alpha, alpha_src = block_parameter(cube, obj, "alpha_rad", parse_per_object(None, "--alpha"))
         p, p_src = block_parameter(cube, obj, "p_rad_s", parse_per_object(None, "--p"))
         self.norm = Normalisation(alpha, alpha_src, p, p_src)
         self.obj = obj
         self.cells = ff.Cells(obj.outcome, cube.scales, cube.pgv_pga)
+        self.no_fit = None
+        self.scalar = self.threshold = None
         if self.cells.n.sum() == 0:
-            raise InputError(f"{cube.path}: object {obj.name}: no simulated cell (nothing to fit)")
-        if self.cells.k.sum() == 0:
-            raise InputError(f"{cube.path}: object {obj.name}: no overturned cell among its {int(self.cells.n.sum())} "
-                             f"simulated cells: no fragility to fit (the campaign's scales stay below it)")
+            self.no_fit = f"{cube.path}: object {obj.label}: no simulated cell (nothing to fit)"
+        elif self.cells.k.sum() == 0:
+            self.no_fit = (f"{cube.path}: object {obj.label}: no overturned cell among its {int(self.cells.n.sum())} "
+                           f"simulated cells: no fragility to fit (the campaign's scales stay below it)")
+        if self.no_fit and require_fragility:
+            raise InputError(self.no_fit)
+        self.edges = cube.edges
+        self.scale_range_g = (float(cube.scales[cube.scales > 0].min()), float(cube.scales.max()))
+        if self.no_fit:
+            self.pgv_pga_s = args.pgv_pga if args.pgv_pga is not None else (points_s or [math.nan])[0]
+            self.points_s = [self.pgv_pga_s] if points_s is None else list(points_s)
+            self.bins = []
+            self.vector = {"reason": "no overturned cell" if self.cells.n.sum() else "no simulated cell",
+                           "n_records": int(len(self.cells.records_with_cells())), "n_cells": int(self.cells.n.sum()),
+                           "n_overturned": 0}
+            return
         index = int(obj.attrs.get("index", 0))
         records = self.cells.records_with_cells()
         self.pgv_pga_s = (args.pgv_pga if args.pgv_pga is not None
@@ -82,7 +114,13 @@ class ObjectFit:
         rng = np.random.default_rng([args.seed, index, 0])
         self.vector = ff.vector_fragility(self.cells, records, self.norm.u_shift, self.norm.x_shift, self.points_s, rng,
                                           args.bootstrap, args.level)
-        self.scale_range_g = (float(cube.scales[cube.scales > 0].min()), float(cube.scales.max()))
+        if obj.variant is not None:
+            # variants also report the scalar lognormal over all their records, and a variant whose
+            # outcomes are separated (a deterministic, quasi-static case) its empirical threshold
+            rng = np.random.default_rng([args.seed, index, len(cube.edges)])
+            self.scalar = ff.scalar_fragility(self.cells, None, rng, args.bootstrap, args.level)
+            if "points" not in self.vector:
+                self.threshold = ff.empirical_threshold(self.cells)
 
     def chosen(self):
         return self.vector["points"][0] if "points" in self.vector else None
@@ -90,6 +128,202 @@ class ObjectFit:
 
 # --------------------------------------------------------------------------------------------
 # rigid fragility
+
+
+# Bootstrap replicates over variants for the sensitivity intervals: resampling variants costs rank
+# statistics only, so this is fixed (not --bootstrap, which counts probit refits).
+SENSITIVITY_REPLICATES = 1000
+THRESHOLD_SOURCE = "empirical threshold"
+
+
+def variant_lognormal(fit):
+    """The lognormal (theta, beta) standing for one variant in the pooled fragility, the hazard and
+    the sensitivity: the vector fit at the chosen PGV/PGA; for separated outcomes the empirical
+    threshold (a step, beta 0, flagged); else none (theta NaN)."""
+    c = fit.chosen()
+    if c is not None:
+        return {"theta_g": c["theta_g"], "beta": c["beta"], "source": "vector fit",
+                "theta_interval_g": c["theta_interval_g"], "beta_interval": c["beta_interval"]}
+    if fit.threshold is not None:
+        return {"theta_g": fit.threshold["theta_g"], "beta": 0.0, "source": THRESHOLD_SOURCE,
+                "between_g": fit.threshold["between_g"]}
+    return {"theta_g": math.nan, "beta": math.nan, "source": "none", "reason": fit.vector.get("reason", "")}
+
+
+def common_pgv_pga(cube, objs, args):
+    """One PGV/PGA for every variant of an object (their curves are pooled there): --pgv-pga, else
+    the median of the records with simulated cells in any variant."""
+    if args.pgv_pga is not None:
+        return args.pgv_pga
+    used = set()
+    for o in objs:
+        used |= set(ff.Cells(o.outcome, cube.scales, cube.pgv_pga).records_with_cells().tolist())
+    if not used:
+        raise InputError(f"{cube.path}: object {objs[0].name}: no simulated cell in any variant (nothing to fit)")
+    return float(np.median(cube.pgv_pga[sorted(used)]))
+
+
+class VariantAnalysis:
+    """An object's variants together: each variant's lognormal, the pooled (mixture) fragility with
+    the epistemic spread, and the sensitivity of theta and beta to the varied parameters."""
+
+    def __init__(self, cube, fits, args):
+        self.name = fits[0].obj.name
+        self.fits = fits
+        self.pgv_pga_s = fits[0].pgv_pga_s
+        self.lognormals = [variant_lognormal(f) for f in fits]
+        usable = [(d["theta_g"], d["beta"]) for d in self.lognormals if math.isfinite(d["theta_g"])]
+        self.n_threshold = sum(d["source"] == THRESHOLD_SOURCE for d in self.lognormals)
+        self.without = [f.obj.variant for f, d in zip(fits, self.lognormals) if d["source"] == "none"]
+        self.pooled = None
+        if usable:
+            lo_g, hi_g = fits[0].scale_range_g
+            spread = max([b for _, b in usable] + [0.1])
+            grid = np.geomspace(min([t for t, _ in usable] + [lo_g]) * math.exp(-3 * spread),
+                                max([t for t, _ in usable] + [hi_g]) * math.exp(3 * spread), 200)
+            self.pooled = ff.pooled_fragility(usable, grid)
+        index = int(fits[0].obj.attrs.get("index", 0))
+        rng = np.random.default_rng([args.seed, index, 0, 1])
+        theta = np.array([d["theta_g"] for d in self.lognormals])
+        # beta of a threshold is 0 by construction, not an estimate: left out of beta's statistics
+        beta = np.array([d["beta"] if d["source"] == "vector fit" else math.nan for d in self.lognormals])
+        self.parameters = self._parameters(cube)
+        self.sensitivity = sensitivity.sensitivity_table(self.parameters, {"theta": theta, "beta": beta}, rng,
+                                                         SENSITIVITY_REPLICATES, args.level)
+
+    def _parameters(self, cube):
+        out = []
+        for name, units, values in cube.variants.parameters:
+            if isinstance(values, list):
+                codes, order = sensitivity.category_codes(values)
+                out.append((name, units, f"text (category order: {', '.join(order)})", codes))
+            else:
+                out.append((name, units, "varied", np.asarray(values, float)))
+        for key, units in (("alpha_rad", "rad"), ("p_rad_s", "rad s-1")):
+            values = np.array([float(f.obj.attrs.get(key, math.nan)) for f in self.fits])
+            if np.isfinite(values).any():
+                out.append((key, units, "derived", values))
+        return out
+
+    def document(self):
+        """JSON of the analysis (arrays as lists)."""
+        return {"object": self.name, "variants": len(self.fits), "pgv_pga_s": self.pgv_pga_s,
+                "variant_fragility": [dict(d, variant=f.obj.variant, label=f.obj.label)
+                                      for f, d in zip(self.fits, self.lognormals)],
+                "variants_with_empirical_threshold": self.n_threshold,
+                "variants_without_fragility": self.without,
+                "pooled": None if self.pooled is None else dict(self.pooled, weights="variants equally weighted"),
+                "sensitivity": self.sensitivity,
+                "sensitivity_method": SENSITIVITY_METHOD}
+
+
+SENSITIVITY_METHOD = ("Spearman rank correlation with theta (and beta) across variants, percentile bootstrap "
+                      f"interval over variants ({SENSITIVITY_REPLICATES} resamples, seeded by --seed); PRCC: "
+                      "correlation of rank residuals after regressing out the other varied parameters' ranks "
+                      "(Marino et al., J. Theor. Biol. 254, 2008); text parameters by their category order; "
+                      "theta of separated variants is their empirical threshold, their beta is left out")
+
+
+def analyse_variants(cube, objs, args):
+    """(fits, analyses): the fits of every (object, variant) in cube order, and per object with
+    variants its VariantAnalysis (none with --variant: one variant has nothing to pool)."""
+    fits, analyses = [], []
+    for name in [n for n in cube.base_names() if any(o.name == n for o in objs)]:
+        group = [o for o in objs if o.name == name]
+        point = common_pgv_pga(cube, group, args)
+        group_fits = [ObjectFit(cube, o, args, points_s=[point], require_fragility=False) for o in group]
+        if args.variant is not None and group_fits[0].no_fit:
+            raise InputError(group_fits[0].no_fit)
+        if all(f.no_fit for f in group_fits):
+            raise InputError(f"{cube.path}: object {name}: no overturned cell in any of its {len(group)} variants: "
+                             f"no fragility to fit (the campaign's scales stay below it)")
+        fits += group_fits
+        if args.variant is None:
+            analyses.append(VariantAnalysis(cube, group_fits, args))
+    return fits, analyses
+
+
+def fmt_param(v):
+    return v if isinstance(v, str) else f"{v:.4g}"
+
+
+def print_variant_tables(cube, fits, analyses, args):
+    pct = int(args.level * 100)
+    print(f"rigid fragility {cube.path}: {cube.variants.count} variants ({cube.variants.method}, seed "
+          f"{cube.variants.seed}); lognormal fragilities P = Phi(ln(PGA/theta)/beta), PGA = GMRotI50 in g")
+    print(f"  maximum likelihood on the simulated cells (inferred cells left out); {pct} % intervals from "
+          f"{args.bootstrap} bootstrap resamples of records (seed {args.seed}): aleatory/sampling")
+    names = [n for n, _, _ in cube.variants.parameters]
+    by_object = {}
+    for f in fits:
+        by_object.setdefault(f.obj.name, []).append(f)
+    for name, group in by_object.items():
+        print()
+        print(f"object {name}: vector fit at PGV/PGA {group[0].pgv_pga_s:.3f} s and the scalar fit over all records, "
+              f"per variant (per-bin fits: --json, --csv, the cube)")
+        head = ["variant"] + names + ["alpha (rad)", f"theta (g) [{pct} %]", f"beta [{pct} %]",
+                                      f"scalar theta (g) [{pct} %]", f"scalar beta [{pct} %]", "note"]
+        rows = []
+        for f in group:
+            k = f.obj.variant
+            d = variant_lognormal(f)
+            params = [fmt_param(values[k]) for _, _, values in cube.variants.parameters]
+            alpha = f"{f.norm.alpha:.4f}" if f.norm.alpha else "-"
+            if d["source"] == "vector fit":
+                theta = fmt_interval(d["theta_g"], *d["theta_interval_g"])
+                beta = fmt_interval(d["beta"], *d["beta_interval"])
+                note = ""
+            elif d["source"] == THRESHOLD_SOURCE:
+                theta, beta = f"{d['theta_g']:.3f} *", "0 (step)"
+                note = (f"* empirical threshold: between {d['between_g'][0]:g} and {d['between_g'][1]:g} g "
+                        f"(outcomes separated: no finite fit)")
+            else:
+                theta, beta, note = "-", "-", d.get("reason", "")
+            sc = f.scalar or {}
+            stheta = fmt_interval(sc.get("theta_g"), *sc.get("theta_interval_g", (0, 0)))
+            sbeta = fmt_interval(sc.get("beta"), *sc.get("beta_interval", (0, 0)))
+            rows.append([f"{name} [v{k}]"] + params + [alpha, theta, beta, stheta, sbeta, note])
+        widths = [max(len(str(r[i])) for r in rows + [head]) for i in range(len(head))]
+        print("  " + "  ".join(str(h).ljust(w) for h, w in zip(head, widths)).rstrip())
+        for r in rows:
+            print("  " + "  ".join(str(c).ljust(w) for c, w in zip(r, widths)).rstrip())
+    for a in analyses:
+        print()
+        if a.pooled is None:
+            print(f"object {a.name}: no variant has a fragility: nothing pooled")
+            continue
+        p = a.pooled
+        print(f"object {a.name}, pooled over {p['n_variants']} of {len(a.fits)} variants (equally weighted mixture "
+              f"P(a) = mean_v P_v(a), at PGV/PGA {a.pgv_pga_s:.3f} s):")
+        print(f"  median of the mixture {p['median_g']:.4f} g; moment-matched lognormal theta "
+              f"{p['lognormal_theta_g']:.4f} g, beta {p['lognormal_beta']:.4f}")
+        tp, bp = p["theta_percentiles_g"], p["beta_percentiles"]
+        print(f"  epistemic spread over variants (5 / 50 / 95 %): theta {tp[0]:.4f} / {tp[1]:.4f} / {tp[2]:.4f} g, "
+              f"beta {bp[0]:.4f} / {bp[1]:.4f} / {bp[2]:.4f}")
+        i = int(np.argmin(np.abs(np.log(p["pga_g"] / p["median_g"]))))
+        print(f"  5-95 % band of P_v(a) over variants at the pooled median: [{p['band_lower'][i]:.3f}, "
+              f"{p['band_upper'][i]:.3f}] (the whole band: --json, the cube)")
+        if a.n_threshold:
+            print(f"  note: {a.n_threshold} variant(s) enter as their empirical threshold (a step at theta, beta 0 "
+                  f"in the percentiles above)")
+        if a.without:
+            print(f"  note: variant(s) {', '.join(map(str, a.without))} have no fragility and are left out of the pool")
+        print(f"  sensitivity across variants, sorted by |rho(theta)| ({pct} % intervals: bootstrap over variants):")
+        head = ["parameter", "kind", "rho(theta)", "PRCC(theta)", "rho(beta)", "PRCC(beta)", "note"]
+        rows = []
+        for r in a.sensitivity:
+            rows.append([r["parameter"] + (f" ({r['units']})" if r["units"] not in ("", "1") else ""), r["kind"],
+                         fmt_interval(r["rho_theta"], *r["rho_theta_interval"], digits=2),
+                         fmt_interval(r["prcc_theta"], *r["prcc_theta_interval"], digits=2),
+                         fmt_interval(r["rho_beta"], *r["rho_beta_interval"], digits=2),
+                         fmt_interval(r["prcc_beta"], *r["prcc_beta_interval"], digits=2), r["note"]])
+        widths = [max(len(str(r[i])) for r in rows + [head]) for i in range(len(head))]
+        print("    " + "  ".join(str(h).ljust(w) for h, w in zip(head, widths)).rstrip())
+        for r in rows:
+            print("    " + "  ".join(str(c).ljust(w) for c, w in zip(r, widths)).rstrip())
+        if a.n_threshold:
+            print(f"    theta of the {a.n_threshold} separated variant(s) is its empirical threshold; their beta "
+                  f"(0 by construction) is left out of beta's statistics")
 
 
 def fmt_interval(v, lo, hi, digits=3):
@@ -140,9 +374,14 @@ def print_table(cube, fits, args):
                      if failed > 0.1 * total else ""))
 
 
-def csv_rows(fits):
+def csv_rows(fits, analyses=()):
+    """One row per object (variant) and bin, and the vector fit; with variants a `variant` column,
+    each variant's scalar fit over all records (or its empirical threshold), and the pooled lognormal."""
     rows = []
     for f in fits:
+        if f.obj.variant is not None:
+            rows += variant_csv_rows(f)
+            continue
         for r in f.bins:
             if r["n_records"] == 0:
                 continue
@@ -153,6 +392,45 @@ def csv_rows(fits):
             v.update(c)
             rows.append(_csv_row(f.obj.name, "vector", "", "", c["pgv_pga_s"], v))
     return rows
+
+
+def variant_csv_rows(f):
+    out = []
+    for r in f.bins:
+        if r["n_records"] > 0:
+            out.append(_csv_row(f.obj.name, "bin", r["lower_s"], r["upper_s"], "", r))
+    c = f.chosen()
+    if c is not None:
+        v = dict(f.vector)
+        v.update(c)
+        out.append(_csv_row(f.obj.name, "vector", "", "", c["pgv_pga_s"], v))
+    if f.threshold is not None:
+        r = dict(f.vector, theta_g=f.threshold["theta_g"], beta=0.0,
+                 reason=f"empirical threshold between {f.threshold['between_g'][0]:g} and "
+                        f"{f.threshold['between_g'][1]:g} g (outcomes separated: no finite fit)")
+        out.append(_csv_row(f.obj.name, "threshold", "", "", f.pgv_pga_s, r))
+    if f.scalar is not None:
+        out.append(_csv_row(f.obj.name, "scalar", "", "", "", f.scalar))
+    if f.no_fit:
+        out.append(_csv_row(f.obj.name, "none", "", "", "", dict(f.vector, reason=f.vector["reason"])))
+    return [with_variant(r, f.obj.variant) for r in out]
+
+
+def with_variant(row, variant):
+    """The row with its `variant` column after `object`."""
+    return {"object": row["object"], "variant": variant, **{k: v for k, v in row.items() if k != "object"}}
+
+
+def pooled_csv_row(a):
+    p = a.pooled
+    r = {"n_records": max(f.vector.get("n_records", 0) for f in a.fits),
+         "n_cells": sum(f.vector.get("n_cells", 0) for f in a.fits),
+         "n_overturned": sum(f.vector.get("n_overturned", 0) for f in a.fits),
+         "theta_g": p["lognormal_theta_g"], "beta": p["lognormal_beta"],
+         "reason": f"moment-matched lognormal of the mixture of {p['n_variants']} variants; mixture median "
+                   f"{p['median_g']:.6g} g; theta 5-95 % over variants {p['theta_percentiles_g'][0]:.6g}-"
+                   f"{p['theta_percentiles_g'][2]:.6g} g"}
+    return with_variant(_csv_row(a.name, "pooled", "", "", a.pgv_pga_s, r), "pooled")
 
 
 def _csv_row(name, kind, lo, hi, at, r):
@@ -166,6 +444,34 @@ def _csv_row(name, kind, lo, hi, at, r):
             "beta": r.get("beta", ""), "beta_lower": bi[0], "beta_upper": bi[1],
             "n_records": r["n_records"], "n_cells": r["n_cells"], "n_overturned": r["n_overturned"],
             "note": r.get("reason", r.get("interval_note", ""))}
+
+
+def no_damage_limit(theta_g, beta):
+    """The PGA below which the lognormal gives P < 1e-4: no damage there."""
+    return theta_g * math.exp(beta * ff.norm_ppf(1e-4))
+
+
+def variant_nrml_functions(fits, analyses):
+    """With variants: one function per variant (its lognormal at the chosen PGV/PGA; a variant whose
+    fragility is an empirical threshold has none, a step not being a logncdf) and the pooled one."""
+    functions, skipped = [], []
+    for f in fits:
+        d = variant_lognormal(f)
+        if d["source"] != "vector fit":
+            skipped.append(f.obj.label)
+            continue
+        lo, hi = f.scale_range_g
+        functions.append({"id": f"{f.obj.name}_v{f.obj.variant}_pgv_pga_{f.pgv_pga_s:.4g}s", "theta_g": d["theta_g"],
+                          "beta": d["beta"], "min_iml": lo, "max_iml": hi,
+                          "no_damage_limit": no_damage_limit(d["theta_g"], d["beta"])})
+    for a in analyses:
+        if a.pooled is None:
+            continue
+        lo, hi = a.fits[0].scale_range_g
+        t, b = a.pooled["lognormal_theta_g"], a.pooled["lognormal_beta"]
+        functions.append({"id": f"{a.name}_pooled_pgv_pga_{a.pgv_pga_s:.4g}s", "theta_g": t, "beta": b,
+                          "min_iml": lo, "max_iml": hi, "no_damage_limit": no_damage_limit(t, b)})
+    return functions, skipped
 
 
 def nrml_functions(fits):
@@ -188,6 +494,8 @@ def json_clean(v):
         return {k: json_clean(x) for k, x in v.items() if not k.startswith("replicate_") and k != "start"}
     if isinstance(v, (list, tuple)):
         return [json_clean(x) for x in v]
+    if isinstance(v, np.ndarray):
+        return json_clean(v.tolist())
     if isinstance(v, (np.floating, float)):
         return float(v) if math.isfinite(v) else None
     if isinstance(v, (np.integer, np.bool_)):
@@ -195,7 +503,20 @@ def json_clean(v):
     return v
 
 
-def json_document(cube, fits, args):
+def json_document(cube, fits, args, analyses=None):
+    if cube.variants is not None:
+        return json_clean({"cube": cube.path, "method": METHOD, "bootstrap_replicates": args.bootstrap, "seed": args.seed,
+                           "interval_level": args.level,
+                           "variants": {"count": cube.variants.count, "method": cube.variants.method,
+                                        "seed": cube.variants.seed,
+                                        "parameters": [{"name": n, "units": u, "values": v}
+                                                       for n, u, v in cube.variants.parameters]},
+                           "objects": [{"object": f.obj.name, "variant": f.obj.variant, "label": f.obj.label,
+                                        "alpha_rad": f.norm.alpha, "p_rad_s": f.norm.p,
+                                        "inferred_cells_left_out": f.cells.inferred, "bins": f.bins, "vector": f.vector,
+                                        "scalar": f.scalar, "fragility": variant_lognormal(f)}
+                                       for f in fits],
+                           "variant_analysis": [a.document() for a in analyses or []]})
     return json_clean({"cube": cube.path, "method": METHOD, "bootstrap_replicates": args.bootstrap, "seed": args.seed,
                   "interval_level": args.level,
                   "objects": [{"object": f.obj.name, "alpha_rad": f.norm.alpha, "p_rad_s": f.norm.p,
@@ -203,7 +524,140 @@ def json_document(cube, fits, args):
                               for f in fits]})
 
 
-def store(path, cube, fits, args):
+def write_fit_group(og, fit):
+    """One object's (variant's) fits into the HDF5 group og: attributes, per-bin datasets, the
+    vector fit (the layout of a cube without variants)."""
+    og.attrs["description"] = f"fragility of object {fit.obj.name}"
+    og.attrs["fitted_cells_sha256"] = fit.obj.attrs.get("datasets_sha256", "")
+    og.attrs["inferred_cells_left_out"] = np.int64(fit.cells.inferred)
+    for key, value in (("alpha_rad", fit.norm.alpha), ("p_rad_s", fit.norm.p)):
+        if value:
+            og.attrs[key] = float(value)
+
+    def column(key, index=None, dtype=float, missing=math.nan):
+        vals = []
+        for r in fit.bins:
+            v = r.get(key)
+            vals.append(missing if v is None else (v[index] if index is not None else v))
+        return np.asarray(vals, dtype)
+
+    specs = [("pgv_pga_edges_s", np.asarray(fit.edges, float), "s", "bin i: edges[i] <= PGV/PGA < edges[i+1]"),
+             ("theta_g", column("theta_g"), "g", "median PGA of the bin's lognormal fragility (NaN: no fit)"),
+             ("theta_lower_g", column("theta_interval_g", 0), "g", "lower end of its interval"),
+             ("theta_upper_g", column("theta_interval_g", 1), "g", "upper end of its interval"),
+             ("beta", column("beta"), "1", "dispersion (standard deviation of ln PGA)"),
+             ("beta_lower", column("beta_interval", 0), "1", "lower end of its interval"),
+             ("beta_upper", column("beta_interval", 1), "1", "upper end of its interval"),
+             ("n_records", column("n_records", dtype=np.int32, missing=0), "1", "records of the bin with simulated cells"),
+             ("n_cells", column("n_cells", dtype=np.int32, missing=0), "1", "simulated cells fitted"),
+             ("n_overturned", column("n_overturned", dtype=np.int32, missing=0), "1", "overturned among them")]
+    for name, data, units, text in specs:
+        ds = og.create_dataset(name, data=data)
+        ds.attrs["units"] = units
+        ds.attrs["description"] = text
+    v = fit.vector
+    if "fit" in v:
+        vg = og.create_group("vector")
+        vg.attrs["description"] = "P = Phi((u - mu(x)) / sigma(x)); u, x as the attributes say"
+        vg.attrs["u"], vg.attrs["x"] = fit.norm.describe()
+        for key in ("mu_coefficients", "log_sigma_coefficients", "mu_se", "log_sigma_se"):
+            vg.attrs[key] = np.asarray(v["fit"][key], float)
+        c = fit.chosen()
+        vg.attrs["pgv_pga_s"] = c["pgv_pga_s"]
+        vg.attrs["theta_g"], vg.attrs["beta"] = c["theta_g"], c["beta"]
+        vg.attrs["theta_interval_g"] = np.asarray(c["theta_interval_g"], float)
+        vg.attrs["beta_interval"] = np.asarray(c["beta_interval"], float)
+
+
+def write_string_dataset(group, name, values, text):
+    ds = group.create_dataset(name, data=np.array(values, dtype=object), dtype=h5py.string_dtype("utf-8"))
+    ds.attrs["description"] = text
+    return ds
+
+
+def write_number_dataset(group, name, values, units, text):
+    ds = group.create_dataset(name, data=np.asarray(values, float))
+    ds.attrs["units"] = units
+    ds.attrs["description"] = text
+    return ds
+
+
+def write_variant_groups(g, cube, fits, analyses):
+    """With variants, /fragility/<object> holds: per variant a group v<K> laid out as an object's
+    group without variants (plus the scalar fit over all records and the empirical threshold as
+    attributes); `variant_fragility` (datasets [variant]: the lognormal standing for each variant
+    and where it comes from); `pooled` (the mixture and the epistemic spread); `sensitivity`."""
+    by_name = {}
+    for f in fits:
+        by_name.setdefault(f.obj.name, []).append(f)
+    analysis = {a.name: a for a in analyses}
+    for name, group in by_name.items():
+        og = g.create_group(name)
+        og.attrs["description"] = f"fragility of object {name}, per variant and pooled over variants"
+        og.attrs["variants"] = np.int32(cube.variants.count)
+        og.attrs["fitted_cells_sha256"] = group[0].obj.attrs.get("datasets_sha256", "")
+        for f in group:
+            vg = og.create_group(f"v{f.obj.variant}")
+            write_fit_group(vg, f)
+            vg.attrs["description"] = f"fragility of object {name}, variant {f.obj.variant}"
+            vg.attrs["variant"] = np.int32(f.obj.variant)
+            if f.no_fit:
+                vg.attrs["no_fit"] = f.no_fit
+            if f.scalar is not None and "theta_g" in f.scalar:
+                vg.attrs["scalar_theta_g"], vg.attrs["scalar_beta"] = f.scalar["theta_g"], f.scalar["beta"]
+                vg.attrs["scalar_theta_interval_g"] = np.asarray(f.scalar["theta_interval_g"], float)
+                vg.attrs["scalar_beta_interval"] = np.asarray(f.scalar["beta_interval"], float)
+            if f.threshold is not None:
+                vg.attrs["empirical_threshold_g"] = f.threshold["theta_g"]
+                vg.attrs["empirical_threshold_between_g"] = np.asarray(f.threshold["between_g"], float)
+        d = [variant_lognormal(f) for f in group]
+        sg = og.create_group("variant_fragility")
+        sg.attrs["description"] = ("the lognormal standing for each variant in the pool and the sensitivity: the "
+                                   "vector fit at pgv_pga_s, or the empirical threshold (beta 0) of separated outcomes")
+        sg.attrs["pgv_pga_s"] = float(group[0].pgv_pga_s)
+        sg.create_dataset("variant", data=np.array([f.obj.variant for f in group], np.int32))
+        write_number_dataset(sg, "theta_g", [x["theta_g"] for x in d], "g", "median PGA (NaN: no fragility)")
+        write_number_dataset(sg, "beta", [x["beta"] for x in d], "1", "dispersion (0: a step)")
+        for key, unit in (("theta_interval_g", "g"), ("beta_interval", "1")):
+            write_number_dataset(sg, key, [x.get(key, (math.nan, math.nan)) for x in d], unit,
+                                 "bootstrap interval over records [variant, 2] (NaN: none)")
+        write_string_dataset(sg, "source", [x["source"] for x in d], "vector fit, empirical threshold or none")
+        a = analysis.get(name)
+        if a is None:
+            continue
+        if a.pooled is not None:
+            p = a.pooled
+            pg = og.create_group("pooled")
+            pg.attrs["description"] = ("equally weighted mixture of the variants' lognormals, P(a) = mean_v P_v(a), "
+                                       "and the epistemic spread over variants")
+            pg.attrs["n_variants"] = np.int32(p["n_variants"])
+            pg.attrs["median_g"] = p["median_g"]
+            pg.attrs["lognormal_theta_g"], pg.attrs["lognormal_beta"] = p["lognormal_theta_g"], p["lognormal_beta"]
+            pg.attrs["lognormal_method"] = p["lognormal_method"]
+            pg.attrs["percentiles"] = np.asarray(p["percentiles"], np.int32)
+            pg.attrs["theta_percentiles_g"] = np.asarray(p["theta_percentiles_g"], float)
+            pg.attrs["beta_percentiles"] = np.asarray(p["beta_percentiles"], float)
+            write_number_dataset(pg, "pga_g", p["pga_g"], "g", "PGA grid")
+            write_number_dataset(pg, "mixture_probability", p["mixture_probability"], "1", "pooled P(overturn)")
+            write_number_dataset(pg, "band_lower", p["band_lower"], "1", "5th percentile of P_v over variants")
+            write_number_dataset(pg, "band_upper", p["band_upper"], "1", "95th percentile of P_v over variants")
+        rows = a.sensitivity
+        if rows:
+            tg = og.create_group("sensitivity")
+            tg.attrs["description"] = SENSITIVITY_METHOD
+            write_string_dataset(tg, "parameter", [r["parameter"] for r in rows], "varied or derived parameter")
+            write_string_dataset(tg, "kind", [r["kind"] for r in rows], "varied, text (category order) or derived")
+            write_string_dataset(tg, "note", [r["note"] for r in rows], "why a statistic is missing")
+            for out in ("theta", "beta"):
+                tg.create_dataset(f"n_{out}", data=np.array([r[f"n_{out}"] for r in rows], np.int32))
+                for stat in ("rho", "prcc"):
+                    write_number_dataset(tg, f"{stat}_{out}", [r[f"{stat}_{out}"] for r in rows], "1",
+                                         f"{stat} of the parameter with {out} across variants")
+                    write_number_dataset(tg, f"{stat}_{out}_interval", [r[f"{stat}_{out}_interval"] for r in rows],
+                                         "1", "bootstrap interval over variants [parameter, 2]")
+
+
+def store(path, cube, fits, args, analyses=None):
     """Writes the /fragility group into a copy of the cube and renames it over the cube, so a
     crash leaves the cube as it was; refuses if the cube changed meanwhile (a running campaign)."""
     before = os.stat(path)
@@ -219,48 +673,11 @@ def store(path, cube, fits, args):
             g.attrs["bootstrap_replicates"] = np.int32(args.bootstrap)
             g.attrs["seed"] = np.uint64(args.seed)
             g.attrs["interval_level"] = float(args.level)
-            for fit in fits:
-                og = g.create_group(fit.obj.name)
-                og.attrs["description"] = f"fragility of object {fit.obj.name}"
-                og.attrs["fitted_cells_sha256"] = fit.obj.attrs.get("datasets_sha256", "")
-                og.attrs["inferred_cells_left_out"] = np.int64(fit.cells.inferred)
-                for key, value in (("alpha_rad", fit.norm.alpha), ("p_rad_s", fit.norm.p)):
-                    if value:
-                        og.attrs[key] = float(value)
-
-                def column(key, index=None, dtype=float, missing=math.nan):
-                    vals = []
-                    for r in fit.bins:
-                        v = r.get(key)
-                        vals.append(missing if v is None else (v[index] if index is not None else v))
-                    return np.asarray(vals, dtype)
-
-                specs = [("pgv_pga_edges_s", np.asarray(fit.edges, float), "s", "bin i: edges[i] <= PGV/PGA < edges[i+1]"),
-                         ("theta_g", column("theta_g"), "g", "median PGA of the bin's lognormal fragility (NaN: no fit)"),
-                         ("theta_lower_g", column("theta_interval_g", 0), "g", "lower end of its interval"),
-                         ("theta_upper_g", column("theta_interval_g", 1), "g", "upper end of its interval"),
-                         ("beta", column("beta"), "1", "dispersion (standard deviation of ln PGA)"),
-                         ("beta_lower", column("beta_interval", 0), "1", "lower end of its interval"),
-                         ("beta_upper", column("beta_interval", 1), "1", "upper end of its interval"),
-                         ("n_records", column("n_records", dtype=np.int32, missing=0), "1", "records of the bin with simulated cells"),
-                         ("n_cells", column("n_cells", dtype=np.int32, missing=0), "1", "simulated cells fitted"),
-                         ("n_overturned", column("n_overturned", dtype=np.int32, missing=0), "1", "overturned among them")]
-                for name, data, units, text in specs:
-                    ds = og.create_dataset(name, data=data)
-                    ds.attrs["units"] = units
-                    ds.attrs["description"] = text
-                v = fit.vector
-                if "fit" in v:
-                    vg = og.create_group("vector")
-                    vg.attrs["description"] = "P = Phi((u - mu(x)) / sigma(x)); u, x as the attributes say"
-                    vg.attrs["u"], vg.attrs["x"] = fit.norm.describe()
-                    for key in ("mu_coefficients", "log_sigma_coefficients", "mu_se", "log_sigma_se"):
-                        vg.attrs[key] = np.asarray(v["fit"][key], float)
-                    c = fit.chosen()
-                    vg.attrs["pgv_pga_s"] = c["pgv_pga_s"]
-                    vg.attrs["theta_g"], vg.attrs["beta"] = c["theta_g"], c["beta"]
-                    vg.attrs["theta_interval_g"] = np.asarray(c["theta_interval_g"], float)
-                    vg.attrs["beta_interval"] = np.asarray(c["beta_interval"], float)
+            if cube.variants is None:
+                for fit in fits:
+                    write_fit_group(g.create_group(fit.obj.name), fit)
+            else:
+                write_variant_groups(g, cube, fits, analyses or [])
         with open(tmp, "rb") as fh:
             os.fsync(fh.fileno())
         now = os.stat(path)
@@ -280,29 +697,47 @@ def store(path, cube, fits, args):
 
 def cmd_fragility(args):
     cube = Cube(args.cube)
-    fits = [ObjectFit(cube, o, args) for o in cube.select(args.object)]
-    if args.json:
-        json.dump(json_document(cube, fits, args), sys.stdout, indent=1, allow_nan=False)
-        print()
+    objs = cube.select(args.object, args.variant)
+    analyses = []
+    if cube.variants is None:
+        fits = [ObjectFit(cube, o, args) for o in objs]
     else:
+        fits, analyses = analyse_variants(cube, objs, args)
+    if args.json:
+        json.dump(json_document(cube, fits, args, analyses), sys.stdout, indent=1, allow_nan=False)
+        print()
+    elif cube.variants is None:
         print_table(cube, fits, args)
+    else:
+        print_variant_tables(cube, fits, analyses, args)
     if args.csv:
-        rows = csv_rows(fits)
+        rows = csv_rows(fits) + [pooled_csv_row(a) for a in analyses if a.pooled is not None]
         with open(args.csv, "w", newline="") as fh:
             w = csv.DictWriter(fh, fieldnames=list(rows[0].keys()))
             w.writeheader()
             w.writerows(rows)
     if args.nrml:
-        functions = nrml_functions(fits)
+        skipped = []
+        if cube.variants is None:
+            functions = nrml_functions(fits)
+        else:
+            functions, skipped = variant_nrml_functions(fits, analyses)
+        if skipped and not args.json:
+            print(f"note: no NRML function for {', '.join(skipped)}: an empirical threshold (a step) or no "
+                  f"fragility is not a lognormal")
         if not functions:
             raise InputError(f"{args.cube}: no PGV/PGA bin has a finite fit: no NRML written")
         tree = nrml.fragility_model(os.path.splitext(os.path.basename(args.cube))[0],
                                     f"Overturning fragility of precariously balanced rocks from the Rigid cube "
-                                    f"{os.path.basename(args.cube)}: one lognormal function of GMRotI50 PGA (g) per "
-                                    f"object and PGV/PGA bin", functions)
+                                    f"{os.path.basename(args.cube)}: " + (
+                                        "one lognormal function of GMRotI50 PGA (g) per object and PGV/PGA bin"
+                                        if cube.variants is None else
+                                        "per object one lognormal function of GMRotI50 PGA (g) per variant (id _vK) "
+                                        "at the chosen PGV/PGA, and the pooled one (id _pooled: moment-matched "
+                                        "lognormal of the equally weighted mixture of the variants)"), functions)
         nrml.write(args.nrml, tree)
     if not args.no_store:
-        store(args.cube, cube, fits, args)
+        store(args.cube, cube, fits, args, analyses)
     if not args.json:
         wrote = [p for p in (args.csv, args.nrml) if p] + ([] if args.no_store else [f"{args.cube} (/fragility)"])
         if wrote:
@@ -340,18 +775,29 @@ def cmd_hazard(args):
     except hc.CurveError as e:
         raise InputError(str(e))
     cube = Cube(args.cube)
-    objs = cube.select([args.object] if args.object else None)
-    if len(objs) > 1:
-        raise InputError(f"{args.cube}: {len(objs)} objects; choose one with --object "
-                         f"({', '.join(o.name for o in objs)})")
+    objs = cube.select([args.object] if args.object else None, args.variant)
+    names = cube.base_names() if not args.object else [args.object]
+    if len(names) > 1:
+        raise InputError(f"{args.cube}: {len(names)} objects; choose one with --object "
+                         f"({', '.join(names)})")
+    if cube.variants is not None and args.variant is None:
+        return hazard_pooled(args, cube, curve, objs)
     obj = objs[0]
     cells = ff.Cells(obj.outcome, cube.scales, cube.pgv_pga)
     points = pgv_pga_points(args, cube.pgv_pga[cells.records_with_cells()])
     args.pgv_pga = None
     fit = ObjectFit(cube, obj, args, points_s=[s for _, s in points])
     v = fit.vector
+    if "points" not in v and fit.threshold is not None:
+        # one variant whose outcomes are separated: its empirical threshold, a step, without bootstrap
+        t = fit.threshold["theta_g"]
+        used_s = cube.pgv_pga[cells.records_with_cells()]
+        v = dict(v, points=[{"pgv_pga_s": s, "theta_g": t, "beta": 0.0, "theta_interval_g": ff.NO_INTERVAL,
+                             "beta_interval": ff.NO_INTERVAL, "source": THRESHOLD_SOURCE} for _, s in points],
+                 replicate_theta_g=np.empty((0, len(points))), replicate_beta=np.empty((0, len(points))),
+                 pgv_pga_range_s=[float(used_s.min()), float(used_s.max())])
     if "points" not in v:
-        raise InputError(f"{args.cube}: object {obj.name}: no vector fit ({v.get('reason')})")
+        raise InputError(f"{args.cube}: object {obj.label}: no vector fit ({v.get('reason')})")
     lo_s, hi_s = v["pgv_pga_range_s"]
     outside = sum(w for w, s in points if not lo_s <= s <= hi_s)
     mixture = [(w, p["theta_g"], p["beta"]) for (w, _), p in zip(points, v["points"])]
@@ -364,12 +810,13 @@ def cmd_hazard(args):
     lam_lo, lam_hi = ff.percentile_interval(reps, args.level, v["n_records"])
     surv = hc.survival(lam, args.age)
     rate_factor, pga_factor = hc.ruling_factors(curve, mixture, args.age, args.confidence)
-    result = {"cube": args.cube, "object": obj.name, "curve": args.curve, "site": curve.site,
+    result = {"cube": args.cube, "object": obj.label, "curve": args.curve, "site": curve.site,
               "curve_pga_range_g": [float(curve.pga_g[0]), float(curve.pga_g[curve.top - 1])],
               "age_years": args.age, "pgv_pga": [{"weight": w, "pgv_pga_s": s} for w, s in points],
               "pgv_pga_weight_outside_records": outside,
-              "fragility": [{"pgv_pga_s": p["pgv_pga_s"], "theta_g": p["theta_g"], "beta": p["beta"],
-                             "theta_interval_g": p["theta_interval_g"], "beta_interval": p["beta_interval"]}
+              "fragility": [dict({"pgv_pga_s": p["pgv_pga_s"], "theta_g": p["theta_g"], "beta": p["beta"],
+                                  "theta_interval_g": p["theta_interval_g"], "beta_interval": p["beta_interval"]},
+                                 **({"source": p["source"]} if "source" in p else {}))
                             for p in v["points"]],
               "n_records": v["n_records"],
               "annual_toppling_rate": lam, "annual_toppling_rate_interval": [lam_lo, lam_hi],
@@ -392,15 +839,107 @@ def cmd_hazard(args):
     return 0
 
 
+def hazard_pooled(args, cube, curve, objs):
+    """`rigid hazard` on an object with variants: the pooled (mixture) fragility integrated, its
+    aleatory interval (bootstrap over records: replicate i of every variant resamples the same
+    records, ObjectFit says why, and the pooled replicate mixes them), and the epistemic 5-95 %
+    range over variants of the survival probability, each variant's own lognormal integrated."""
+    used = set()
+    for o in objs:
+        used |= set(ff.Cells(o.outcome, cube.scales, cube.pgv_pga).records_with_cells().tolist())
+    if not used:
+        raise InputError(f"{args.cube}: object {objs[0].name}: no simulated cell in any variant")
+    points = pgv_pga_points(args, cube.pgv_pga[sorted(used)])
+    args.pgv_pga = None
+    fits = [ObjectFit(cube, o, args, points_s=[s for _, s in points], require_fragility=False) for o in objs]
+    per_variant = []  # (variant, source, [(weight, theta, beta)] over the PGV/PGA points)
+    for f in fits:
+        if "points" in f.vector:
+            per_variant.append((f, "vector fit", [(w, p["theta_g"], p["beta"])
+                                                  for (w, _), p in zip(points, f.vector["points"])]))
+        elif f.threshold is not None:  # a step does not depend on PGV/PGA
+            per_variant.append((f, THRESHOLD_SOURCE, [(1.0, f.threshold["theta_g"], 0.0)]))
+    if not per_variant:
+        raise InputError(f"{args.cube}: object {objs[0].name}: no variant has a fragility ({fits[0].vector.get('reason')})")
+    n = len(per_variant)
+    mixture = [(w / n, t, b) for _, _, mix in per_variant for w, t, b in mix]
+    lam, extended = hc.mixture_rate(curve, mixture)
+    rates = [hc.mixture_rate(curve, mix)[0] for _, _, mix in per_variant]
+    survivals = [hc.survival(r, args.age) for r in rates]
+    lo_pct, hi_pct = ff.EPISTEMIC_PERCENTILES[0], ff.EPISTEMIC_PERCENTILES[-1]
+    # aleatory: replicate i of the pooled fragility; a variant without bootstrap (a threshold) is fixed
+    boot = [f.vector["replicate_theta_g"].shape[0] for f, src, _ in per_variant if src == "vector fit"]
+    replicates = min(boot) if boot else 0
+    reps = []
+    for i in range(replicates):
+        mix_i = []
+        for f, src, mix in per_variant:
+            if src == "vector fit":
+                t, b = f.vector["replicate_theta_g"][i], f.vector["replicate_beta"][i]
+                if not np.all(np.isfinite(t)):
+                    break
+                mix_i += [(w / n, t[j], b[j]) for j, (w, _) in enumerate(points)]
+            else:
+                mix_i += [(w / n, th, be) for w, th, be in mix]
+        else:
+            reps.append(hc.mixture_rate(curve, mix_i)[0])
+    n_records = len(used)
+    record_s = cube.pgv_pga[sorted(used)]
+    outside = sum(w for w, s in points if not record_s.min() <= s <= record_s.max())
+    lam_lo, lam_hi = ff.percentile_interval(reps, args.level, n_records) if reps else ff.NO_INTERVAL
+    surv = hc.survival(lam, args.age)
+    rate_factor, pga_factor = hc.ruling_factors(curve, mixture, args.age, args.confidence)
+    result = {"cube": args.cube, "object": objs[0].name, "pooled": True, "variants": len(fits),
+              "variants_pooled": n, "variant": None,
+              "variants_without_fragility": [f.obj.variant for f in fits
+                                             if all(f is not g for g, _, _ in per_variant)],
+              "curve": args.curve, "site": curve.site,
+              "curve_pga_range_g": [float(curve.pga_g[0]), float(curve.pga_g[curve.top - 1])],
+              "age_years": args.age, "pgv_pga": [{"weight": w, "pgv_pga_s": s} for w, s in points],
+              "pgv_pga_weight_outside_records": outside,
+              "variant_fragility": [{"variant": f.obj.variant, "source": src,
+                                     "lognormals": [{"weight": w, "theta_g": t, "beta": b} for w, t, b in mix],
+                                     "annual_toppling_rate": r, "survival_probability": sv}
+                                    for (f, src, mix), r, sv in zip(per_variant, rates, survivals)],
+              "n_records": n_records,
+              "annual_toppling_rate": lam, "annual_toppling_rate_interval": [lam_lo, lam_hi],
+              "annual_toppling_rate_epistemic_range": [float(v) for v in np.percentile(rates, [lo_pct, hi_pct])],
+              "share_of_rate_beyond_curve": extended,
+              "survival_probability": surv,
+              "survival_probability_interval": [hc.survival(lam_hi, args.age), hc.survival(lam_lo, args.age)],
+              "survival_probability_epistemic_range": [float(v) for v in np.percentile(survivals, [lo_pct, hi_pct])],
+              "epistemic_percentiles": [lo_pct, hi_pct],
+              "confidence": args.confidence,
+              "ruled_out": surv < 1 - args.confidence,
+              "rate_factor_to_rule_out": rate_factor, "pga_factor_to_rule_out": pga_factor,
+              "interval_level": args.level, "bootstrap_replicates": args.bootstrap}
+    if args.json:
+        json.dump(json_clean(result), sys.stdout, indent=1, allow_nan=False)
+        print()
+    else:
+        print_hazard(result)
+    if args.plot:
+        no_replicates = {"replicate_theta_g": np.empty((0, len(points))), "replicate_beta": np.empty((0, len(points)))}
+        plot_hazard(args.plot, curve, mixture, no_replicates, points, dict(result, object=f"{objs[0].name} (pooled)"),
+                    variant_mixtures=[mix for _, _, mix in per_variant])
+        if not args.json:
+            print(f"wrote {args.plot}")
+    return 0
+
+
 def print_hazard(r):
     pct = int(r["interval_level"] * 100)
     site = f" (site {r['site']})" if r["site"] else ""
     lo, hi = r["curve_pga_range_g"]
     print(f"rigid hazard: object {r['object']} of {r['cube']}; hazard curve {r['curve']}{site}, PGA {lo:g}-{hi:g} g; "
           f"exposure age {r['age_years']:g} years")
-    if len(r["fragility"]) == 1:
+    if r.get("pooled"):
+        thresholds = sum(v["source"] == THRESHOLD_SOURCE for v in r["variant_fragility"])
+        print(f"  fragility: pooled over {r['variants_pooled']} of {r['variants']} variants (equally weighted mixture of "
+              f"their vector fits" + (f"; {thresholds} empirical threshold(s), steps" if thresholds else "") + ")")
+    elif len(r["fragility"]) == 1:
         f = r["fragility"][0]
-        print(f"  fragility at PGV/PGA {f['pgv_pga_s']:.3f} s (vector fit): theta "
+        print(f"  fragility at PGV/PGA {f['pgv_pga_s']:.3f} s ({f.get('source', 'vector fit')}): theta "
               f"{fmt_interval(f['theta_g'], *f['theta_interval_g'])} g, beta {fmt_interval(f['beta'], *f['beta_interval'])}")
     else:
         print(f"  fragility: the vector fit averaged over {len(r['fragility'])} PGV/PGA values of the given distribution")
@@ -409,7 +948,8 @@ def print_hazard(r):
               f"range: the vector fit is extrapolated there")
     lam, (a, b) = r["annual_toppling_rate"], r["annual_toppling_rate_interval"]
     have_interval = math.isfinite(a) and math.isfinite(b)
-    no_interval = f"[no interval: {r['n_records']} record(s)]"
+    no_interval = ("[no interval: an empirical threshold]" if r.get("fragility", [{}])[0].get("source") == THRESHOLD_SOURCE
+                   else f"[no interval: {r['n_records']} record(s)]")
     print(f"  annual rate of toppling   {lam:.3e} per year  " + (f"[{pct} %: {a:.3e}, {b:.3e}]" if have_interval else no_interval)
           + f"  (mean return period {1 / lam:,.0f} years)" if lam > 0 else "  annual rate of toppling 0")
     if r["share_of_rate_beyond_curve"] > 0.01:
@@ -417,7 +957,13 @@ def print_hazard(r):
               f"where it is extended by its end segments' power law")
     s, (slo, shi) = r["survival_probability"], r["survival_probability_interval"]
     print(f"  P(survives {r['age_years']:g} years) = exp(-lambda T) = {s:.4f}  "
-          + (f"[{pct} %: {slo:.4f}, {shi:.4f}]" if have_interval else no_interval))
+          + (f"[{pct} %: {slo:.4f}, {shi:.4f}]" if have_interval else no_interval)
+          + ("  (aleatory: bootstrap over records)" if r.get("pooled") else ""))
+    if r.get("pooled"):
+        elo, ehi = r["survival_probability_epistemic_range"]
+        plo, phi = r["epistemic_percentiles"]
+        print(f"  epistemic range over variants ({plo}-{phi} %, each variant's own fragility): P(survives) "
+              f"{elo:.4f} to {ehi:.4f}")
     c = int(round(r["confidence"] * 100))
     if r["ruled_out"]:
         print(f"  the rock's survival rules this hazard curve out at {c} % confidence (survival below "
@@ -428,7 +974,9 @@ def print_hazard(r):
               f"{r['rate_factor_to_rule_out']:.3g} or its PGAs x {r['pga_factor_to_rule_out']:.3g}")
 
 
-def plot_hazard(path, curve, mixture, v, points, r):
+def plot_hazard(path, curve, mixture, v, points, r, variant_mixtures=()):
+    """The hazard curve, the fragility with its bootstrap band (or, pooled over variants, the 5-95 %
+    band of the variants' fragilities: `variant_mixtures`, one mixture per variant), the integrand."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -456,6 +1004,10 @@ def plot_hazard(path, curve, mixture, v, points, r):
         q = 50 * (1 - r["interval_level"])
         right.fill_between(a, np.percentile(curves, q, axis=0), np.percentile(curves, 100 - q, axis=0),
                            color="tab:red", alpha=0.2, label=f"{int(r['interval_level'] * 100)} % band (bootstrap)")
+    if len(variant_mixtures):
+        curves = np.array([sum(w * hc.fragility_probability(a, t, b) for w, t, b in mix) for mix in variant_mixtures])
+        right.fill_between(a, np.percentile(curves, 5, axis=0), np.percentile(curves, 95, axis=0),
+                           color="tab:purple", alpha=0.2, label="5-95 % over variants (epistemic)")
     right.set_ylim(0, 1.02)
     right.set_ylabel("P(topple | PGA)")
     lines = top.get_legend_handles_labels()
@@ -496,10 +1048,13 @@ def build_parser():
         sp.add_argument("--seed", type=int, default=1, help="seed of the bootstrap (default 1)")
         sp.add_argument("--level", type=float, default=0.9, help="interval level (default 0.9)")
         sp.add_argument("--json", action="store_true", help="JSON on standard output instead of the table")
+        sp.add_argument("--variant", type=int, metavar="K",
+                        help="a cube with variants: only variant K (0-based); default: every variant, and "
+                             "their pooled fragility")
 
     f = sub.add_parser("fragility", help="fit fragilities per object: per PGV/PGA bin and at a chosen PGV/PGA")
     common(f)
-    f.add_argument("--object", action="append", help="only this object (repeatable); default: all")
+    f.add_argument("--object", action="append", help="only this object (repeatable; every variant of it); default: all")
     f.add_argument("--csv", help="write one row per object and bin (and the vector fit) to this CSV")
     f.add_argument("--nrml", help="write an OpenQuake NRML 0.5 fragility model (one function per object and bin)")
     f.add_argument("--no-store", action="store_true", help="do not store the fits in the cube's /fragility group")

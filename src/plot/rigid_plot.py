@@ -2,9 +2,17 @@
 """Fragility maps, per-record curves, a probit fit, 3D-vs-2D difference maps and scenario tables
 from Rigid's HDF5 fragility cubes (README "The fragility cube (HDF5)"; physics.md sections 1, 11).
 
-    rigid_plot.py maps  CUBE --out DIR [--object NAME]... [--alpha [NAME=]RAD]... [--p [NAME=]RAD_S]...
-    rigid_plot.py diff  CUBE_A CUBE_B --out DIR [--label-a 3D] [--label-b 2D] [--object NAME]...
-    rigid_plot.py table CUBE [CUBE...] --out FILE.md [--scale G] [--layout auto|objects|records]
+    rigid_plot.py maps  CUBE --out DIR [--object NAME]... [--variant K] [--pgv-pga S] [--alpha [NAME=]RAD]...
+                        [--p [NAME=]RAD_S]...
+    rigid_plot.py diff  CUBE_A CUBE_B --out DIR [--label-a 3D] [--label-b 2D] [--object NAME]... [--variant K]
+    rigid_plot.py table CUBE [CUBE...] --out FILE.md [--scale G] [--layout auto|objects|records] [--variant K]
+
+A cube with a variant axis (epistemic variants of every object, /work/spec/variant_layout.md) is
+read as one object per (object, variant), named `rock [v3]` in tables and titles (files `rock_v3_...`);
+--object NAME selects every variant of NAME, --variant K only variant K. `maps` draws by default,
+per object, the variants' fragility curves with their 5-95 % band and the pooled (mixture) curve
+(NAME_variants.png) and the map of the pooled cells (NAME_pooled_map.png); --variant K that
+variant's map and records figures.
 
 `rigid plot ARGS...` runs this file with Debian's /usr/bin/python3 (python3-numpy, python3-h5py,
 python3-matplotlib, python3-scipy). The fit is fragility_fit.py's (shared with `rigid fragility`).
@@ -79,17 +87,81 @@ def _strings(ds):
 
 
 class ObjectData:
-    def __init__(self, name, attrs, outcome, probability, fragility, count):
+    """One object of a cube, or one variant of it (a cube with a variant axis: one ObjectData per
+    (object, variant), all with the base object's name)."""
+
+    def __init__(self, name, attrs, outcome, probability, fragility, count, variant=None):
         self.name = name
         self.attrs = attrs
         self.outcome = outcome          # [R, S, A] int8
         self.probability = probability  # [R, S]
         self.fragility = fragility      # [S, B]
         self.count = count              # [S, B]
+        self.variant = variant          # None without variants, else 0..V-1
+
+    @property
+    def label(self):
+        """The name in tables, titles and file names: `rock`, or `rock [v3]` for a variant."""
+        return self.name if self.variant is None else f"{self.name} [v{self.variant}]"
+
+
+class VariantTable:
+    """/variants of a cube with a variant axis: count, method, seed and the varied parameters as
+    (name, units, values): a float array, or a list of str for a text parameter."""
+
+    def __init__(self, group):
+        self.count = int(group.attrs["count"])
+        self.method = _text(group.attrs.get("method", ""))
+        self.seed = int(group.attrs.get("seed", 0))
+        self.parameters = []
+        self.descriptions = {}
+        for name in _text(group.attrs.get("parameters", "")).split():
+            ds = group[name]
+            if ds.dtype.kind in "OSU":
+                values = _strings(ds)
+            else:
+                values = ds[()].astype(float)
+            if len(values) != self.count:
+                raise KeyError(f"variants/{name} of {len(values)} values for {self.count} variants")
+            self.parameters.append((name, _text(ds.attrs.get("units", "")), values))
+            self.descriptions[name] = _text(ds.attrs.get("description", ""))
+
+
+def _text(v):
+    return v.decode() if isinstance(v, bytes) else str(v)
+
+
+# Per-variant values that a cube without variants keeps as group attributes; with variants they
+# are datasets [variant] (spec "On disk"), presented here as attributes of each variant's ObjectData.
+VARIANT_NUMBERS = ("alpha_rad", "p_rad_s", "rocking_radius_m", "weakest_azimuth_deg")
+VARIANT_TEXTS = ("physics_json", "inputs_sha256")
+
+
+def variant_attrs(group, attrs, v):
+    """The attributes of variant v: the group's, plus its row of the per-variant datasets (NaN and
+    "" mean the variant has none, as a missing attribute does without variants)."""
+    out = dict(attrs)
+    for key in VARIANT_NUMBERS:
+        if key in group:
+            value = float(group[key][v])
+            if math.isfinite(value):
+                out[key] = value
+    for key in VARIANT_TEXTS:
+        if key in group:
+            out[key] = _strings(group[key])[v]
+    if "alpha_by_azimuth_rad" in group:
+        out["alpha_by_azimuth_rad"] = group["alpha_by_azimuth_rad"][v].astype(float)
+    if "support_polygon_m" in group:
+        text = _strings(group["support_polygon_m"])[v].split()
+        if text:
+            out["support_polygon_m"] = np.array([float(t) for t in text])
+    return out
 
 
 class Cube:
-    """The parts of a cube the plots need, read once."""
+    """The parts of a cube the plots need, read once. Reads both layouts: without variants
+    (schema 1) and with a variant axis (schema 2, /work/spec/variant_layout.md), where each
+    (object, variant) becomes one ObjectData, in object then variant order."""
 
     def __init__(self, path):
         if not os.path.isfile(path):
@@ -112,20 +184,21 @@ class Cube:
                                         rec["start_s"][()] if "start_s" in rec else [0.0] * R,
                                         rec["end_s"][()] if "end_s" in rec else [math.inf] * R))
                 self.root_attrs = {k: f.attrs[k] for k in f.attrs}
+                self.variants = VariantTable(f["variants"]) if "variants" in f else None
                 groups = f["objects"]
                 items = []
                 for name in groups:
                     g = groups[name]
                     attrs = {a: g.attrs[a] for a in g.attrs}
-                    outcome = g["outcome"][()].astype(np.int8)
-                    prob = g["probability"][()] if "probability" in g else probability_from_outcome(outcome)
-                    if "fragility" in g and "fragility_count" in g:
-                        frag, cnt = g["fragility"][()], g["fragility_count"][()]
-                    else:
-                        frag, cnt = fragility_from_probability(prob, self.pgv_pga, self.edges)
-                    items.append((int(attrs.get("index", len(items))),
-                                  ObjectData(name, attrs, outcome, np.asarray(prob, float),
-                                             np.asarray(frag, float), np.asarray(cnt, int))))
+                    index = int(attrs.get("index", len(items)))
+                    if self.variants is None:
+                        items.append(((index, 0), self._object_data(name, g, attrs, None)))
+                        continue
+                    if int(attrs.get("variants", -1)) != self.variants.count:
+                        raise InputError(f"{path}: object {name}: attribute variants = {attrs.get('variants')}, "
+                                         f"but the cube has {self.variants.count} variants")
+                    for v in range(self.variants.count):
+                        items.append(((index, v), self._object_data(name, g, variant_attrs(g, attrs, v), v)))
             except KeyError as e:
                 raise InputError(f"{path}: not a Rigid fragility cube (missing {e})")
         items.sort(key=lambda t: t[0])
@@ -133,16 +206,51 @@ class Cube:
         R, S, B = len(self.records), len(self.scales), len(self.edges) - 1
         for o in self.objects:
             if o.outcome.shape[:2] != (R, S) or o.fragility.shape != (S, B):
-                raise InputError(f"{path}: object {o.name}: datasets do not match the axes")
+                raise InputError(f"{path}: object {o.label}: datasets do not match the axes")
 
-    def object(self, name):
+    def _object_data(self, name, g, attrs, variant):
+        """One object's (variant's) cells; with variants the datasets' first axis is the variant."""
+        def read(key):
+            return g[key][()] if variant is None else g[key][variant]
+        outcome = read("outcome").astype(np.int8)
+        prob = read("probability") if "probability" in g else probability_from_outcome(outcome)
+        if "fragility" in g and "fragility_count" in g:
+            frag, cnt = read("fragility"), read("fragility_count")
+        else:
+            frag, cnt = fragility_from_probability(prob, self.pgv_pga, self.edges)
+        return ObjectData(name, attrs, outcome, np.asarray(prob, float), np.asarray(frag, float),
+                          np.asarray(cnt, int), variant)
+
+    def base_names(self):
+        names = []
         for o in self.objects:
-            if o.name == name:
-                return o
-        raise InputError(f"{self.path}: no object {name!r} (objects: {', '.join(o.name for o in self.objects)})")
+            if o.name not in names:
+                names.append(o.name)
+        return names
 
-    def select(self, names):
-        return [self.object(n) for n in names] if names else list(self.objects)
+    def object(self, name, variant=None):
+        for o in self.objects:
+            if o.name == name and (variant is None or o.variant == variant):
+                return o
+        raise InputError(f"{self.path}: no object {name!r} (objects: {', '.join(self.base_names())})")
+
+    def check_variant(self, variant):
+        """--variant K: refused on a cube without variants and outside 0..V-1."""
+        if variant is None:
+            return
+        if self.variants is None:
+            raise InputError(f"{self.path}: --variant {variant}: the cube has no variants")
+        if not 0 <= variant < self.variants.count:
+            raise InputError(f"{self.path}: --variant {variant} out of range (the cube has "
+                             f"{self.variants.count} variants, 0-{self.variants.count - 1})")
+
+    def select(self, names, variant=None):
+        """The objects named (every variant of each; all objects without names), or only variant K."""
+        self.check_variant(variant)
+        chosen = [o for n in names for o in self.objects if o.name == n] if names else list(self.objects)
+        for n in names or []:
+            self.object(n)  # an unknown name: InputError naming the cube
+        return [o for o in chosen if variant is None or o.variant == variant]
 
     def bin_of_records(self):
         return np.array([pgv_pga_bin(self.edges, v) for v in self.pgv_pga], dtype=int)
@@ -261,7 +369,7 @@ def fit_object(cube, obj, norm, mu_degree, sigma_degree):
     R, S = n.shape
     rec_ok = np.isfinite(cube.pgv_pga) & (cube.pgv_pga > 0)
     rows = [(r, s) for r in range(R) for s in range(S) if n[r, s] > 0 and rec_ok[r] and cube.scales[s] > 0]
-    info = {"object": obj.name, "label": FIT_LABEL,
+    info = {"object": obj.label, "label": FIT_LABEL,
             "model": "P = Phi((u - mu(x)) / sigma(x)), mu polynomial in x, ln sigma polynomial in x",
             "u": norm.describe()[0], "x": norm.describe()[1],
             "alpha_rad": norm.alpha, "alpha_source": norm.alpha_src,
@@ -333,6 +441,11 @@ def fit_probability(fit, norm, pga_g, pgv_pga):
 
 def safe_name(name):
     return re.sub(r"[^A-Za-z0-9._-]+", "_", name) or "object"
+
+
+def file_stem(obj):
+    """The start of an object's file names: `rock`, or `rock_v3` for variant 3."""
+    return safe_name(obj.name) + ("" if obj.variant is None else f"_v{obj.variant}")
 
 
 def scale_cell_edges(scales):
@@ -492,7 +605,7 @@ def plot_map(cube, obj, fit, norm_, info, path, counts):
     note = {"all": "cell numbers: records averaged",
             "deviations": "cell numbers: records averaged where fewer than the bin's (not run/failed)",
             "none": "each cell: mean over the bin's records"}[counts]
-    ax.set_title(f"{obj.name}{alpha_txt}: binned overturning probability\n"
+    ax.set_title(f"{obj.label}{alpha_txt}: binned overturning probability\n"
                  f"cube {os.path.basename(cube.path)}; {note}", fontsize=11)
     ax.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, -0.12), ncol=4, fontsize=9,
               frameon=False, title=fit_text, title_fontsize=9)
@@ -552,7 +665,7 @@ def plot_records(cube, obj, fit, norm_, path):
         handles.append(mlines.Line2D([], [], color="tab:green", lw=2.0,
                                      label=f"{FIT_LABEL}, at the bin's median PGV/PGA"))
     alpha_txt = f" (alpha = {norm_.alpha:g} rad)" if norm_.alpha else ""
-    fig.suptitle(f"{obj.name}{alpha_txt}: P(overturn) per record vs PGA, one panel per PGV/PGA bin\n"
+    fig.suptitle(f"{obj.label}{alpha_txt}: P(overturn) per record vs PGA, one panel per PGV/PGA bin\n"
                  f"P = fraction of rotations overturned (inferred counted as overturned); "
                  f"cube {os.path.basename(cube.path)}", fontsize=11)
     fig.legend(handles=handles, loc="lower center", ncol=3, fontsize=9, frameon=False)
@@ -570,6 +683,98 @@ def plot_records(cube, obj, fit, norm_, path):
 
 
 # --------------------------------------------------------------------------------------------
+# Variants: every variant's fragility curve, the epistemic band, the pooled curve
+
+
+def variant_lognormal(cube, obj, args, pgv_pga_s):
+    """(theta_g, beta, how) of one variant at PGV/PGA `pgv_pga_s`: the map's fit there (median
+    and sigma of ln PGA), else the empirical threshold of separated outcomes (a step), else None."""
+    norm_ = normalisation_for(cube, obj, args)
+    info, fit = fit_object(cube, obj, norm_, args.mu_degree, args.sigma_degree)
+    if fit is not None:
+        theta = float(contour_pga(fit, norm_, np.array([pgv_pga_s]), 50)[0])
+        return theta, float(fit_sigma(fit, norm_.x_of([pgv_pga_s]))[0]), "fit"
+    step = fragility_fit.empirical_threshold(fragility_fit.Cells(obj.outcome, cube.scales, cube.pgv_pga))
+    if step is not None:
+        return step["theta_g"], 0.0, "empirical threshold"
+    return None, None, info.get("reason", "no fit")
+
+
+def plot_variant_band(cube, name, curves, pooled, pgv_pga_s, path):
+    fig, ax = plt.subplots(figsize=(8.5, 5.6), dpi=DPI)
+    a = pooled["pga_g"]
+    for k, (theta, beta, how) in curves:
+        ax.plot(a, fragility_fit.lognormal_probability(a, theta, beta), color="0.55", lw=0.7,
+                ls=":" if how == "empirical threshold" else "-", zorder=2)
+    lo, hi = pooled["percentiles"][0], pooled["percentiles"][-1]
+    ax.fill_between(a, pooled["band_lower"], pooled["band_upper"], color="tab:blue", alpha=0.25, lw=0, zorder=1,
+                    label=f"{lo}-{hi} % of the variants' P(PGA) (epistemic band)")
+    ax.plot(a, pooled["mixture_probability"], color="black", lw=2.6, zorder=4,
+            label=f"pooled: mean over variants (median {pooled['median_g']:.3g} g)")
+    ax.plot([], [], color="0.55", lw=0.7, label="one variant (dotted: empirical threshold, a step)")
+    ax.set_xscale("log")
+    ax.set_xlim(a[0], a[-1])
+    ax.xaxis.set_major_formatter(mticker.FormatStrFormatter("%g"))
+    if a[-1] / a[0] < 100:  # a decade or two: label the minor ticks too, else one label shows
+        ax.xaxis.set_minor_formatter(mticker.FormatStrFormatter("%g"))
+        ax.tick_params(axis="x", which="minor", labelsize=7)
+    ax.set_ylim(-0.02, 1.02)
+    ax.set_xlabel("PGA = target GMRotI50 PGA (g)")
+    ax.set_ylabel("P(overturn)")
+    ax.grid(True, which="both", color="0.9", lw=0.6)
+    ax.legend(loc="upper left", fontsize=9)
+    ax.set_title(f"{name}: fragility of {len(curves)} variants at PGV/PGA {pgv_pga_s:.3g} s\n"
+                 f"{FIT_LABEL}; cube {os.path.basename(cube.path)}", fontsize=10)
+    fig.tight_layout()
+    fig.savefig(path, dpi=DPI)
+    plt.close(fig)
+
+
+def variant_maps(cube, variants, args, counts):
+    """The band figure and the pooled map of one object's variants; returns its fit.json entry."""
+    name = variants[0].name
+    pgv_pga_s = args.pgv_pga if args.pgv_pga is not None else float(np.median(
+        cube.pgv_pga[np.isfinite(cube.pgv_pga) & (cube.pgv_pga > 0)]))
+    curves, missing = [], []
+    for o in variants:
+        theta, beta, how = variant_lognormal(cube, o, args, pgv_pga_s)
+        (curves.append((o.variant, (theta, beta, how))) if theta is not None else missing.append((o.variant, how)))
+    base = os.path.join(args.out, safe_name(name))
+    entry = {"object": name, "variants": len(variants), "pgv_pga_s": pgv_pga_s,
+             "variant_fragility": [{"variant": k, "theta_g": t, "beta": b, "source": how} for k, (t, b, how) in curves],
+             "variants_without_fragility": [{"variant": k, "reason": why} for k, why in missing], "files": []}
+    if curves:
+        lognormals = [(t, b) for _, (t, b, _) in curves]
+        spread = max([b for _, b in lognormals] + [0.1])
+        grid = np.geomspace(min(t for t, _ in lognormals) * math.exp(-3 * spread),
+                            max(t for t, _ in lognormals) * math.exp(3 * spread), 400)
+        pooled = fragility_fit.pooled_fragility(lognormals, grid)
+        plot_variant_band(cube, name, curves, pooled, pgv_pga_s, base + "_variants.png")
+        entry["pooled"] = {k: pooled[k] for k in ("n_variants", "median_g", "lognormal_theta_g", "lognormal_beta",
+                                                  "lognormal_method", "theta_percentiles_g", "beta_percentiles")}
+        entry["files"].append(base + "_variants.png")
+        print(f"{name}: {len(curves)} of {len(variants)} variants with a fragility at PGV/PGA {pgv_pga_s:.3g} s; "
+              f"pooled median {pooled['median_g']:.4g} g, theta 5/50/95 % over variants "
+              f"{', '.join(f'{v:.3g}' for v in pooled['theta_percentiles_g'])} g")
+    else:
+        print(f"{name}: no variant has a fragility ({missing[0][1]})")
+    # the pooled cells: a cell's mean over variants (the mixture's binned fragility); the count is
+    # the fewest records any variant has there, so "auto" still marks cells some variant lacks
+    stack = np.array([o.fragility for o in variants])
+    defined = np.isfinite(stack).sum(axis=0)
+    frag = np.where(defined > 0, np.nansum(stack, axis=0) / np.maximum(defined, 1), np.nan)
+    pooled_obj = ObjectData(f"{name} (pooled over {len(variants)} variants)", {}, None, None, frag,
+                            np.min([o.count for o in variants], axis=0))
+    plot_map(cube, pooled_obj, None, Normalisation(None, "", None, ""),
+             {"reason": f"each cell the mean over variants of its records' mean; the variants' fits are in "
+                       f"{os.path.basename(base)}_variants.png"},
+             base + "_pooled_map.png", counts)
+    entry["files"].append(base + "_pooled_map.png")
+    print(f"  wrote {', '.join(entry['files'])}")
+    return entry
+
+
+# --------------------------------------------------------------------------------------------
 # Subcommands
 
 
@@ -577,7 +782,7 @@ def normalisation_for(cube, obj, args):
     alpha, asrc = block_parameter(cube, obj, "alpha_rad", parse_per_object(args.alpha, "--alpha"))
     p, psrc = block_parameter(cube, obj, "p_rad_s", parse_per_object(args.p, "--p"))
     if alpha is not None and not alpha < math.pi / 2:
-        raise InputError(f"{obj.name}: alpha = {alpha} rad is not below pi/2")
+        raise InputError(f"{obj.label}: alpha = {alpha} rad is not below pi/2")
     return Normalisation(alpha, asrc, p, psrc)
 
 
@@ -596,15 +801,24 @@ def _json_clean(v):
 
 def cmd_maps(args):
     cube = Cube(args.cube)
-    objs = cube.select(args.object)
+    objs = cube.select(args.object, args.variant)
     os.makedirs(args.out, exist_ok=True)
     summary = {"cube": os.path.abspath(cube.path), "label": FIT_LABEL,
                "contour_levels_pct": list(CONTOUR_LEVELS), "objects": []}
     show = counts_mode(cube, args.counts)
+    if cube.variants is not None and args.variant is None:
+        # With variants the default is, per object, ONE figure of every variant's fragility curve
+        # with the epistemic band and the pooled curve, and ONE map: the pooled cells (the mean over
+        # variants of each cell's binned probability, which is the mixture's binned fragility).
+        # A map and a records figure per variant would be 2 V figures of near-identical surfaces
+        # that nobody compares by eye; --variant K draws them for the one variant wanted.
+        for name in [n for n in cube.base_names() if any(o.name == n for o in objs)]:
+            summary["objects"].append(variant_maps(cube, [o for o in objs if o.name == name], args, show))
+        objs = []
     for obj in objs:
         norm_ = normalisation_for(cube, obj, args)
         info, fit = fit_object(cube, obj, norm_, args.mu_degree, args.sigma_degree)
-        base = os.path.join(args.out, safe_name(obj.name))
+        base = os.path.join(args.out, file_stem(obj))
         plot_map(cube, obj, fit, norm_, info, base + "_map.png", show)
         plot_records(cube, obj, fit, norm_, base + "_records.png")
         info["files"] = [base + "_map.png", base + "_records.png"]
@@ -612,12 +826,12 @@ def cmd_maps(args):
         f = info.get("fit")
         if f is not None and fit is not None:
             sig = fit_sigma(f, np.array([np.mean(info["x_range"])]))[0]
-            print(f"{obj.name}: n = {info['n_cells']} cells ({info['n_overturned']} overturned), "
+            print(f"{obj.label}: n = {info['n_cells']} cells ({info['n_overturned']} overturned), "
                   f"mu = {', '.join(f'{c:.4g}' for c in f['mu_coefficients'])}, "
                   f"ln sigma = {', '.join(f'{c:.4g}' for c in f['log_sigma_coefficients'])} "
                   f"(sigma {sig:.3g} at mid x), log-likelihood {f['log_likelihood']:.4g}")
         else:
-            print(f"{obj.name}: n = {info['n_cells']} cells, no fit: {info.get('reason')}")
+            print(f"{obj.label}: n = {info['n_cells']} cells, no fit: {info.get('reason')}")
         if "warning" in info:
             print(f"  warning: {info['warning']}")
         print(f"  wrote {base}_map.png, {base}_records.png")
@@ -721,11 +935,12 @@ def cmd_diff(args):
     ia, ib = _common_scales(ca, cb)
     if ia.size == 0:
         raise InputError("the cubes share no scale")
-    names_b = {o.name for o in cb.objects}
-    objs = ca.select(args.object)
-    common = [o for o in objs if o.name in names_b]
+    # objects are matched by name and variant (a variant cube against its own kind)
+    labels_b = {o.label for o in cb.objects}
+    objs = ca.select(args.object, args.variant)
+    common = [o for o in objs if o.label in labels_b]
     if not common:
-        raise InputError(f"no object name in both cubes ({[o.name for o in ca.objects]} vs {sorted(names_b)})")
+        raise InputError(f"no object name in both cubes ({[o.label for o in ca.objects]} vs {sorted(labels_b)})")
     os.makedirs(args.out, exist_ok=True)
     la, lb = args.label_a, args.label_b
     va, vb = _View(ca, ia), _View(cb, ib)
@@ -734,7 +949,7 @@ def cmd_diff(args):
           f"positive = {la} more fragile. The study (report section 3.5) reported 2D model minus Rigid 3D.")
     rows = []
     for oa in common:
-        ob = cb.object(oa.name)
+        ob = cb.object(oa.name, oa.variant)
         fa, fb = oa.fragility[ia], ob.fragility[ib]
         d, n, mean, sd = mismatch(fa, fb)
         mad = float(np.nanmean(np.abs(d))) if n else float("nan")
@@ -743,19 +958,19 @@ def cmd_diff(args):
         for cube, o, nrm in ((ca, oa, norm_a), (cb, ob, normalisation_for(cb, ob, args))):
             info, fit = fit_object(cube, o, nrm, args.mu_degree, args.sigma_degree)
             fits.append((fit, nrm, info) if fit is not None else None)
-        png = os.path.join(args.out, safe_name(oa.name) + "_diff.png")
-        plot_diff(va, vb, oa.name, fa, oa.count[ia], fb, ob.count[ib], d, (n, mean, sd), la, lb, fits, png, show)
+        png = os.path.join(args.out, file_stem(oa) + "_diff.png")
+        plot_diff(va, vb, oa.label, fa, oa.count[ia], fb, ob.count[ib], d, (n, mean, sd), la, lb, fits, png, show)
         ref = None
         if norm_a.alpha is not None:
             for key, val in STUDY_MISMATCH_2D_MINUS_3D.items():
                 if abs(norm_a.alpha - key) < 1e-6:
                     ref = val
-        rows.append({"object": oa.name, "alpha_rad": norm_a.alpha, "n_cells": n, "mean_a_minus_b": mean,
+        rows.append({"object": oa.label, "alpha_rad": norm_a.alpha, "n_cells": n, "mean_a_minus_b": mean,
                      "sd": sd, "mean_b_minus_a": -mean if n else float("nan"), "mean_abs": mad,
                      "study_2d_minus_3d": ref, "png": png})
-        print(f"{oa.name}: {la} \u2212 {lb} = {mean:+.4f} \u00b1 {sd:.4f} (mean \u00b1 sd over {n} cells; "
+        print(f"{oa.label}: {la} \u2212 {lb} = {mean:+.4f} \u00b1 {sd:.4f} (mean \u00b1 sd over {n} cells; "
               f"{lb} \u2212 {la} = {-mean:+.4f}; mean |diff| {mad:.4f})  -> {png}")
-    skipped = [o.name for o in objs if o.name not in names_b]
+    skipped = [o.label for o in objs if o.label not in labels_b]
     if skipped:
         print(f"not in {cb.path}: {', '.join(skipped)}")
     csv_path = os.path.join(args.out, "mismatch.csv")
@@ -825,21 +1040,21 @@ def cmd_table(args):
             if j.size == 0:
                 raise InputError(f"{c.path}: no scale {args.scale:g} g (scales: {', '.join(f'{v:g}' for v in c.scales)})")
             si = int(j[0])
-        for o in c.select(args.object):
+        for o in c.select(args.object, args.variant):
             per = {}
             for r, name in enumerate(c.records):
                 cnt = outcome_counts(o.outcome[r:r + 1], si)
                 per[name] = cnt
                 frac, known = _fraction(cnt)
-                long_rows.append([c.label, o.name, name, "all" if si is None else f"{c.scales[si]:g}",
+                long_rows.append([c.label, o.label, name, "all" if si is None else f"{c.scales[si]:g}",
                                   cnt["survived"], cnt["overturned"], cnt["inferred"], cnt["not_run"],
                                   cnt["failed"], known, _fmt(frac, 6)])
             allc = outcome_counts(o.outcome, si)
             frac, known = _fraction(allc)
-            long_rows.append([c.label, o.name, "all", "all" if si is None else f"{c.scales[si]:g}",
+            long_rows.append([c.label, o.label, "all", "all" if si is None else f"{c.scales[si]:g}",
                               allc["survived"], allc["overturned"], allc["inferred"], allc["not_run"],
                               allc["failed"], known, _fmt(frac, 6)])
-            rows.append((f"{c.label}: {o.name}" if multi else o.name, per, allc))
+            rows.append((f"{c.label}: {o.label}" if multi else o.label, per, allc))
 
     def cell(cnt):
         if cnt is None:
@@ -905,6 +1120,10 @@ def build_parser():
                "Exit status: 0 done, 2 bad input, 1 internal error.")
     sub = p.add_subparsers(dest="command", required=True, metavar="{maps,diff,table}")
 
+    def variant_option(sp):
+        sp.add_argument("--variant", type=int, metavar="K",
+                        help="a cube with variants: only variant K (0-based); default: all variants")
+
     def fit_options(sp):
         sp.add_argument("--alpha", action="append", metavar="[NAME=]RAD",
                         help="block slenderness alpha (rad) for the fit's normalisation, for all objects or "
@@ -924,7 +1143,10 @@ def build_parser():
                                     "per-record curves PNG, fit.json")
     m.add_argument("cube", help="campaign cube (HDF5)")
     m.add_argument("--out", required=True, help="output directory")
-    m.add_argument("--object", action="append", help="only this object (repeatable); default: all")
+    m.add_argument("--object", action="append", help="only this object (repeatable; every variant of it); default: all")
+    variant_option(m)
+    m.add_argument("--pgv-pga", type=float, metavar="S",
+                   help="with variants: the PGV/PGA (s) of the variants' fragility curves (default: the records' median)")
     fit_options(m)
     m.set_defaults(func=cmd_maps)
 
@@ -935,7 +1157,8 @@ def build_parser():
     d.add_argument("--out", required=True, help="output directory")
     d.add_argument("--label-a", default="3D", help="name of cube A in plots and tables (default 3D)")
     d.add_argument("--label-b", default="2D", help="name of cube B (default 2D)")
-    d.add_argument("--object", action="append", help="only this object (repeatable)")
+    d.add_argument("--object", action="append", help="only this object (repeatable; every variant of it)")
+    variant_option(d)
     fit_options(d)
     d.set_defaults(func=cmd_diff)
 
@@ -943,7 +1166,8 @@ def build_parser():
     t.add_argument("cubes", nargs="+", metavar="CUBE")
     t.add_argument("--out", required=True, help="markdown file; the CSV (long format, with counts) goes beside it")
     t.add_argument("--scale", type=float, help="only this scale (g); default: all scales")
-    t.add_argument("--object", action="append", help="only this object (repeatable)")
+    t.add_argument("--object", action="append", help="only this object (repeatable; every variant of it)")
+    variant_option(t)
     t.add_argument("--layout", choices=("auto", "objects", "records"), default="auto",
                    help="rows are objects (records as columns, plus 'all') or records (plus an 'all' row); "
                         "auto: records as rows when there are more than 10")
