@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Campaign determinism: the same job gives identical cube datasets (all but wall_s) with 1, 2 and
-# 3 ranks, and after being killed with SIGKILL at random moments and resumed each time.
+# 3 ranks, and after being killed with SIGKILL at random moments and resumed each time; likewise
+# the uncertainty demo (a variant axis: 16 variants) on 1 and 2 ranks and killed and resumed.
 # Usage: determinism_test.sh RIGID_EXECUTABLE SOURCE_DIR
 set -u
 rigid=$1
@@ -24,33 +25,46 @@ done
 
 # kill -9 the whole MPI job at random moments, resume each time, until it completes; a run that
 # completes before its second kill (a fast machine, a short job) starts over from nothing with
-# shorter delays, so the check below tests resumes, not the machine's speed
-kills=0
-scale=1.0
-for attempt in $(seq 1 30); do
-  setsid mpirun -np 2 "$rigid" campaign "$job" --out killed.h5 --progress none >> killed.log 2>&1 &
-  pid=$!
-  delay=$(awk -v s="$RANDOM" -v k="$scale" 'BEGIN { srand(s); printf "%.2f", k * (0.35 + rand() * 0.5) }')
-  sleep "$delay"
-  if kill -0 "$pid" 2> /dev/null; then
-    kill -9 -- "-$pid" 2> /dev/null
-    wait "$pid" 2> /dev/null
-    kills=$((kills + 1))
-    [ "$kills" -ge 4 ] && break
-  else
-    wait "$pid"
-    [ "$kills" -ge 2 ] && break
-    rm -f killed.h5 killed.h5.journal
-    kills=0
-    scale=$(awk -v k="$scale" 'BEGIN { printf "%.3f", k * 0.7 }')
-  fi
-done
-echo "killed $kills times"
-check "killed at least twice" test "$kills" -ge 2
-timeout 300 mpirun -np 2 "$rigid" campaign "$job" --out killed.h5 --progress none >> killed.log 2>&1
-check "resumed campaign completes after $kills kills" test $? -eq 0
-check "killed and resumed equals uninterrupted" $compare ref.h5 killed.h5
-check "no journal left after completion" test ! -e killed.h5.journal
+# shorter delays, so the check tests resumes, not the machine's speed.
+# Usage: kill_and_resume JOB OUT REF LABEL FIRST_DELAY_S
+kill_and_resume() {
+  local job=$1 out=$2 ref=$3 label=$4 first=$5
+  local kills=0 scale=1.0 attempt pid delay
+  for attempt in $(seq 1 30); do
+    setsid mpirun -np 2 "$rigid" campaign "$job" --out "$out" --progress none >> "$out.log" 2>&1 &
+    pid=$!
+    delay=$(awk -v s="$RANDOM" -v k="$scale" -v f="$first" 'BEGIN { srand(s); printf "%.2f", k * f * (0.35 + rand() * 0.5) }')
+    sleep "$delay"
+    if kill -0 "$pid" 2> /dev/null; then
+      kill -9 -- "-$pid" 2> /dev/null
+      wait "$pid" 2> /dev/null
+      kills=$((kills + 1))
+      [ "$kills" -ge 4 ] && break
+    else
+      wait "$pid"
+      [ "$kills" -ge 2 ] && break
+      rm -f "$out" "$out.journal"
+      kills=0
+      scale=$(awk -v k="$scale" 'BEGIN { printf "%.3f", k * 0.7 }')
+    fi
+  done
+  echo "$label: killed $kills times"
+  check "$label: killed at least twice" test "$kills" -ge 2
+  timeout 600 mpirun -np 2 "$rigid" campaign "$job" --out "$out" --progress none >> "$out.log" 2>&1
+  check "$label: resumed campaign completes after $kills kills" test $? -eq 0
+  check "$label: killed and resumed equals uninterrupted" $compare "$ref" "$out"
+  check "$label: no journal left after completion" test ! -e "$out.journal"
+}
+kill_and_resume "$job" killed.h5 ref.h5 "ci_small" 1.0
+
+# the uncertainty demo (16 variants of one rock): 1 and 2 ranks, and killed and resumed
+demo=$src/jobs/uncertainty_demo.toml
+"$rigid" campaign "$demo" --out uref.h5 --progress none > uref.log 2>&1
+check "uncertainty demo: single process completes" test $? -eq 0
+timeout 600 mpirun --oversubscribe -np 2 "$rigid" campaign "$demo" --out unp2.h5 --progress none > unp2.log 2>&1
+check "uncertainty demo: mpirun -np 2 completes" test $? -eq 0
+check "uncertainty demo: 2 ranks equal the single process" $compare uref.h5 unp2.h5
+kill_and_resume "$demo" ukilled.h5 uref.h5 "uncertainty demo" 6.0
 
 # SIGTERM: to one process, exit 75 after a final checkpoint, and the resume equals the
 # uninterrupted run; to mpirun (Open MPI forwards it to every rank), the ranks checkpoint at once
