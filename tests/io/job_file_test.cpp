@@ -159,6 +159,19 @@ TEST_F(JobFile, VariantTablesAndGrid) {
   EXPECT_EQ(grid.variants.count(), 6);
 }
 
+TEST_F(JobFile, AlternativeScenesReplaceTheObjectsScenePerVariant) {
+  const auto job = load_job(write(std::string(kGood) + "[sweep]\nmethod = \"grid\"\n"
+                                                       "scene = [\"../models/demo/block_a02.toml\", \"../models/demo/block_a03.toml\"]\n"));
+  ASSERT_EQ(job.objects.size(), 2u);
+  EXPECT_EQ(fs::path(job.objects[0].scene).filename(), "block_a02.toml");
+  EXPECT_EQ(fs::path(job.objects[1].scene).filename(), "block_a03.toml");
+  EXPECT_EQ(job.objects[1].name, "block_a02");  // still the [[object]]'s name: one group in the cube
+  // another [[object]] makes the alternative ambiguous
+  expect_error(std::string(kGood) + "[[object]]\nname = \"b\"\nscene = \"../models/demo/block_a03.toml\"\n" +
+                   "[sweep]\nmethod = \"grid\"\nscene = [\"../models/demo/block_a03.toml\"]\n",
+               "exactly one [[object]]", 14);
+}
+
 TEST_F(JobFile, BadSweepsAreRefusedAtTheirLine) {
   const std::string job = kGood;
   expect_error(job + "[sweep]\ncount = 4\nfriction = [-0.2, 0.8]\n", "friction must be greater than 0", 11);
