@@ -113,8 +113,8 @@ void print_failures(const io::Cube& cube) {
       if (failed > kListed) continue;
       const std::size_t r = i / (S * A), s = (i / A) % S, a = i % A;
       const std::string message = i < oc.failure_message.size() ? oc.failure_message[i] : std::string();
-      std::printf("  %s, record %s, %.3g g, rotation %zu: %s\n", io::object_label(oc).c_str(), cube.records[r].name.c_str(),
-                  cube.scales_g[s], a, message.empty() ? "(no message)" : message.c_str());
+      std::printf("  %s, record %s, %.3g g, rotation %zu: %s\n", io::object_label(oc).c_str(),
+                  cube.records[r].name.c_str(), cube.scales_g[s], a, message.empty() ? "(no message)" : message.c_str());
     }
   }
   if (failed > kListed) std::printf("  ... and %d more (rigid export cells lists every cell)\n", failed - kListed);

@@ -305,7 +305,8 @@ void read_alpha_by_azimuth(const H5& h, const Reader& rd, const std::string& g, 
 /// The per-variant datasets [V] of a group of variants into each variant.
 void read_variant_values(const H5& h, const Reader& rd, const std::string& g, std::vector<ObjectCube>& variants) {
   const hsize_t V = variants.size();
-  for (const auto& [name, field] : {std::pair{"alpha_rad", &ObjectCube::alpha_rad}, std::pair{"p_rad_s", &ObjectCube::p_rad_s},
+  for (const auto& [name, field] : {std::pair{"alpha_rad", &ObjectCube::alpha_rad},
+                                    std::pair{"p_rad_s", &ObjectCube::p_rad_s},
                                     std::pair{"rocking_radius_m", &ObjectCube::rocking_radius_m},
                                     std::pair{"weakest_azimuth_deg", &ObjectCube::weakest_azimuth_deg}}) {
     const std::vector<double> v = rd.doubles(g + "/" + name, {V});

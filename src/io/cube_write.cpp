@@ -353,14 +353,14 @@ std::string flag_meanings(const std::vector<T>& codes, const char* (*name)(int))
 void write_cells(Writer& w, const std::string& g, const Cube& c, const ObjectCube& o, const ObjectScales& s) {
   const Dims dims = led_by_variant(s, {{c.records.size(), c.scales_g.size(), static_cast<hsize_t>(c.rotations)},
                                        {{s.record, "record"}, {s.scale, "scale"}, {s.rotation, "rotation"}}});
-  const std::vector<hsize_t>& rsa = dims.shape;
+  const std::vector<hsize_t>& shape = dims.shape;
   const auto describe = [&](Hid d, const CellVariable& v) {
     w.variable(std::move(d), g + "/" + v.name, v.long_name, dims.scales);
     w.attribute(g + "/" + v.name, "coordinates", std::string("target_pga"));
   };
   const auto path = [&](const CellVariable& v) { return g + "/" + v.name; };
 
-  describe(w.dataset(path(kOutcome), H5T_STD_I8LE, H5T_NATIVE_INT8, rsa, o.outcome.data(), kOutcome.units,
+  describe(w.dataset(path(kOutcome), H5T_STD_I8LE, H5T_NATIVE_INT8, shape, o.outcome.data(), kOutcome.units,
                      kOutcome.description),
            kOutcome);
   w.attribute(path(kOutcome), "legend", std::string(kLegend));
@@ -369,13 +369,13 @@ void write_cells(Writer& w, const std::string& g, const Cube& c, const ObjectCub
   for (const auto& [v, values] : {std::pair{&kRotationDeg, &o.rotation_deg}, std::pair{&kFailureTime, &o.failure_time_s},
                                   std::pair{&kMaxTilt, &o.max_tilt_deg}, std::pair{&kMaxSlip, &o.max_slip_m},
                                   std::pair{&kWall, &o.wall_s}})
-    describe(w.doubles(path(*v), *values, rsa, v->units, v->description), *v);
-  describe(w.ints(path(kFailureReason), o.failure_reason, rsa, kFailureReason.units, kFailureReason.description),
+    describe(w.doubles(path(*v), *values, shape, v->units, v->description), *v);
+  describe(w.ints(path(kFailureReason), o.failure_reason, shape, kFailureReason.units, kFailureReason.description),
            kFailureReason);
   w.flags(path(kFailureReason), H5T_STD_I32LE, H5T_NATIVE_INT32, kReasonValues.data(), kReasonValues.size(),
           flag_meanings(kReasonValues, failure_reason_name));
   const std::vector<std::string> messages = stored_failure_messages(c, o);
-  describe(w.strings(path(kFailureMessage), messages, rsa, nullptr, kFailureMessage.description), kFailureMessage);
+  describe(w.strings(path(kFailureMessage), messages, shape, nullptr, kFailureMessage.description), kFailureMessage);
 
   w.attribute(g, "datasets_sha256", cell_datasets_sha256(o, messages));
   w.attribute(g, "datasets_sha256_covers", std::string(kChecksumCovers));
@@ -496,7 +496,8 @@ void write_alpha_by_azimuth(Writer& w, const std::string& g, std::span<const Obj
   w.make_scale(scale, azimuth, "azimuth");
   w.variable(w.doubles(g + "/alpha_by_azimuth_rad", alpha, {s.variants, Z}, "rad",
                        "rocking angle alpha for a ground acceleration along each azimuth"),
-             g + "/alpha_by_azimuth_rad", "rocking angle alpha per azimuth", {{s.variant, "variant"}, {scale, "azimuth"}});
+             g + "/alpha_by_azimuth_rad", "rocking angle alpha per azimuth",
+             {{s.variant, "variant"}, {scale, "azimuth"}});
 }
 
 /// The per-variant values that are group attributes in a cube without variants, as datasets [variant].
