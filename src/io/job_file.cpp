@@ -120,7 +120,7 @@ void expand_variants(scenario::Job& job) {
       scenario::JobObject e = job.objects[o];
       e.base = int(o);
       e.variant = v;
-      if (const std::string scene = scenario::variant_scene(job.variants, v); !scene.empty()) e.scene = scene;
+      e.variant_scene = scenario::variant_scene(job.variants, v);
       expanded.push_back(std::move(e));
     }
   }

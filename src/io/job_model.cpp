@@ -36,7 +36,7 @@ void apply_job_variant(const scenario::Job& job, const scenario::JobObject& o, s
 scenario::Model load_model(const scenario::Job& job) {
   std::vector<scenario::Scene> scenes;
   for (const auto& o : job.objects) {
-    scenario::Scene s = load_scene(o.scene);
+    scenario::Scene s = load_scene(o.simulated_scene());
     if (!o.state.empty()) apply_state(o.state, s);
     if (!job.contact.empty()) contact::parse_contact_model(job.contact, s.law.model);
     if (o.variant >= 0) apply_job_variant(job, o, s);

@@ -28,7 +28,9 @@ std::string temp_path(const std::string& name) {
 // A job of one object and one record; cells are scaled to 0.3 g.
 scenario::Job one_cell_job() {
   scenario::Job job;
-  job.objects.push_back({"block", "", ""});
+  scenario::JobObject block;
+  block.name = "block";
+  job.objects.push_back(block);
   scenario::JobRecord r;
   r.name = "quiet";
   job.records.push_back(r);

@@ -163,8 +163,9 @@ TEST_F(JobFile, AlternativeScenesReplaceTheObjectsScenePerVariant) {
   const auto job = load_job(write(std::string(kGood) + "[sweep]\nmethod = \"grid\"\n"
                                                        "scene = [\"../models/demo/block_a02.toml\", \"../models/demo/block_a03.toml\"]\n"));
   ASSERT_EQ(job.objects.size(), 2u);
-  EXPECT_EQ(fs::path(job.objects[0].scene).filename(), "block_a02.toml");
-  EXPECT_EQ(fs::path(job.objects[1].scene).filename(), "block_a03.toml");
+  EXPECT_EQ(fs::path(job.objects[0].simulated_scene()).filename(), "block_a02.toml");
+  EXPECT_EQ(fs::path(job.objects[1].simulated_scene()).filename(), "block_a03.toml");
+  EXPECT_EQ(job.objects[1].scene, job.objects[0].scene);  // the cube's group names the object's own
   EXPECT_EQ(job.objects[1].name, "block_a02");  // still the [[object]]'s name: one group in the cube
   // another [[object]] makes the alternative ambiguous
   expect_error(std::string(kGood) + "[[object]]\nname = \"b\"\nscene = \"../models/demo/block_a03.toml\"\n" +

@@ -16,7 +16,12 @@ namespace rigid::scenario {
 /// One object (a scene) of a campaign, in one of the job's variants.
 struct JobObject {
   std::string name;   ///< the [[object]]'s name, unique among them; the HDF5 group name
-  std::string scene;  ///< scene file (resolved path): the variant's alternative scene if it has one
+  std::string scene;  ///< the [[object]]'s scene file (resolved path)
+  /// The variant's alternative scene file (another model of the same rock), "" when it has none:
+  /// what is simulated when given.
+  std::string variant_scene;
+  /// The file simulated: the variant's alternative scene, else the object's.
+  const std::string& simulated_scene() const { return variant_scene.empty() ? scene : variant_scene; }
   std::string state;  ///< saved equilibrium state to start from (resolved path), may be empty
   int base = -1;      ///< index of the [[object]] in the job file; -1: the object's own index
   int variant = -1;   ///< index in Job::variants, -1 when the job has none
