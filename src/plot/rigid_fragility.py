@@ -13,7 +13,7 @@ the vector fit P = Phi((u - mu(x)) / sigma(x)) over all records, evaluated at a 
 90 % intervals by bootstrap over records. Hazard (hazard_curve.py): lambda = E[H(C)], survival
 exp(-lambda T). Exit status: 0 done, 2 bad input, 1 internal error.
 
-With variants (a cube with a variant axis: epistemic uncertainty, /work/spec/variant_layout.md):
+With variants (a cube with a variant axis: epistemic uncertainty, layout at the top of src/io/cube.cpp):
 each variant is fitted as an object is; the variants of an object are equally weighted samples of
 the epistemic distribution, so the pooled fragility is the mixture P(a) = mean_v P_v(a) of the
 lognormals standing for them (the vector fit at the chosen PGV/PGA, or the empirical threshold of a

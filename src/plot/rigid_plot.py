@@ -7,7 +7,7 @@ from Rigid's HDF5 fragility cubes (README "The fragility cube (HDF5)"; physics.m
     rigid_plot.py diff  CUBE_A CUBE_B --out DIR [--label-a 3D] [--label-b 2D] [--object NAME]... [--variant K]
     rigid_plot.py table CUBE [CUBE...] --out FILE.md [--scale G] [--layout auto|objects|records] [--variant K]
 
-A cube with a variant axis (epistemic variants of every object, /work/spec/variant_layout.md) is
+A cube with a variant axis (epistemic variants of every object, layout at the top of src/io/cube.cpp) is
 read as one object per (object, variant), named `rock [v3]` in tables and titles (files `rock_v3_...`);
 --object NAME selects every variant of NAME, --variant K only variant K. `maps` draws by default,
 per object, the variants' fragility curves with their 5-95 % band and the pooled (mixture) curve
@@ -160,7 +160,7 @@ def variant_attrs(group, attrs, v):
 
 class Cube:
     """The parts of a cube the plots need, read once. Reads both layouts: without variants
-    (schema 1) and with a variant axis (schema 2, /work/spec/variant_layout.md), where each
+    (schema 1) and with a variant axis (schema 2, layout at the top of src/io/cube.cpp), where each
     (object, variant) becomes one ObjectData, in object then variant order."""
 
     def __init__(self, path):

@@ -1,5 +1,5 @@
 """Which varied parameter moves a rock's fragility: rank statistics across the variants of a campaign
-(the epistemic axis, /work/spec/variant_layout.md), for `rigid fragility`.
+(the epistemic axis, layout at the top of src/io/cube.cpp), for `rigid fragility`.
 
 - Spearman's rank correlation rho between a parameter and an output (theta or beta) across
   variants: the Pearson correlation of their ranks (ties get their average rank). It measures a

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Campaigns with a variant axis (epistemic uncertainty) on the Python side, against independent
-oracles, on cubes written here with h5py in the layout of /work/spec/variant_layout.md ("On disk"):
+oracles, on cubes written here with h5py in the layout documented at the top of src/io/cube.cpp:
 
 a. Planted fragilities: variant v's outcomes drawn from a lognormal (theta_v, beta_v); each
    variant's fit recovers theta_v (its 90 % interval covers it in most variants, the estimate
