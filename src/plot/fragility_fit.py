@@ -335,22 +335,29 @@ def vector_fragility(cells, records, u_shift, x_shift, points_s, rng, replicates
 
 
 def empirical_threshold(cells, records=None):
-    """The toppling PGA of outcomes with complete separation (every simulated scale either all
-    survived or all overturned, survived below overturned), where maximum likelihood has no finite
-    estimate: the geometric mean of the highest all-survived scale and the lowest all-overturned
-    scale (the midpoint on the log axis the fits work on), as a step fragility (beta 0). None
-    when a scale is mixed (the probit fit applies) or one side is missing (no threshold inside the
-    campaign's scales)."""
+    """The toppling PGA of outcomes with complete or quasi-complete separation, where maximum
+    likelihood has no finite estimate (the probit's slope runs off to infinity): every simulated
+    scale all survived or all overturned, survived below overturned, except at most one mixed scale
+    between them. Complete: the geometric mean of the highest all-survived and the lowest
+    all-overturned scale (the midpoint on the log axis the fits work on); quasi-complete: the mixed
+    scale itself. A step fragility (beta 0). None when more than one scale is mixed (the probit fit
+    applies) or one side is missing (no threshold inside the campaign's scales)."""
     records = cells.records_with_cells(records)
     k, n = cells.k[records].sum(axis=0), cells.n[records].sum(axis=0)
     ran = n > 0
     all_over, all_survived = ran & (k == n), ran & (k == 0)
-    if np.any(ran & ~all_over & ~all_survived) or not all_over.any() or not all_survived.any():
+    mixed = ran & ~all_over & ~all_survived
+    if mixed.sum() > 1 or not all_over.any() or not all_survived.any():
         return None
     highest_survived = float(cells.scales_g[all_survived].max())
     lowest_overturned = float(cells.scales_g[all_over].min())
     if not highest_survived < lowest_overturned:
         return None  # overturned below a survived scale: not a threshold
+    if mixed.any():
+        at = float(cells.scales_g[mixed][0])
+        if not highest_survived < at < lowest_overturned:
+            return None
+        return {"theta_g": at, "beta": 0.0, "between_g": [highest_survived, lowest_overturned]}
     return {"theta_g": math.sqrt(highest_survived * lowest_overturned), "beta": 0.0,
             "between_g": [highest_survived, lowest_overturned]}
 

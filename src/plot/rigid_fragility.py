@@ -134,16 +134,25 @@ class ObjectFit:
 # statistics only, so this is fixed (not --bootstrap, which counts probit refits).
 SENSITIVITY_REPLICATES = 1000
 THRESHOLD_SOURCE = "empirical threshold"
+SCALAR_SOURCE = "scalar fit (all records)"
 
 
 def variant_lognormal(fit):
     """The lognormal (theta, beta) standing for one variant in the pooled fragility, the hazard and
-    the sensitivity: the vector fit at the chosen PGV/PGA; for separated outcomes the empirical
-    threshold (a step, beta 0, flagged); else none (theta NaN)."""
+    the sensitivity: the vector fit at the chosen PGV/PGA; when that has no finite estimate, the
+    scalar fit over all records; for separated outcomes the empirical threshold (a step, beta 0,
+    flagged); else none (theta NaN)."""
     c = fit.chosen()
     if c is not None:
         return {"theta_g": c["theta_g"], "beta": c["beta"], "source": "vector fit",
                 "theta_interval_g": c["theta_interval_g"], "beta_interval": c["beta_interval"]}
+    # with few records the PGV/PGA term can separate the outcomes while PGA alone does not: the
+    # lognormal over all records then stands for the variant rather than dropping it from the pool
+    # (which would bias the pool towards the variants that fit)
+    s = getattr(fit, "scalar", None)
+    if s is not None and math.isfinite(s.get("theta_g", math.nan)):
+        return {"theta_g": s["theta_g"], "beta": s["beta"], "source": SCALAR_SOURCE,
+                "theta_interval_g": s.get("theta_interval_g"), "beta_interval": s.get("beta_interval")}
     if fit.threshold is not None:
         return {"theta_g": fit.threshold["theta_g"], "beta": 0.0, "source": THRESHOLD_SOURCE,
                 "between_g": fit.threshold["between_g"]}
@@ -273,6 +282,9 @@ def print_variant_tables(cube, fits, analyses, args):
                 theta = fmt_interval(d["theta_g"], *d["theta_interval_g"])
                 beta = fmt_interval(d["beta"], *d["beta_interval"])
                 note = ""
+            elif d["source"] == SCALAR_SOURCE:
+                theta, beta = f"{d['theta_g']:.3f} +", f"{d['beta']:.3f} +"
+                note = "+ the scalar fit over all records (the vector fit's outcomes are separated)"
             elif d["source"] == THRESHOLD_SOURCE:
                 theta, beta = f"{d['theta_g']:.3f} *", "0 (step)"
                 note = (f"* empirical threshold: between {d['between_g'][0]:g} and {d['between_g'][1]:g} g "
@@ -457,7 +469,7 @@ def variant_nrml_functions(fits, analyses):
     functions, skipped = [], []
     for f in fits:
         d = variant_lognormal(f)
-        if d["source"] != "vector fit":
+        if d["source"] not in ("vector fit", SCALAR_SOURCE):
             skipped.append(f.obj.label)
             continue
         lo, hi = f.scale_range_g
@@ -857,6 +869,8 @@ def hazard_pooled(args, cube, curve, objs):
         if "points" in f.vector:
             per_variant.append((f, "vector fit", [(w, p["theta_g"], p["beta"])
                                                   for (w, _), p in zip(points, f.vector["points"])]))
+        elif f.scalar is not None and math.isfinite(f.scalar.get("theta_g", math.nan)):  # over all PGV/PGA
+            per_variant.append((f, SCALAR_SOURCE, [(1.0, f.scalar["theta_g"], f.scalar["beta"])]))
         elif f.threshold is not None:  # a step does not depend on PGV/PGA
             per_variant.append((f, THRESHOLD_SOURCE, [(1.0, f.threshold["theta_g"], 0.0)]))
     if not per_variant:
@@ -867,21 +881,25 @@ def hazard_pooled(args, cube, curve, objs):
     rates = [hc.mixture_rate(curve, mix)[0] for _, _, mix in per_variant]
     survivals = [hc.survival(r, args.age) for r in rates]
     lo_pct, hi_pct = ff.EPISTEMIC_PERCENTILES[0], ff.EPISTEMIC_PERCENTILES[-1]
-    # aleatory: replicate i of the pooled fragility; a variant without bootstrap (a threshold) is fixed
+    # aleatory: replicate i of the pooled fragility; a variant without vector bootstrap (a threshold or
+    # the scalar fit) is held fixed, and one whose fit does not exist in resample i (few records:
+    # the resample's outcomes are separated) sits that replicate out, the others reweighted; with
+    # many variants and few records nearly every resample loses one, and requiring all of them
+    # left a handful of replicates and a degenerate interval
     boot = [f.vector["replicate_theta_g"].shape[0] for f, src, _ in per_variant if src == "vector fit"]
     replicates = min(boot) if boot else 0
     reps = []
     for i in range(replicates):
-        mix_i = []
+        members = []
         for f, src, mix in per_variant:
             if src == "vector fit":
                 t, b = f.vector["replicate_theta_g"][i], f.vector["replicate_beta"][i]
-                if not np.all(np.isfinite(t)):
-                    break
-                mix_i += [(w / n, t[j], b[j]) for j, (w, _) in enumerate(points)]
+                if np.all(np.isfinite(t)):
+                    members.append([(w, t[j], b[j]) for j, (w, _) in enumerate(points)])
             else:
-                mix_i += [(w / n, th, be) for w, th, be in mix]
-        else:
+                members.append(mix)
+        if members:
+            mix_i = [(w / len(members), th, be) for m in members for w, th, be in m]
             reps.append(hc.mixture_rate(curve, mix_i)[0])
     n_records = len(used)
     record_s = cube.pgv_pga[sorted(used)]
@@ -935,8 +953,10 @@ def print_hazard(r):
           f"exposure age {r['age_years']:g} years")
     if r.get("pooled"):
         thresholds = sum(v["source"] == THRESHOLD_SOURCE for v in r["variant_fragility"])
+        scalars = sum(v["source"] == SCALAR_SOURCE for v in r["variant_fragility"])
         print(f"  fragility: pooled over {r['variants_pooled']} of {r['variants']} variants (equally weighted mixture of "
-              f"their vector fits" + (f"; {thresholds} empirical threshold(s), steps" if thresholds else "") + ")")
+              f"their vector fits" + (f"; {scalars} scalar fit(s) over all records" if scalars else "") +
+              (f"; {thresholds} empirical threshold(s), steps" if thresholds else "") + ")")
     elif len(r["fragility"]) == 1:
         f = r["fragility"][0]
         print(f"  fragility at PGV/PGA {f['pgv_pga_s']:.3f} s ({f.get('source', 'vector fit')}): theta "

@@ -43,6 +43,7 @@ try:
     from scipy.special import ndtr
     import test_plot as tp  # the axes of the synthetic cubes and the cube-derived datasets
     import rigid_plot
+    import fragility_fit as ff
 except ImportError as e:
     print(f"skipped: {e} (install python3-numpy python3-scipy python3-h5py python3-matplotlib)")
     sys.exit(77)
@@ -324,6 +325,21 @@ def sensitivity_oracle(tmp):
 # c. deterministic (separated) variants
 
 
+def quasi_separated():
+    """One mixed scale between all-survived and all-overturned ones (quasi-complete separation: the
+    probit's slope diverges too): the step sits at the mixed scale; two mixed scales are a fit's."""
+    scales = np.array([0.1, 0.2, 0.3, 0.4])
+    outcome = np.ones((2, 4, 3), np.int8)
+    outcome[:, 3, :] = 2
+    outcome[0, 2, 0] = 2
+    t = ff.empirical_threshold(ff.Cells(outcome, scales, np.array([0.1, 0.1])))
+    check(t is not None and t["theta_g"] == 0.3 and t["between_g"] == [0.2, 0.4],
+          f"quasi-complete separation: the step at the one mixed scale ({t})")
+    outcome[1, 1, 0] = 2
+    check(ff.empirical_threshold(ff.Cells(outcome, scales, np.array([0.1, 0.1]))) is None,
+          "two mixed scales: no threshold (the probit fit applies)")
+
+
 def deterministic(tmp):
     thresholds = [0.35, 0.55, 0.75, 0.95, 1.25, 1.55]  # between scales (0.1 g apart)
     size = [0.8, 1.0, 1.2, 1.4, 1.7, 2.0]
@@ -448,6 +464,7 @@ def main():
     try:
         result = planted(tmp)
         sensitivity_oracle(tmp)
+        quasi_separated()
         deterministic(tmp)
         if result:
             curve = hazard(tmp, result[0])
