@@ -103,7 +103,22 @@ Journal::File Journal::start_reset(const std::vector<TaskResult>& kept) const {
   return f;
 }
 
-void Journal::finish_reset(File fresh, const TaskResult* more, std::size_t count) {
+void Journal::extend(File& fresh, const TaskResult* more, std::size_t count) const {
+  unsigned char buf[kRecordBytes];
+  bool ok = true;
+  for (std::size_t i = 0; i < count && ok; ++i) {
+    encode_record(buf, more[i], print_);
+    ok = std::fwrite(buf, 1, sizeof buf, fresh.get()) == sizeof buf;
+  }
+  if (ok && std::fflush(fresh.get()) == 0 && ::fsync(fileno(fresh.get())) == 0) return;
+  const int e = errno;
+  fresh.reset();
+  std::remove((path_ + ".tmp").c_str());
+  errno = e;
+  fail(path_, "journal write failed");
+}
+
+Journal::File Journal::finish_reset(File fresh, const TaskResult* more, std::size_t count) {
   const std::string tmp = path_ + ".tmp";
   unsigned char buf[kRecordBytes];
   bool ok = true;
@@ -119,9 +134,10 @@ void Journal::finish_reset(File fresh, const TaskResult* more, std::size_t count
     errno = e;
     fail(path_, "journal write failed");
   }
-  if (file_) std::fclose(file_);
+  File old(file_, std::fclose);
   file_ = fresh.release();  // the renamed file, open for appending at its end
   bytes_ = std::uint64_t(std::ftell(file_));
+  return old;
 }
 
 void Journal::reset(const std::vector<TaskResult>& kept) { finish_reset(start_reset(kept), nullptr, 0); }

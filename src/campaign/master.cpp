@@ -9,10 +9,17 @@
 // the writer thread builds it from a shadow plan (the results up to a snapshot, taken by swapping
 // one vector under the mutex, so dispatch never waits for the cube), and runs it only when the
 // time since the last one started is at least max(checkpoint interval, K x its duration), K = 20
-// (rewrites then take at most 1/K = 5 % of the wall time and of the disk's bandwidth), when the
-// journal outgrows max(64 MiB, the cube's file) (it cannot grow without bound), on a stop signal
-// and at the end. The journal is reset to the results that arrived after the snapshot only once
-// the new cube is renamed into place.
+// (rewrites then take at most 1/K = 5 % of the wall time, of the disk's bandwidth and of the core
+// the thread shares with a simulating rank), when the journal holds more records than the plan has
+// cells (at least 64 MiB), on a stop signal and at the end. That size bound keeps the journal
+// finite whatever happens, and costs nothing in a normal run: every cell is simulated once, so
+// between two rewrites the journal holds at most one record per cell unless tasks are redone
+// (after abandonments); a journal that reaches it outweighs the cube (292 bytes per record
+// against about 87 per cell), and the master holds its records in memory too (as much as the
+// plan's results). A tighter bound (say the cube's file size, as Redis rewrites its append-only
+// file at 100 % growth) made the writer thread rewrite without pause when results arrive fast
+// (no-op tasks: 1e5 per s), taking a core from dispatch on a shared node. The journal is reset
+// to the results that arrived after the snapshot only once the new cube is renamed into place.
 //
 // Why not chunked in-place HDF5 updates: a kill (or a full disk) during an in-place write of the
 // file's metadata (B-trees, heaps, superblock) can corrupt the only copy of the cube; HDF5 has no
@@ -32,7 +39,6 @@
 #include <filesystem>
 #include <memory>
 #include <mutex>
-#include <system_error>
 #include <thread>
 
 #include "rigid/campaign/journal.hpp"
@@ -57,7 +63,8 @@ std::string reason_of(const std::exception& e, const std::string& file) {
 
 // Rewrites take at most 1/kRewriteFactor of the wall time (see the top of the file).
 constexpr double kRewriteFactor = 20;
-// The journal's size that forces a rewrite: the larger of this and the cube's file (unit: bytes).
+// The journal's size that forces a rewrite: the larger of this and one record per cell of the
+// plan (unit: bytes; see the top of the file).
 constexpr std::uint64_t kJournalFloorBytes = 64u << 20;
 
 struct Master {
@@ -101,7 +108,6 @@ struct Master {
   bool sync_wanted = false, rewrite_wanted = false, rewrite_running = false, writer_quit = false;
   Clock::time_point last_rewrite_start;
   double last_rewrite_s = 0;      // duration of the last rewrite (unit: s)
-  std::uint64_t cube_bytes = 0;   // the last cube's file size
   long rewrites = 0, syncs = 0;
   double longest_stall_s = 0;     // the longest time a rewrite held the mutex (unit: s)
 
@@ -221,33 +227,60 @@ struct Master {
       fail(output + ": checkpoint failed: " + reason_of(e, output) + " (results kept in the journal; run again to resume)");
       return false;
     }
-    std::error_code size_error;
-    const auto size = std::filesystem::file_size(output, size_error);
     // the cube now holds everything but what arrived after the snapshot: journal only that,
-    // written beside the journal without the mutex, then completed and renamed under it
+    // written beside the journal without the mutex, then completed and renamed under it. The
+    // results are moved out of since_snapshot (O(1) under the mutex) and put back before it.
     std::vector<TaskResult> kept;
     {
       std::lock_guard<std::mutex> lock(mutex);
       const auto t = Clock::now();
       if (!journal_ok) return false;  // the old journal, a superset, is still in place
-      kept = since_snapshot;
+      kept.swap(since_snapshot);
       stall += seconds_since(t);
     }
+    bool moved_out = true;
+    const auto put_back = [&] {  // caller holds the mutex: since_snapshot = kept + what came since
+      if (!moved_out) return;
+      kept.insert(kept.end(), since_snapshot.begin(), since_snapshot.end());
+      kept.swap(since_snapshot);
+      moved_out = false;
+    };
     try {
       Journal::File fresh = journal->start_reset(kept);
+      // what arrived meanwhile, in rounds, each moved out under the mutex and written without it,
+      // until little is left (at most a few rounds: each is shorter than the one before)
+      for (int round = 0; round < 4; ++round) {
+        std::vector<TaskResult> more;
+        {
+          std::lock_guard<std::mutex> lock(mutex);
+          if (since_snapshot.size() < 1024) break;
+          more.swap(since_snapshot);
+        }
+        kept.insert(kept.end(), more.begin(), more.end());  // first: put back on failure
+        journal->extend(fresh, more.data(), more.size());
+      }
+      // room for the rest, so that putting it back under the mutex copies only that
+      kept.reserve(kept.size() + kept.size() / 4 + 4096);
+      Journal::File replaced(nullptr, std::fclose);  // closed after the mutex is released
       std::lock_guard<std::mutex> lock(mutex);
       const auto t = Clock::now();
-      journal->finish_reset(std::move(fresh), since_snapshot.data() + kept.size(), since_snapshot.size() - kept.size());
+      try {
+        replaced = journal->finish_reset(std::move(fresh), since_snapshot.data(), since_snapshot.size());
+      } catch (...) {
+        put_back();
+        throw;
+      }
+      put_back();
       stall += seconds_since(t);
     } catch (const std::exception& e) {
       std::lock_guard<std::mutex> lock(mutex);
+      put_back();
       journal_failed(e);  // the old journal, a superset, is still in place
       return false;
     }
     std::lock_guard<std::mutex> lock(writer_mutex);
     last_rewrite_start = t0;
     last_rewrite_s = seconds_since(t0);
-    if (!size_error) cube_bytes = size;
     ++rewrites;
     longest_stall_s = std::max(longest_stall_s, stall);
     return true;
@@ -287,7 +320,7 @@ struct Master {
   bool rewrite_due(double interval, std::uint64_t journal_bytes) {
     std::lock_guard<std::mutex> lock(writer_mutex);
     if (rewrite_wanted || rewrite_running) return false;
-    if (journal_bytes >= std::max<std::uint64_t>(kJournalFloorBytes, cube_bytes)) return true;
+    if (journal_bytes >= std::max<std::uint64_t>(kJournalFloorBytes, std::uint64_t(plan->size()) * Journal::record_bytes())) return true;
     return seconds_since(last_rewrite_start) >= std::max(interval, kRewriteFactor * last_rewrite_s);
   }
   // Ends the writer thread (after what it is doing) so that the main thread may rewrite.

@@ -47,7 +47,12 @@ class Journal {
   /// PATH.tmp; the old journal stays.
   using File = std::unique_ptr<std::FILE, int (*)(std::FILE*)>;
   File start_reset(const std::vector<TaskResult>& kept) const;
-  void finish_reset(File fresh, const TaskResult* more, std::size_t count);
+  /// Appends more records to a journal from start_reset, flushed and fsynced (no lock needed
+  /// either); throws on failure, removing PATH.tmp.
+  void extend(File& fresh, const TaskResult* more, std::size_t count) const;
+  /// Returns the replaced journal, still open: closing the last handle of a large unlinked file
+  /// frees its blocks, which can take tens of ms, so a caller under a lock closes it after.
+  File finish_reset(File fresh, const TaskResult* more, std::size_t count);
 
   /// Flushes the appended records to the kernel and returns a duplicate of the file's descriptor,
   /// so that the fsync (sync) can run without the lock that guards the journal; a reset meanwhile
