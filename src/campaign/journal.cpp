@@ -68,7 +68,7 @@ void encode_record(unsigned char* out, const TaskResult& r, std::uint64_t print)
 }  // namespace
 
 Journal::Journal(std::string path, std::string key, const std::vector<TaskResult>& carried)
-    : path_(std::move(path)), key_(std::move(key)) {
+    : path_(std::move(path)), key_(std::move(key)), print_(fingerprint(key_)) {
   reset(carried);
 }
 
@@ -76,41 +76,96 @@ Journal::~Journal() {
   if (file_) std::fclose(file_);
 }
 
-void Journal::reset(const std::vector<TaskResult>& kept) {
+std::size_t Journal::record_bytes() { return kRecordBytes; }
+
+Journal::File Journal::start_reset(const std::vector<TaskResult>& kept) const {
   // written beside and renamed over, so the old journal stays whole until the new one is
   const std::string tmp = path_ + ".tmp";
-  std::FILE* f = std::fopen(tmp.c_str(), "wb");
+  File f(std::fopen(tmp.c_str(), "wb"), std::fclose);
   if (!f) fail(path_, "cannot create " + tmp);
   unsigned char header[kHeaderBytes];
   encode_header(header, key_);
-  bool ok = std::fwrite(header, 1, sizeof header, f) == sizeof header;
-  const std::uint64_t print = fingerprint(key_);
+  bool ok = std::fwrite(header, 1, sizeof header, f.get()) == sizeof header;
   unsigned char buf[kRecordBytes];
   for (const TaskResult& r : kept) {
     if (!ok) break;
-    encode_record(buf, r, print);
-    ok = std::fwrite(buf, 1, sizeof buf, f) == sizeof buf;
+    encode_record(buf, r, print_);
+    ok = std::fwrite(buf, 1, sizeof buf, f.get()) == sizeof buf;
   }
-  ok = ok && std::fflush(f) == 0 && ::fsync(fileno(f)) == 0 && std::rename(tmp.c_str(), path_.c_str()) == 0;
+  ok = ok && std::fflush(f.get()) == 0 && ::fsync(fileno(f.get())) == 0;
   if (!ok) {
     const int e = errno;
-    std::fclose(f);
+    f.reset();
     std::remove(tmp.c_str());
     errno = e;
     fail(path_, "journal write failed");
   }
-  if (file_) std::fclose(file_);
-  file_ = f;  // the renamed file, open for appending at its end
+  return f;
 }
+
+void Journal::extend(File& fresh, const TaskResult* more, std::size_t count) const {
+  unsigned char buf[kRecordBytes];
+  bool ok = true;
+  for (std::size_t i = 0; i < count && ok; ++i) {
+    encode_record(buf, more[i], print_);
+    ok = std::fwrite(buf, 1, sizeof buf, fresh.get()) == sizeof buf;
+  }
+  if (ok && std::fflush(fresh.get()) == 0 && ::fsync(fileno(fresh.get())) == 0) return;
+  const int e = errno;
+  fresh.reset();
+  std::remove((path_ + ".tmp").c_str());
+  errno = e;
+  fail(path_, "journal write failed");
+}
+
+Journal::File Journal::finish_reset(File fresh, const TaskResult* more, std::size_t count) {
+  const std::string tmp = path_ + ".tmp";
+  unsigned char buf[kRecordBytes];
+  bool ok = true;
+  for (std::size_t i = 0; i < count && ok; ++i) {
+    encode_record(buf, more[i], print_);
+    ok = std::fwrite(buf, 1, sizeof buf, fresh.get()) == sizeof buf;
+  }
+  ok = ok && std::fflush(fresh.get()) == 0 && std::rename(tmp.c_str(), path_.c_str()) == 0;
+  if (!ok) {
+    const int e = errno;
+    fresh.reset();
+    std::remove(tmp.c_str());
+    errno = e;
+    fail(path_, "journal write failed");
+  }
+  File old(file_, std::fclose);
+  file_ = fresh.release();  // the renamed file, open for appending at its end
+  bytes_ = std::uint64_t(std::ftell(file_));
+  return old;
+}
+
+void Journal::reset(const std::vector<TaskResult>& kept) { finish_reset(start_reset(kept), nullptr, 0); }
 
 void Journal::append(const TaskResult& r) {
   unsigned char buf[kRecordBytes];
-  encode_record(buf, r, fingerprint(key_));
+  encode_record(buf, r, print_);
   if (std::fwrite(buf, 1, sizeof buf, file_) != sizeof buf) fail(path_, "journal write failed");
+  bytes_ += kRecordBytes;
 }
 
 void Journal::flush() {
   if (std::fflush(file_) != 0) fail(path_, "journal write failed");
+}
+
+int Journal::flush_and_duplicate() {
+  flush();
+  const int fd = ::dup(fileno(file_));
+  if (fd < 0) fail(path_, "journal sync failed");
+  return fd;
+}
+
+void Journal::sync(int fd) const {
+  const bool ok = ::fsync(fd) == 0;
+  const int e = errno;
+  ::close(fd);
+  errno = e;
+  if (!ok) fail(path_, "journal write failed");
 }
 
 JournalContents read_journal(const std::string& path, const std::string& key, long tasks) {
