@@ -58,7 +58,7 @@ void register_campaign_command(CLI::App& app) {
   cmd->add_option("--log-interval", command->log_interval, "Seconds between progress log lines when not on a terminal (s)")
       ->capture_default_str()
       ->check(positive_number());
-  cmd->add_option("--checkpoint-interval", o->checkpoint_interval, "Seconds between cube checkpoints; default: the job's (30 s)")
+  cmd->add_option("--checkpoint-interval", o->checkpoint_interval, "Seconds between checkpoints (a journal fsync; the whole cube is rewritten only when that takes at most 5 % of the time); default: the job's (30 s)")
       ->check(positive_number());
   cmd->add_option("--grace", o->grace, "Seconds in-flight tasks get after a stop signal; default: the job's (30 s)")
       ->check(non_negative_number());
