@@ -688,13 +688,19 @@ def plot_records(cube, obj, fit, norm_, path):
 
 def variant_lognormal(cube, obj, args, pgv_pga_s):
     """(theta_g, beta, how) of one variant at PGV/PGA `pgv_pga_s`: the map's fit there (median
-    and sigma of ln PGA), else the empirical threshold of separated outcomes (a step), else None."""
+    and sigma of ln PGA), else the scalar fit over all records, else the empirical threshold of
+    separated outcomes (a step), else None."""
     norm_ = normalisation_for(cube, obj, args)
     info, fit = fit_object(cube, obj, norm_, args.mu_degree, args.sigma_degree)
     if fit is not None:
         theta = float(contour_pga(fit, norm_, np.array([pgv_pga_s]), 50)[0])
         return theta, float(fit_sigma(fit, norm_.x_of([pgv_pga_s]))[0]), "fit"
-    step = fragility_fit.empirical_threshold(fragility_fit.Cells(obj.outcome, cube.scales, cube.pgv_pga))
+    # the same fallbacks, in the same order, as rigid fragility's pool (rigid_fragility.variant_lognormal)
+    cells = fragility_fit.Cells(obj.outcome, cube.scales, cube.pgv_pga)
+    scalar = fragility_fit.lognormal_fit(*fragility_fit.scalar_rows(cells, cells.records_with_cells()))
+    if scalar is not None:
+        return scalar["theta_g"], scalar["beta"], "scalar fit (all records)"
+    step = fragility_fit.empirical_threshold(cells)
     if step is not None:
         return step["theta_g"], 0.0, "empirical threshold"
     return None, None, info.get("reason", "no fit")
