@@ -160,21 +160,20 @@ void scale_body(dynamics::BodyDef& body, double s) {
   body.centre_of_mass_offset *= s;
 }
 
-std::string variant_scene(const VariantSpace& space, int v) {
+const VariantValue* variant_value(const VariantSpace& space, int v, VariantKey key) {
   for (std::size_t j = 0; j < space.keys.size(); ++j) {
-    if (space.keys[j] == VariantKey::scene) return space.variants.at(std::size_t(v))[j].text;
+    if (space.keys[j] == key) return &space.variants.at(std::size_t(v))[j];
   }
-  return "";
+  return nullptr;
+}
+
+std::string variant_scene(const VariantSpace& space, int v) {
+  const VariantValue* scene = variant_value(space, v, VariantKey::scene);
+  return scene ? scene->text : "";
 }
 
 void apply_variant(const VariantSpace& space, int v, Scene& scene) {
-  const std::vector<VariantValue>& values = space.variants.at(std::size_t(v));
-  const auto value = [&](VariantKey key) -> const VariantValue* {
-    for (std::size_t j = 0; j < space.keys.size(); ++j) {
-      if (space.keys[j] == key) return &values[j];
-    }
-    return nullptr;
-  };
+  const auto value = [&](VariantKey key) { return variant_value(space, v, key); };
   if (const VariantValue* s = value(VariantKey::size_scale)) {
     for (dynamics::BodyDef& body : scene.bodies) scale_body(body, s->number);
   }

@@ -88,6 +88,9 @@ VariantSpace grid_design(const std::vector<VariantDomain>& domains, int levels);
 /// Number of variants grid_design gives (a double, to refuse huge grids before building them).
 double grid_size(const std::vector<VariantDomain>& domains, int levels);
 
+/// Variant v's value of parameter `key`, or nullptr when the variants leave it alone.
+const VariantValue* variant_value(const VariantSpace& space, int v, VariantKey key);
+
 /// Applies variant v of `space` to a scene: everything but `scene` (the loader picks the file).
 /// The order is the physical one: size first (the offsets are lengths of the resized block), then
 /// density, then the centre of mass, then the contact law. Throws std::invalid_argument when the
