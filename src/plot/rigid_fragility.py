@@ -137,24 +137,37 @@ THRESHOLD_SOURCE = "empirical threshold"
 SCALAR_SOURCE = "scalar fit (all records)"
 
 
-def variant_lognormal(fit):
-    """The lognormal (theta, beta) standing for one variant in the pooled fragility, the hazard and
-    the sensitivity: the vector fit at the chosen PGV/PGA; when that has no finite estimate, the
-    scalar fit over all records; for separated outcomes the empirical threshold (a step, beta 0,
-    flagged); else none (theta NaN)."""
-    c = fit.chosen()
-    if c is not None:
-        return {"theta_g": c["theta_g"], "beta": c["beta"], "source": "vector fit",
-                "theta_interval_g": c["theta_interval_g"], "beta_interval": c["beta_interval"]}
-    # with few records the PGV/PGA term can separate the outcomes while PGA alone does not: the
-    # lognormal over all records then stands for the variant rather than dropping it from the pool
-    # (which would bias the pool towards the variants that fit)
+def fragility_source(fit):
+    """Which fragility stands for a variant, the one order the pool, the sensitivity and the hazard
+    follow: the vector fit; when that has no finite estimate, the scalar fit over all records (with
+    few records the PGV/PGA term can separate the outcomes while PGA alone does not, and dropping
+    the variant would bias the pool towards the variants that fit); for separated outcomes the
+    empirical threshold; else "none"."""
+    if "points" in fit.vector:
+        return "vector fit"
     s = getattr(fit, "scalar", None)
     if s is not None and math.isfinite(s.get("theta_g", math.nan)):
-        return {"theta_g": s["theta_g"], "beta": s["beta"], "source": SCALAR_SOURCE,
-                "theta_interval_g": s.get("theta_interval_g"), "beta_interval": s.get("beta_interval")}
+        return SCALAR_SOURCE
     if fit.threshold is not None:
-        return {"theta_g": fit.threshold["theta_g"], "beta": 0.0, "source": THRESHOLD_SOURCE,
+        return THRESHOLD_SOURCE
+    return "none"
+
+
+def variant_lognormal(fit):
+    """The lognormal (theta, beta) standing for one variant in the pooled fragility and the
+    sensitivity (fragility_source): the vector fit at the chosen PGV/PGA, the scalar fit, the
+    empirical threshold (a step, beta 0, flagged), or none (theta NaN)."""
+    source = fragility_source(fit)
+    if source == "vector fit":
+        c = fit.chosen()
+        return {"theta_g": c["theta_g"], "beta": c["beta"], "source": source,
+                "theta_interval_g": c["theta_interval_g"], "beta_interval": c["beta_interval"]}
+    if source == SCALAR_SOURCE:
+        s = fit.scalar
+        return {"theta_g": s["theta_g"], "beta": s["beta"], "source": source,
+                "theta_interval_g": s.get("theta_interval_g"), "beta_interval": s.get("beta_interval")}
+    if source == THRESHOLD_SOURCE:
+        return {"theta_g": fit.threshold["theta_g"], "beta": 0.0, "source": source,
                 "between_g": fit.threshold["between_g"]}
     return {"theta_g": math.nan, "beta": math.nan, "source": "none", "reason": fit.vector.get("reason", "")}
 
@@ -839,16 +852,21 @@ def cmd_hazard(args):
               "ruled_out": surv < 1 - args.confidence,
               "rate_factor_to_rule_out": rate_factor, "pga_factor_to_rule_out": pga_factor,
               "interval_level": args.level, "bootstrap_replicates": args.bootstrap}
+    emit_hazard(args, result, lambda: plot_hazard(args.plot, curve, mixture, v, points, result))
+    return 0
+
+
+def emit_hazard(args, result, draw):
+    """The hazard's report: JSON or the text, then the plot (`draw`) when asked for."""
     if args.json:
         json.dump(json_clean(result), sys.stdout, indent=1, allow_nan=False)
         print()
     else:
         print_hazard(result)
     if args.plot:
-        plot_hazard(args.plot, curve, mixture, v, points, result)
+        draw()
         if not args.json:
             print(f"wrote {args.plot}")
-    return 0
 
 
 def hazard_pooled(args, cube, curve, objs):
@@ -866,13 +884,16 @@ def hazard_pooled(args, cube, curve, objs):
     fits = [ObjectFit(cube, o, args, points_s=[s for _, s in points], require_fragility=False) for o in objs]
     per_variant = []  # (variant, source, [(weight, theta, beta)] over the PGV/PGA points)
     for f in fits:
-        if "points" in f.vector:
-            per_variant.append((f, "vector fit", [(w, p["theta_g"], p["beta"])
-                                                  for (w, _), p in zip(points, f.vector["points"])]))
-        elif f.scalar is not None and math.isfinite(f.scalar.get("theta_g", math.nan)):  # over all PGV/PGA
-            per_variant.append((f, SCALAR_SOURCE, [(1.0, f.scalar["theta_g"], f.scalar["beta"])]))
-        elif f.threshold is not None:  # a step does not depend on PGV/PGA
-            per_variant.append((f, THRESHOLD_SOURCE, [(1.0, f.threshold["theta_g"], 0.0)]))
+        source = fragility_source(f)
+        if source == "vector fit":
+            mix = [(w, p["theta_g"], p["beta"]) for (w, _), p in zip(points, f.vector["points"])]
+        elif source == SCALAR_SOURCE:  # over all PGV/PGA
+            mix = [(1.0, f.scalar["theta_g"], f.scalar["beta"])]
+        elif source == THRESHOLD_SOURCE:  # a step does not depend on PGV/PGA
+            mix = [(1.0, f.threshold["theta_g"], 0.0)]
+        else:
+            continue
+        per_variant.append((f, source, mix))
     if not per_variant:
         raise InputError(f"{args.cube}: object {objs[0].name}: no variant has a fragility ({fits[0].vector.get('reason')})")
     n = len(per_variant)
@@ -931,17 +952,10 @@ def hazard_pooled(args, cube, curve, objs):
               "ruled_out": surv < 1 - args.confidence,
               "rate_factor_to_rule_out": rate_factor, "pga_factor_to_rule_out": pga_factor,
               "interval_level": args.level, "bootstrap_replicates": args.bootstrap}
-    if args.json:
-        json.dump(json_clean(result), sys.stdout, indent=1, allow_nan=False)
-        print()
-    else:
-        print_hazard(result)
-    if args.plot:
-        no_replicates = {"replicate_theta_g": np.empty((0, len(points))), "replicate_beta": np.empty((0, len(points)))}
-        plot_hazard(args.plot, curve, mixture, no_replicates, points, dict(result, object=f"{objs[0].name} (pooled)"),
-                    variant_mixtures=[mix for _, _, mix in per_variant])
-        if not args.json:
-            print(f"wrote {args.plot}")
+    no_replicates = {"replicate_theta_g": np.empty((0, len(points))), "replicate_beta": np.empty((0, len(points)))}
+    emit_hazard(args, result, lambda: plot_hazard(args.plot, curve, mixture, no_replicates, points,
+                                                  dict(result, object=f"{objs[0].name} (pooled)"),
+                                                  variant_mixtures=[mix for _, _, mix in per_variant]))
     return 0
 
 
