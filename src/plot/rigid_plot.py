@@ -695,7 +695,7 @@ def variant_lognormal(cube, obj, args, pgv_pga_s):
     if fit is not None:
         theta = float(contour_pga(fit, norm_, np.array([pgv_pga_s]), 50)[0])
         return theta, float(fit_sigma(fit, norm_.x_of([pgv_pga_s]))[0]), "fit"
-    # the same fallbacks, in the same order, as rigid fragility's pool (rigid_fragility.variant_lognormal)
+    # the same fallbacks, in the same order, as rigid fragility's pool (rigid_fragility.fragility_source)
     cells = fragility_fit.Cells(obj.outcome, cube.scales, cube.pgv_pga)
     scalar = fragility_fit.lognormal_fit(*fragility_fit.scalar_rows(cells, cells.records_with_cells()))
     if scalar is not None:
