@@ -399,36 +399,29 @@ def print_table(cube, fits, args):
                      if failed > 0.1 * total else ""))
 
 
-def csv_rows(fits, analyses=()):
+def csv_rows(fits):
     """One row per object (variant) and bin, and the vector fit; with variants a `variant` column,
-    each variant's scalar fit over all records (or its empirical threshold), and the pooled lognormal."""
+    each variant's scalar fit over all records (or its empirical threshold); the caller adds the
+    pooled lognormal."""
     rows = []
     for f in fits:
-        if f.obj.variant is not None:
-            rows += variant_csv_rows(f)
-            continue
-        for r in f.bins:
-            if r["n_records"] == 0:
-                continue
-            rows.append(_csv_row(f.obj.name, "bin", r["lower_s"], r["upper_s"], "", r))
-        c = f.chosen()
-        if c is not None:
-            v = dict(f.vector)
-            v.update(c)
-            rows.append(_csv_row(f.obj.name, "vector", "", "", c["pgv_pga_s"], v))
+        rows += fit_csv_rows(f) if f.obj.variant is None else variant_csv_rows(f)
     return rows
 
 
-def variant_csv_rows(f):
-    out = []
-    for r in f.bins:
-        if r["n_records"] > 0:
-            out.append(_csv_row(f.obj.name, "bin", r["lower_s"], r["upper_s"], "", r))
+def fit_csv_rows(f):
+    """A fit's bins with records and its chosen vector fit."""
+    out = [_csv_row(f.obj.name, "bin", r["lower_s"], r["upper_s"], "", r) for r in f.bins if r["n_records"] > 0]
     c = f.chosen()
     if c is not None:
         v = dict(f.vector)
         v.update(c)
         out.append(_csv_row(f.obj.name, "vector", "", "", c["pgv_pga_s"], v))
+    return out
+
+
+def variant_csv_rows(f):
+    out = fit_csv_rows(f)
     if f.threshold is not None:
         r = dict(f.vector, theta_g=f.threshold["theta_g"], beta=0.0,
                  reason=f"empirical threshold between {f.threshold['between_g'][0]:g} and "
