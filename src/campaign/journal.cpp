@@ -65,6 +65,26 @@ void encode_record(unsigned char* out, const TaskResult& r, std::uint64_t print)
   throw InputError(path, 0, what + ": " + std::strerror(errno));
 }
 
+// Writes COUNT records; false at the first failed write.
+bool write_records(std::FILE* f, const TaskResult* records, std::size_t count, std::uint64_t print) {
+  unsigned char buf[kRecordBytes];
+  for (std::size_t i = 0; i < count; ++i) {
+    encode_record(buf, records[i], print);
+    if (std::fwrite(buf, 1, sizeof buf, f) != sizeof buf) return false;
+  }
+  return true;
+}
+
+// A failed replacement: closes and removes PATH.tmp and throws with the write's errno; the
+// journal in use stays.
+[[noreturn]] void abandon_reset(Journal::File& fresh, const std::string& path) {
+  const int e = errno;
+  fresh.reset();
+  std::remove((path + ".tmp").c_str());
+  errno = e;
+  fail(path, "journal write failed");
+}
+
 }  // namespace
 
 Journal::Journal(std::string path, std::string key, const std::vector<TaskResult>& carried)
@@ -85,55 +105,24 @@ Journal::File Journal::start_reset(const std::vector<TaskResult>& kept) const {
   if (!f) fail(path_, "cannot create " + tmp);
   unsigned char header[kHeaderBytes];
   encode_header(header, key_);
-  bool ok = std::fwrite(header, 1, sizeof header, f.get()) == sizeof header;
-  unsigned char buf[kRecordBytes];
-  for (const TaskResult& r : kept) {
-    if (!ok) break;
-    encode_record(buf, r, print_);
-    ok = std::fwrite(buf, 1, sizeof buf, f.get()) == sizeof buf;
-  }
-  ok = ok && std::fflush(f.get()) == 0 && ::fsync(fileno(f.get())) == 0;
-  if (!ok) {
-    const int e = errno;
-    f.reset();
-    std::remove(tmp.c_str());
-    errno = e;
-    fail(path_, "journal write failed");
-  }
+  const bool ok = std::fwrite(header, 1, sizeof header, f.get()) == sizeof header &&
+                  write_records(f.get(), kept.data(), kept.size(), print_) && std::fflush(f.get()) == 0 &&
+                  ::fsync(fileno(f.get())) == 0;
+  if (!ok) abandon_reset(f, path_);
   return f;
 }
 
 void Journal::extend(File& fresh, const TaskResult* more, std::size_t count) const {
-  unsigned char buf[kRecordBytes];
-  bool ok = true;
-  for (std::size_t i = 0; i < count && ok; ++i) {
-    encode_record(buf, more[i], print_);
-    ok = std::fwrite(buf, 1, sizeof buf, fresh.get()) == sizeof buf;
-  }
-  if (ok && std::fflush(fresh.get()) == 0 && ::fsync(fileno(fresh.get())) == 0) return;
-  const int e = errno;
-  fresh.reset();
-  std::remove((path_ + ".tmp").c_str());
-  errno = e;
-  fail(path_, "journal write failed");
+  const bool ok = write_records(fresh.get(), more, count, print_) && std::fflush(fresh.get()) == 0 &&
+                  ::fsync(fileno(fresh.get())) == 0;
+  if (!ok) abandon_reset(fresh, path_);
 }
 
 Journal::File Journal::finish_reset(File fresh, const TaskResult* more, std::size_t count) {
   const std::string tmp = path_ + ".tmp";
-  unsigned char buf[kRecordBytes];
-  bool ok = true;
-  for (std::size_t i = 0; i < count && ok; ++i) {
-    encode_record(buf, more[i], print_);
-    ok = std::fwrite(buf, 1, sizeof buf, fresh.get()) == sizeof buf;
-  }
-  ok = ok && std::fflush(fresh.get()) == 0 && std::rename(tmp.c_str(), path_.c_str()) == 0;
-  if (!ok) {
-    const int e = errno;
-    fresh.reset();
-    std::remove(tmp.c_str());
-    errno = e;
-    fail(path_, "journal write failed");
-  }
+  const bool ok = write_records(fresh.get(), more, count, print_) && std::fflush(fresh.get()) == 0 &&
+                  std::rename(tmp.c_str(), path_.c_str()) == 0;
+  if (!ok) abandon_reset(fresh, path_);
   File old(file_, std::fclose);
   file_ = fresh.release();  // the renamed file, open for appending at its end
   bytes_ = std::uint64_t(std::ftell(file_));
