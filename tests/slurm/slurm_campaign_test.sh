@@ -86,7 +86,8 @@ state_is() {
 }
 pending_with_restarts() { state_is PENDING && [[ $(job_field Restarts) == "$1" ]]; }
 log_has() { grep -q -- "$1" "$work/job.out" 2>/dev/null; }
-log_count() { grep -c -- "$1" "$work/job.out" 2>/dev/null; }
+# log_count PATTERN: matching lines of the job log, 0 while Slurm has not created it yet
+log_count() { cat "$work/job.out" 2>/dev/null | grep -c -- "$1"; }
 # started N: the campaign has printed its start line ("N tasks, K already done") N times
 started() { (($(log_count ' already done') >= $1)); }
 # run_ended N: the batch script has logged the exit of its Nth campaign run
