@@ -12,10 +12,12 @@
 # each time it lifts Slurm's 2-minute requeue delay, then waits for COMPLETED and compares the
 # output with the reference (tests/python/compare_cubes.py, wall times excepted). When to
 # interrupt is read from the job log alone (the campaign's start line, the batch script's exit
-# line), never from polled job states: on fresh CI machines `scontrol show job` answered 8-20 s
-# late while both cores ran the campaign. Signals travel through slurmctld and may be as late,
-# so tests/slurm/slurm_campaign.toml runs about 50 s at 2 ranks here, leaving each interruption
-# 40 s to land (the whole test about 2 minutes).
+# line), never from polled job states. On fresh CI machines slurmctld answered nothing while the
+# campaign ran on both cores (scontrol 8-20 s late, a scancel 46 s late, just as the campaign
+# ended), so before each interruption the test holds the campaign's ranks (SIGSTOP) and releases
+# them (SIGCONT) once the batch shell has logged the signal: the interruption lands mid-campaign
+# however late Slurm delivers it. tests/slurm/slurm_campaign.toml runs about 50 s at 2 ranks
+# (the whole test about 2 minutes).
 # Skips (exit 0) when not root or when the Slurm packages cannot be installed. Every wait is
 # bounded; the whole test stops after RIGID_SLURM_TEST_TIMEOUT s (default 480), and the cluster
 # is always brought down. The last line is `N passed, N failed`.
@@ -46,9 +48,12 @@ export RIGID_SLURM_DIR=$work/cluster
 jid=""
 finish() {
   trap - EXIT INT TERM
+  release
   if ((failed)); then
     echo "--- job log $work/job.out"; cat "$work/job.out" 2>/dev/null
     echo "--- slurmctld.log (tail)"; tail -n 15 "$RIGID_SLURM_DIR/log/slurmctld.log" 2>/dev/null
+    echo "--- slurmd.log (tail)"; tail -n 10 "$RIGID_SLURM_DIR/log/slurmd.log" 2>/dev/null
+    echo "--- load: $(cat /proc/loadavg)"
   fi
   [[ -n $jid ]] && scancel "$jid" 2>/dev/null
   bash "$repo/slurm/local-cluster.sh" down --keep >/dev/null 2>&1
@@ -92,15 +97,50 @@ log_count() { cat "$work/job.out" 2>/dev/null | grep -c -- "$1"; }
 started() { (($(log_count ' already done') >= $1)); }
 # run_ended N: the batch script has logged the exit of its Nth campaign run
 run_ended() { (($(log_count 'rigid-campaign: exit status') >= $1)); }
-# let the campaign work PROGRESS s after its Nth start, then check it still runs
-work_then_check() {
+# the campaign's rank processes: `rigid` processes writing this test's output (not mpirun)
+held=()
+campaign_ranks() {
+  local p
+  for p in $(pgrep -x rigid); do
+    tr '\0' ' ' <"/proc/$p/cmdline" 2>/dev/null | grep -qF -- "--out $work/out.h5 " && echo "$p"
+  done
+}
+# hold the ranks (SIGSTOP) so that the campaign cannot end before a late signal reaches it
+hold() {
+  read -ra held <<<"$(campaign_ranks | paste -sd' ')"
+  ((${#held[@]})) && kill -STOP "${held[@]}" 2>/dev/null
+  note "held ${#held[@]} ranks (SIGSTOP)"
+}
+release() {
+  ((${#held[@]})) || return 0
+  kill -CONT "${held[@]}" 2>/dev/null
+  held=()
+}
+# let the campaign work PROGRESS s after its Nth start, hold it and check it still runs
+work_then_hold() {
   wait_until 60 "the campaign's start line #$1 in the job log" started "$1" || exit
   note "campaign started (#$1)"
   sleep "$progress"
-  if run_ended "$1"; then
+  hold
+  if ((${#held[@]} == 0)) || run_ended "$1"; then
     fail "campaign run #$1 ended before interruption #$1: JOB must run longer at 2 ranks"
     exit
   fi
+}
+# timed CMD...: run a Slurm command and say how long slurmctld took to answer it
+timed() {
+  local t0=$SECONDS rc=0
+  "$@" || rc=$?
+  note "$* (answered in $((SECONDS - t0)) s, exit $rc)"
+  return "$rc"
+}
+# the batch shell has logged signal SIG for the Nth time, i.e. Slurm delivered it
+signal_logged() { (($(log_count "rigid-campaign: SIG$1 at") >= $2)); }
+release_after_signal() {
+  if wait_until 120 "SIG$1 #$2 to reach the batch shell" signal_logged "$1" "$2"; then
+    note "SIG$1 reached the batch shell; released the ranks (SIGCONT)"
+    release
+  else exit; fi
 }
 # lift the ~2 min delay of a requeued job, but not within the second of the requeue: a job that
 # starts then is killed with "Job credential revoked"
@@ -138,11 +178,11 @@ jid=$(cd "$work" && RIGID=$rigid RIGID_GRACE=5 RIGID_CAMPAIGN_ARGS="--checkpoint
   sbatch --parsable -n 2 -o "$work/job.out" "$repo/slurm/rigid-campaign.sbatch" "$job" "$work/out.h5") \
   || { fail "sbatch refused the job"; exit; }
 note "submitted job $jid"
-work_then_check 1
+work_then_hold 1
 
 # 1. the time-limit warning: USR1 to the batch shell only
-scancel --batch --signal=USR1 "$jid"
-note "sent USR1 to the batch shell"
+timed scancel --batch --signal=USR1 "$jid" || { fail "scancel --signal=USR1 refused"; exit; }
+release_after_signal USR1 1
 if wait_until 90 "the job to requeue itself" pending_with_restarts 1; then
   pass "USR1: campaign stopped and the job requeued itself"
 else exit; fi
@@ -153,8 +193,9 @@ if [[ -s $work/out.h5 ]]; then pass "checkpoint written before the requeue"; els
 start_now
 
 # 2. an outside requeue: TERM to every process of the job
-work_then_check 2
-scontrol requeue "$jid" && note "scontrol requeue"
+work_then_hold 2
+timed scontrol requeue "$jid" || { fail "scontrol requeue refused"; exit; }
+release_after_signal TERM 1
 if wait_until 90 "the requeued job to be pending" pending_with_restarts 2; then
   pass "scontrol requeue while running"
 else exit; fi
