@@ -11,17 +11,18 @@
 #   2. once it runs again, requeues it from outside (`scontrol requeue`: SIGTERM to the job);
 # each time it lifts Slurm's 2-minute requeue delay, then waits for COMPLETED and compares the
 # output with the reference (tests/python/compare_cubes.py, wall times excepted). When to
-# interrupt is read from the job log alone (the campaign's start line, the batch script's exit
-# line), never from polled job states. On fresh CI machines slurmctld answered nothing while the
-# campaign ran on both cores (scontrol 8-20 s late, a scancel 46 s late, just as the campaign
-# ended), so before each interruption the test holds the campaign's ranks (SIGSTOP) and releases
-# them (SIGCONT) once the batch shell has logged the signal: the interruption lands mid-campaign
-# however late Slurm delivers it. tests/slurm/slurm_campaign.toml runs about 50 s at 2 ranks
+# interrupt is read from /proc (the campaign's rank processes) and the job log (the batch
+# script's exit lines), never from polled job states. On fresh CI machines Slurm calls made while
+# the campaign ran on both cores did not return until it ended (scontrol 8-20 s late, a scancel
+# and a `scontrol update` 45 s late), so before each interruption the test holds the campaign's
+# ranks (SIGSTOP) and releases them (SIGCONT) once the batch shell has logged the signal, and the
+# call that starts a requeued job runs in the background: the interruption lands mid-campaign
+# however late Slurm answers. tests/slurm/slurm_campaign.toml runs about 50 s at 2 ranks
 # (the whole test about 2 minutes).
 # Skips (exit 0) when not root or when the Slurm packages cannot be installed. Every wait is
 # bounded; the whole test stops after RIGID_SLURM_TEST_TIMEOUT s (default 480), and the cluster
 # is always brought down. The last line is `N passed, N failed`.
-# Environment: RIGID_SLURM_TEST_PROGRESS  seconds of work before each interruption (default 3)
+# Environment: RIGID_SLURM_TEST_PROGRESS  seconds of work before each interruption (default 5)
 #              RIGID_COMPARE              comparison command (default: /usr/bin/python3 compare_cubes.py)
 #              RIGID_SLURM_TEST_KEEP=1    keep the work directory (logs, cubes) after a pass too
 #              RIGID_LAUNCHER             passed on to the batch script (mpirun or srun)
@@ -39,7 +40,7 @@ skip() { echo "SKIP: $*"; echo "0 passed, 0 failed"; exit 0; }
 rigid=$(realpath "$1") job=$(realpath "$2")
 [[ -x $rigid && -f $job ]] || { fail "missing $1 or $2"; echo "$passed passed, $failed failed"; exit 1; }
 read -ra compare <<<"${RIGID_COMPARE:-/usr/bin/python3 $repo/tests/python/compare_cubes.py}"
-progress=${RIGID_SLURM_TEST_PROGRESS:-3}
+progress=${RIGID_SLURM_TEST_PROGRESS:-5}
 deadline=$((SECONDS + ${RIGID_SLURM_TEST_TIMEOUT:-480}))
 
 work=$(mktemp -d /tmp/rigid-slurm-test.XXXXXX)
@@ -93,22 +94,27 @@ pending_with_restarts() { state_is PENDING && [[ $(job_field Restarts) == "$1" ]
 log_has() { grep -q -- "$1" "$work/job.out" 2>/dev/null; }
 # log_count PATTERN: matching lines of the job log, 0 while Slurm has not created it yet
 log_count() { cat "$work/job.out" 2>/dev/null | grep -c -- "$1"; }
-# started N: the campaign has printed its start line ("N tasks, K already done") N times
-started() { (($(log_count ' already done') >= $1)); }
 # run_ended N: the batch script has logged the exit of its Nth campaign run
 run_ended() { (($(log_count 'rigid-campaign: exit status') >= $1)); }
 # the campaign's rank processes: `rigid` processes writing this test's output (not mpirun)
-held=()
 campaign_ranks() {
   local p
   for p in $(pgrep -x rigid); do
     tr '\0' ' ' <"/proc/$p/cmdline" 2>/dev/null | grep -qF -- "--out $work/out.h5 " && echo "$p"
   done
 }
+# ranks_up: both ranks of a new campaign run exist (none of them held before)
+held=() seen=" "
+ranks_up() {
+  local p fresh=0
+  for p in $(campaign_ranks); do [[ $seen == *" $p "* ]] || fresh=$((fresh + 1)); done
+  ((fresh >= 2))
+}
 # hold the ranks (SIGSTOP) so that the campaign cannot end before a late signal reaches it
 hold() {
   read -ra held <<<"$(campaign_ranks | paste -sd' ')"
   ((${#held[@]})) && kill -STOP "${held[@]}" 2>/dev/null
+  seen+="${held[*]} "
   note "held ${#held[@]} ranks (SIGSTOP)"
 }
 release() {
@@ -116,10 +122,12 @@ release() {
   kill -CONT "${held[@]}" 2>/dev/null
   held=()
 }
-# let the campaign work PROGRESS s after its Nth start, hold it and check it still runs
+# let run N of the campaign work PROGRESS s, hold it and check it still runs. Its start is seen
+# in /proc, not in the job log: mpirun relays the ranks' output, and a starved mpirun or Slurm
+# call must not delay the hold.
 work_then_hold() {
-  wait_until 60 "the campaign's start line #$1 in the job log" started "$1" || exit
-  note "campaign started (#$1)"
+  wait_until 60 "the ranks of campaign run #$1" ranks_up || exit
+  note "campaign run #$1: ranks up"
   sleep "$progress"
   hold
   if ((${#held[@]} == 0)) || run_ended "$1"; then
@@ -143,8 +151,9 @@ release_after_signal() {
   else exit; fi
 }
 # lift the ~2 min delay of a requeued job, but not within the second of the requeue: a job that
-# starts then is killed with "Job credential revoked"
-start_now() { sleep 2; scontrol update JobId="$jid" StartTime=now; }
+# starts then is killed with "Job credential revoked". In the background: on fresh CI machines
+# this call, answered by slurmctld at once, returned only when the campaign it started had ended.
+start_now() { (sleep 2 && timed scontrol update JobId="$jid" StartTime=now) & }
 
 # cluster (its own directory; a busy port pair makes it take the next one)
 had_slurm=1
