@@ -1,10 +1,10 @@
-// convex_hull and box_soup: containment, extremality, degenerate inputs, speed, determinism.
+// convex_hull and box_soup: containment, extremality, degenerate inputs, determinism.
+// Its speed is a benchmark: tests/bench/hull_bench.cpp.
 #include <gtest/gtest.h>
 
 #include "support/rng.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -64,23 +64,6 @@ TEST(ConvexHull, PointsOnASphereAreAllHullVertices) {
   const ClosedMesh m = make_closed_mesh(hull, {}, "sphere");
   EXPECT_EQ(m.vertices.size(), pts.size());
   expect_contains_all(hull, pts, 1e-7);
-}
-
-TEST(ConvexHull, HundredsOfPointsTakeUnderTenMilliseconds) {
-  const std::vector<Vec3> pts = ball(3, 500);
-  std::vector<Vec3> sphere = pts;
-  for (Vec3& p : sphere) p.normalize();
-  double best = std::numeric_limits<double>::infinity();
-  for (int rep = 0; rep < 5; ++rep) {
-    const auto t0 = std::chrono::steady_clock::now();
-    const TriangleSoup a = convex_hull(pts);
-    const TriangleSoup b = convex_hull(sphere);
-    const auto t1 = std::chrono::steady_clock::now();
-    best = std::min(best, std::chrono::duration<double>(t1 - t0).count());
-    EXPECT_FALSE(a.empty() || b.empty());
-  }
-  // best of five, two hulls: robust to a busy machine
-  EXPECT_LT(best, 20e-3);
 }
 
 TEST(ConvexHull, CubeCornersWithInteriorCoplanarAndDuplicatePointsGiveTwelveTriangles) {
