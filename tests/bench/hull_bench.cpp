@@ -19,12 +19,9 @@ namespace {
 using rigid::Vec3;
 
 std::vector<Vec3> points(std::int64_t n, bool on_sphere) {
-  rigid::test::Rng rng{7};
-  std::vector<Vec3> pts;
-  while (static_cast<std::int64_t>(pts.size()) < n) {
-    const Vec3 u(2 * rng.uniform() - 1, 2 * rng.uniform() - 1, 2 * rng.uniform() - 1);
-    if (u.squaredNorm() > 1 || u.squaredNorm() < 1e-6) continue;
-    pts.push_back(on_sphere ? Vec3(u.normalized()) : u);
+  std::vector<Vec3> pts = rigid::test::unit_ball_points(7, static_cast<int>(n));
+  if (on_sphere) {
+    for (Vec3& p : pts) p.normalize();
   }
   return pts;
 }

@@ -19,16 +19,7 @@ using rigid::Vec3;
 using namespace rigid::geometry;
 
 using rigid::test::Rng;
-
-std::vector<Vec3> ball(std::uint64_t seed, int n) {
-  Rng rng{seed};
-  std::vector<Vec3> pts;
-  while (static_cast<int>(pts.size()) < n) {
-    const Vec3 u(2 * rng.uniform() - 1, 2 * rng.uniform() - 1, 2 * rng.uniform() - 1);
-    if (u.squaredNorm() <= 1) pts.push_back(u);
-  }
-  return pts;
-}
+using rigid::test::unit_ball_points;
 
 bool contains(const std::vector<Vec3>& pts, const Vec3& v) {
   return std::find(pts.begin(), pts.end(), v) != pts.end();
@@ -43,7 +34,7 @@ void expect_contains_all(const TriangleSoup& hull, const std::vector<Vec3>& pts,
 }
 
 TEST(ConvexHull, RandomBallHullContainsEveryPointAndUsesOnlyInputPoints) {
-  const std::vector<Vec3> pts = ball(1, 400);
+  const std::vector<Vec3> pts = unit_ball_points(1, 400);
   const TriangleSoup hull = convex_hull(pts);
   expect_contains_all(hull, pts, 1e-7);
   for (const auto& t : hull) {
@@ -57,7 +48,7 @@ TEST(ConvexHull, RandomBallHullContainsEveryPointAndUsesOnlyInputPoints) {
 
 TEST(ConvexHull, PointsOnASphereAreAllHullVertices) {
   // every point is extreme, so the hull has all n vertices and 2n - 4 triangles
-  std::vector<Vec3> pts = ball(2, 500);
+  std::vector<Vec3> pts = unit_ball_points(2, 500);
   for (Vec3& p : pts) p = 3.0 * p.normalized() + Vec3(100, 200, -50);
   const TriangleSoup hull = convex_hull(pts);
   EXPECT_EQ(hull.size(), 2 * pts.size() - 4);
@@ -93,7 +84,7 @@ TEST(ConvexHull, CubeCornersWithInteriorCoplanarAndDuplicatePointsGiveTwelveTria
 }
 
 TEST(ConvexHull, IsDeterministicAndIndependentOfInputOrderInShape) {
-  std::vector<Vec3> pts = ball(5, 300);
+  std::vector<Vec3> pts = unit_ball_points(5, 300);
   const TriangleSoup a = convex_hull(pts);
   const TriangleSoup b = convex_hull(pts);
   ASSERT_EQ(a.size(), b.size());
@@ -138,14 +129,14 @@ TEST(ConvexHull, RejectsTooFewCollinearCoplanarNonFiniteOrExtremePoints) {
   EXPECT_THROW(convex_hull(line), std::invalid_argument);
   EXPECT_THROW(convex_hull(plane), std::invalid_argument);
   // scales whose coordinate products would overflow or underflow
-  std::vector<Vec3> huge = ball(8, 20), tiny = ball(8, 20), small = ball(8, 20);
+  std::vector<Vec3> huge = unit_ball_points(8, 20), tiny = unit_ball_points(8, 20), small = unit_ball_points(8, 20);
   for (Vec3& p : huge) p *= 1e150;
   for (Vec3& p : tiny) p *= 1e-150;
   for (Vec3& p : small) p *= 1e-60;
   EXPECT_THROW(convex_hull(huge), std::invalid_argument);
   EXPECT_THROW(convex_hull(tiny), std::invalid_argument);
-  EXPECT_EQ(convex_hull(small).size(), convex_hull(ball(8, 20)).size());
-  std::vector<Vec3> bad = ball(7, 10);
+  EXPECT_EQ(convex_hull(small).size(), convex_hull(unit_ball_points(8, 20)).size());
+  std::vector<Vec3> bad = unit_ball_points(7, 10);
   bad[4].y() = std::numeric_limits<double>::quiet_NaN();
   EXPECT_THROW(convex_hull(bad), std::invalid_argument);
 }

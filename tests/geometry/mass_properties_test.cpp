@@ -19,8 +19,6 @@ using namespace rigid::geometry;
 
 constexpr double kRel = 1e-10;
 
-using rigid::test::Rng;
-
 ClosedMesh mesh_of(const TriangleSoup& soup) { return make_closed_mesh(soup, {}, "test"); }
 
 void expect_rel(double actual, double expected, double rel, const char* what) {
@@ -82,12 +80,9 @@ Oracle quadrature_oracle(const TriangleSoup& soup) {
 }
 
 std::vector<Vec3> random_cloud(std::uint64_t seed, int n) {
-  Rng rng{seed};
   std::vector<Vec3> pts;
   // an irregular ellipsoid-ish cloud: no symmetry, so every product of inertia is non-zero
-  while (static_cast<int>(pts.size()) < n) {
-    const Vec3 u(2 * rng.uniform() - 1, 2 * rng.uniform() - 1, 2 * rng.uniform() - 1);
-    if (u.squaredNorm() > 1) continue;
+  for (const Vec3& u : rigid::test::unit_ball_points(seed, n)) {
     pts.push_back(
         Vec3(1.7 * u.x() + 0.3 * u.y(), 0.9 * u.y() - 0.2 * u.z(), 0.6 * u.z() + 0.1 * u.x()));
   }
