@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "rigid/campaign/log.hpp"
@@ -42,7 +43,6 @@ bool load_everywhere(const CampaignOptions& options, int rank, Loaded& loaded) {
   int all_ok = 0;
   MPI_Allreduce(&ok, &all_ok, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
   if (all_ok) return true;
-  MPI_Finalize();
   if (rank == 0 && !ok) throw InputError("", 0, error);
   if (rank == 0) throw InputError(options.job, 0, "another rank could not read the job's inputs");
   return false;
@@ -84,10 +84,7 @@ CampaignResult run_rank0(const CampaignOptions& options, const Loaded& loaded, i
     problem = e.what();
   }
   MPI_Bcast(&go, 1, MPI_INT, 0, MPI_COMM_WORLD);
-  if (go == -1) {
-    MPI_Finalize();
-    throw InputError("", 0, problem);
-  }
+  if (go == -1) throw InputError("", 0, problem);
   CampaignResult result;
   result.output = job.output;
   if (go == 0) {
@@ -104,19 +101,22 @@ CampaignResult run_rank0(const CampaignOptions& options, const Loaded& loaded, i
 
 }  // namespace
 
-CampaignResult run_campaign(int& argc, char**& argv, const CampaignOptions& options) {
+MpiSession::MpiSession(int& argc, char**& argv) {
   int provided = 0;
   MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
-  int rank = 0, ranks = 1;
-  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  MPI_Comm_size(MPI_COMM_WORLD, &ranks);
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
+  MPI_Comm_size(MPI_COMM_WORLD, &ranks_);
   install_stop_signal_handlers();
+}
 
+MpiSession::~MpiSession() { MPI_Finalize(); }
+
+CampaignResult run_campaign(const MpiSession& session, const CampaignOptions& options) {
   Loaded loaded;
-  if (!load_everywhere(options, rank, loaded)) return {2, std::nullopt, ""};
+  if (!load_everywhere(options, session.rank(), loaded)) return {2, std::nullopt, ""};
   CampaignResult result;
-  if (rank == 0) {
-    result = run_rank0(options, loaded, ranks);
+  if (session.rank() == 0) {
+    result = run_rank0(options, loaded, session.ranks());
   } else {
     int go = 0;
     MPI_Bcast(&go, 1, MPI_INT, 0, MPI_COMM_WORLD);
@@ -125,8 +125,66 @@ CampaignResult run_campaign(int& argc, char**& argv, const CampaignOptions& opti
     }
     result.status = go == -1 ? 2 : 0;
   }
-  MPI_Finalize();
   return result;
+}
+
+CampaignResult run_campaign(int& argc, char**& argv, const CampaignOptions& options) {
+  const MpiSession session(argc, argv);
+  return run_campaign(session, options);
+}
+
+namespace {
+
+// Rank 0's string on every rank.
+std::string broadcast(const std::string& text) {
+  long size = long(text.size());
+  MPI_Bcast(&size, 1, MPI_LONG, 0, MPI_COMM_WORLD);
+  std::string out = text;
+  out.resize(std::size_t(size));
+  MPI_Bcast(out.data(), int(size), MPI_CHAR, 0, MPI_COMM_WORLD);
+  return out;
+}
+
+}  // namespace
+
+CampaignResult run_campaign_sequence(const MpiSession& session,
+                                     const std::function<std::optional<CampaignOptions>(const CampaignResult*)>& next) {
+  CampaignResult last;
+  bool first = true;
+  for (;;) {
+    // 1: run the options broadcast next, 0: done, -1: rank 0's `next` failed
+    int go = 0;
+    std::optional<CampaignOptions> options;
+    std::string problem;
+    if (session.rank() == 0) {
+      try {
+        options = next(first ? nullptr : &last);
+        go = options ? 1 : 0;
+      } catch (const InputError& e) {
+        go = -1;
+        problem = e.what();
+      }
+    }
+    MPI_Bcast(&go, 1, MPI_INT, 0, MPI_COMM_WORLD);
+    if (go == -1) {
+      if (session.rank() == 0) throw InputError("", 0, problem);
+      return {2, std::nullopt, ""};
+    }
+    if (go == 0) return last;
+    if (session.rank() != 0) options.emplace();
+    options->job = broadcast(options->job);
+    options->output = broadcast(options->output);
+    last = run_campaign(session, *options);
+    first = false;
+    // a refused campaign: rank 0 has thrown, workers got 2 (run_campaign), no one broadcasts
+    if (session.rank() != 0 && last.status == 2) return last;
+    int status = last.status;
+    MPI_Bcast(&status, 1, MPI_INT, 0, MPI_COMM_WORLD);
+    if (status != 0) {
+      last.status = status;
+      return last;
+    }
+  }
 }
 
 }  // namespace rigid::campaign

@@ -7,7 +7,7 @@ calls and the `rigid` executable's link line; README, "Layout and architecture")
 
   core <- geometry <- contact <- dynamics;  core <- motion, rocking;
   scenario <- dynamics, motion, rocking;  study <- scenario;  io <- scenario;  campaign <- io;
-  app <- campaign, study
+  calibration <- core;  app <- campaign, study, calibration
 
 (a module may include its own headers and those of every module below it, transitively), and the
 third-party rules: the engine core (geometry .. scenario, study) includes only Eigen and the standard
@@ -38,7 +38,7 @@ def module_graph(root):
 
 
 DIRECT = {}  # module -> its direct dependencies (main() reads them)
-ENGINE = {"core", "geometry", "contact", "dynamics", "motion", "rocking", "scenario", "study"}
+ENGINE = {"core", "geometry", "contact", "dynamics", "motion", "rocking", "scenario", "study", "calibration"}
 
 # third-party family -> the modules that may include it
 THIRD_PARTY = {
