@@ -48,8 +48,8 @@ std::vector<Biquad> butterworth_bandpass(double low_hz, double high_hz, int orde
   if (!(dt > 0) || !std::isfinite(dt)) throw std::invalid_argument("the time step must be positive");
   const double nyquist = 0.5 / dt;
   if (!(low_hz > 0) || !(high_hz > low_hz) || !(high_hz < nyquist))
-    throw std::invalid_argument("the band must satisfy 0 < low < high < Nyquist (" +
-                                std::to_string(nyquist) + " Hz)");
+    throw std::invalid_argument("the band-pass needs 0 < low < high < Nyquist (" + std::to_string(int(nyquist)) +
+                                " Hz at this time step)");
   if (order < 1 || order > 8) throw std::invalid_argument("the filter order must be 1 to 8");
   // liquid's band-pass is the digital low-pass-to-band-pass transform (Constantinides) of a
   // bilinear low-pass: fc is the upper edge and f0 the centre with
