@@ -11,9 +11,13 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "lab_input.hpp"
+#include "rigid/core/types.hpp"
+#include "rigid/io/json.hpp"
 #include "rigid/core/error.hpp"
 #include "rigid/io/at2.hpp"
 #include "rigid/io/record_list.hpp"
+#include "rigid/motion/lab_processing.hpp"
 #include "rigid/motion/synth.hpp"
 
 namespace rigid::app {
@@ -27,6 +31,8 @@ struct InfoOptions {
   double headerless_dt = 0.0;
   std::vector<double> sa_periods;
   std::string baseline = "none";
+  LabFlags lab;
+  std::string dump;  ///< --dump CSV: the lab motion's processed acceleration
 };
 
 struct SynthOptions {
@@ -55,7 +61,59 @@ motion::Baseline parse_baseline(const std::string& s) {
   throw InputError("", 0, "--baseline must be none, linear or quadratic, got '" + s + "'");
 }
 
+// `motion info --lab`: what the pedestal would be driven with, as the lab's PGA, PGV, PGV/PGA
+void run_lab_info(const InfoOptions& o) {
+  const io::LabFormat format = lab_format_from_flags(o.lab);
+  const motion::GroundMotion m = io::read_lab_motion(o.lab.file, format);
+  const motion::Peaks p = motion::peaks(m.x, m.dt);
+  const double pga_g = p.pga / kGravity, pgv_pga = p.pga > 0 ? p.pgv / p.pga : 0.0;
+  if (o.json) {
+    io::Json j;
+    j["name"] = m.name;
+    j["source"] = o.lab.file;
+    j["channel"] = io::lab_channel_name(format.channel);
+    j["processing"] = io::describe_lab_processing(format);
+    j["npts"] = m.npts();
+    j["dt_s"] = m.dt;
+    j["duration_s"] = m.duration();
+    j["pga_g"] = pga_g;
+    j["pgv_m_s"] = p.pgv;
+    j["pgv_pga_s"] = pgv_pga;
+    j["pgd_m"] = p.pgd;
+    // the band-pass as designed (liquid-dsp), in scipy's sos layout [b0, b1, b2, 1, a1, a2]
+    io::Json sos = io::Json::array();
+    if (format.processing.band_pass) {
+      const motion::LabProcessing& q = format.processing;
+      for (const motion::Biquad& b : motion::butterworth_bandpass(q.low_hz, q.high_hz, q.order, m.dt))
+        sos.push_back({b.b0, b.b1, b.b2, 1.0, b.a1, b.a2});
+    }
+    j["filter_sos"] = sos;
+    std::printf("%s\n", io::json_line(j).c_str());
+  } else {
+    std::printf("%s  (%s)\n", m.name.c_str(), o.lab.file.c_str());
+    std::printf("  %s\n", io::describe_lab_processing(format).c_str());
+    std::printf("  npts %zu, dt %.6g s, duration %.4g s\n", m.npts(), m.dt, m.duration());
+    std::printf("  PGA %.5g g, PGV %.5g m/s, PGV/PGA %.5g s, PGD %.5g m\n", pga_g, p.pgv, pgv_pga, p.pgd);
+  }
+  if (!o.dump.empty()) {
+    std::FILE* f = std::fopen(o.dump.c_str(), "w");
+    if (!f) throw InputError(o.dump, 0, "--dump: cannot write file");
+    std::fprintf(f, "t_s,acceleration_m_s2\n");
+    for (std::size_t i = 0; i < m.x.size(); ++i) std::fprintf(f, "%.17g,%.17g\n", double(i) * m.dt, m.x[i]);
+    if (std::fclose(f) != 0) throw InputError(o.dump, 0, "--dump: error while writing");
+  }
+}
+
 void run_info(const InfoOptions& o) {
+  if (!o.lab.file.empty()) {
+    if (!o.sets.empty()) throw InputError("", 0, "give AT2 sets or --lab, not both");
+    if (!o.sa_periods.empty() || o.resample || o.headerless_dt != 0.0 || o.baseline != "none")
+      throw InputError("", 0, "--sa, --resample, --dt and --baseline apply to AT2 sets (a lab recording's: --lab-baseline)");
+    run_lab_info(o);
+    return;
+  }
+  if (o.sets.empty()) throw InputError("", 0, "motion info needs a set (SET ...) or --lab FILE");
+  if (!o.dump.empty()) throw InputError("", 0, "--dump applies to --lab recordings");
   io::SetReadOptions read;
   read.at2.dt = o.headerless_dt;
   read.align.resample = o.resample;
@@ -174,8 +232,7 @@ void register_motion_command(CLI::App& app) {
               "PGD (cm) and, with two horizontals, GMRotD50/GMRotI50/RotD50 (Boore 2006, 2010)");
   ic->add_option("sets", info->sets,
                  "SET = NAME-X.AT2 (NAME-Y.AT2, NAME-Z.AT2 join when present) or H1.AT2,H2.AT2[,V.AT2] "
-                 "(roles may be explicit: x=...,y=...,z=...)")
-      ->required();
+                 "(roles may be explicit: x=...,y=...,z=...)");
   ic->add_flag("--json", info->json, "One JSON object per set, one per line");
   ic->add_flag("--resample", info->resample,
                "Components of unequal dt or length: resample to the smallest dt (linear) and "
@@ -188,7 +245,12 @@ void register_motion_command(CLI::App& app) {
                  "Velocity baseline correction: none (default; PEER records are processed), "
                  "linear or quadratic (least-squares polynomial through v(0)=0 removed)")
       ->capture_default_str();
-  ic->callback([info] { run_info(*info); });
+  add_lab_options(*ic, info->lab);
+  ic->add_option("--dump", info->dump, "With --lab: write the processed acceleration as CSV (t_s, acceleration_m_s2)");
+  ic->callback([info] {
+    reject_lab_flags_without_file(info->lab);
+    run_info(*info);
+  });
 
   auto synth = std::make_shared<SynthOptions>();
   CLI::App* sc = motion->add_subcommand(

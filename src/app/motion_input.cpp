@@ -26,6 +26,7 @@ void add_motion_options(CLI::App& cmd, MotionOptions& o) {
                  "Rotate the horizontal components about z, counter-clockwise from above (deg; |angle| <= 1e6)")
       ->capture_default_str()
       ->check(angle_deg());
+  add_lab_options(cmd, o.lab);
 }
 
 namespace {
@@ -44,7 +45,11 @@ motion::GroundMotion windowed_record(const motion::GroundMotion& record, double 
 
 motion::GroundMotion load_motion(const MotionOptions& o) {
   // the options' validators have refused non-finite and out-of-range values
-  const motion::GroundMotion record = windowed_record(io::read_motion_set(o.path), o.start, o.end);
+  reject_lab_flags_without_file(o.lab);
+  if (!o.path.empty() && !o.lab.file.empty()) throw InputError("", 0, "give --motion or --lab, not both");
+  const motion::GroundMotion read = o.lab.file.empty() ? io::read_motion_set(o.path)
+                                                       : io::read_lab_motion(o.lab.file, lab_format_from_flags(o.lab));
+  const motion::GroundMotion record = windowed_record(read, o.start, o.end);
   motion::MotionTransform t;
   t.factor = o.factor;
   t.target_pga_g = o.target_pga_g;

@@ -6,6 +6,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "lab_input.hpp"
 #include "rigid/motion/ground_motion.hpp"
 
 namespace rigid::app {
@@ -17,11 +18,14 @@ struct MotionOptions {
   double start = 0;          ///< window start (unit: s)
   double end = std::numeric_limits<double>::infinity();  ///< window end (unit: s)
   double rotation_deg = 0;   ///< rotation of the horizontals about z (unit: deg)
+  LabFlags lab;              ///< --lab FILE: a lab recording instead of `path` (its axis is x)
+  /// Whether a motion was asked for (--motion or --lab).
+  bool given() const { return !path.empty() || !lab.file.empty(); }
 };
 
 void add_motion_options(CLI::App& cmd, MotionOptions& o);
 
-/// Reads, windows, scales and rotates the record.
+/// Reads (an AT2 set, or a lab recording), windows, scales and rotates the record.
 motion::GroundMotion load_motion(const MotionOptions& o);
 
 }  // namespace rigid::app

@@ -121,7 +121,8 @@ void run(const RunOptions& o) {
   const bool block2d = *kind == scenario::ModelKind::rocking2d;
   if (block2d) scenario::rocking_block_of(scene);  // the scene is checked before any motion is read
   motion::GroundMotion m;
-  if (!o.motion.path.empty()) m = load_motion(o.motion);
+  reject_lab_flags_without_file(o.motion.lab);
+  if (o.motion.given()) m = load_motion(o.motion);
 
   io::TrajectoryRecorder recorder;
   if (!o.trajectory.empty() && !block2d) {

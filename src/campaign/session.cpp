@@ -62,6 +62,11 @@ Inputs collect_inputs(const scenario::Job& job, const scenario::Model& model) {
   if (!job.record_list.empty()) in.job.push_back({job.record_list, io::file_sha256(job.record_list)});
   for (std::size_t o = 0; o < job.objects.size(); ++o) in.objects.push_back(io::digest_files(model.scene(int(o)).files));
   for (const auto& r : job.records) {
+    // a lab recording is one file (its format is in the job text, hashed above)
+    if (r.lab) {
+      in.records.push_back(io::digest_files({r.spec}));
+      continue;
+    }
     const io::SetFiles set = io::resolve_set(r.spec);
     std::vector<std::string> files;
     for (const std::string* f : {&set.x, &set.y, &set.z}) {

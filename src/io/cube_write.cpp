@@ -173,6 +173,16 @@ void write_root_attributes(Writer& w, const Cube& c) {
   w.attribute("/", "inputs_sha256", c.inputs_sha256);
 }
 
+// A campaign "as recorded" has the one scale 0: no target PGA, every record at factor 1; its
+// measured PGA and PGV/PGA are in /records.
+bool as_recorded(const Cube& c) { return c.scales_g.size() == 1 && c.scales_g[0] == 0.0; }
+
+std::string scale_description(const Cube& c, const std::string& plain) {
+  return as_recorded(c) ? "0: the campaign ran \"as recorded\" (each record at factor 1, not scaled to a PGA; its "
+                          "measured PGA and PGV/PGA are /records/gmroti_pga_g and /records/pgv_pga_s)"
+                        : plain;
+}
+
 // The legacy shared axes (/axes, read by h5py users by path) and the per-record table (/records).
 void write_axes_and_records(Writer& w, const Cube& c) {
   const std::vector<double> edges = pgv_pga_edges(c);
@@ -182,7 +192,7 @@ void write_axes_and_records(Writer& w, const Cube& c) {
   w.group("/axes");
   Hid record = w.strings("/axes/record", record_names(c), "record (set) names, in job order");
   w.make_scale(record, "/axes/record", "record");
-  Hid scale = w.doubles("/axes/scale_g", c.scales_g, {S}, "g", "target GMRotI50 PGA of each scale");
+  Hid scale = w.doubles("/axes/scale_g", c.scales_g, {S}, "g", scale_description(c, "target GMRotI50 PGA of each scale"));
   w.make_scale(scale, "/axes/scale_g", "scale_g");
   Hid rotation = w.ints("/axes/rotation", iota32(A), {A}, "none",
                         "rotation index; the angle of each cell is in rotation_deg");
@@ -274,13 +284,13 @@ ObjectScales write_coordinates(Writer& w, const std::string& g, const Cube& c, h
   w.long_name(g + "/record", "record (set) name");
   w.make_scale(s.record, g + "/record", "record");
   s.scale = w.doubles(g + "/scale", c.scales_g, {S}, "1",
-                      "target GMRotI50 PGA of each scale as a multiple of standard gravity; the same "
-                      "values in m s-2 are in target_pga");
+                      scale_description(c, "target GMRotI50 PGA of each scale as a multiple of standard gravity; the same "
+                                            "values in m s-2 are in target_pga"));
   w.long_name(g + "/scale", "target GMRotI50 PGA in units of g (standard gravity, 9.80665 m s-2)");
   w.make_scale(s.scale, g + "/scale", "scale");
   std::vector<double> pga(c.scales_g);
   for (double& x : pga) x *= kGravity;
-  w.variable(w.doubles(g + "/target_pga", pga, {S}, "m s-2", "target GMRotI50 PGA of each scale"),
+  w.variable(w.doubles(g + "/target_pga", pga, {S}, "m s-2", scale_description(c, "target GMRotI50 PGA of each scale")),
                     g + "/target_pga", "target GMRotI50 PGA", {{s.scale, "scale"}});
   s.rotation = w.ints(g + "/rotation", iota32(A), {A}, "1",
                       "rotation index; the angle of each cell is in rotation_deg");

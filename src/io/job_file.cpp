@@ -1,5 +1,6 @@
 #include "rigid/io/job_file.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -10,6 +11,7 @@
 #include <toml++/toml.h>
 
 #include "input_file.hpp"
+#include "lab_toml.hpp"
 #include "job_variants.hpp"
 #include "rigid/core/error.hpp"
 #include "rigid/io/at2.hpp"
@@ -44,6 +46,7 @@ constexpr double kMaxCells = 1e7;
 
 std::vector<double> parse_scales(const toml::node& n, const std::string& src) {
   std::vector<double> out;
+  if (n.value<std::string>() && *n.value<std::string>() == "as recorded") return {scenario::kAsRecordedScale};
   if (const auto* arr = n.as_array()) {
     for (const auto& v : *arr) out.push_back(number(v, src, "each scale (g)"));
   } else if (const auto s = n.value<std::string>()) {
@@ -51,7 +54,7 @@ std::vector<double> parse_scales(const toml::node& n, const std::string& src) {
     double a, b, c;
     char extra;
     if (std::sscanf(s->c_str(), "%lf:%lf:%lf%c", &a, &b, &c, &extra) != 3) {
-      throw InputError(src, line_of(n), "scales must be a list or \"start:stop:step\" (g), not \"" + *s + "\"");
+      throw InputError(src, line_of(n), "scales must be a list, \"start:stop:step\" (g) or \"as recorded\", not \"" + *s + "\"");
     }
     if (!(c > 0) || !(b >= a) || !std::isfinite(a) || !std::isfinite(b)) {
       throw InputError(src, line_of(n), "scales \"start:stop:step\" needs step > 0 and stop >= start");
@@ -60,7 +63,7 @@ std::vector<double> parse_scales(const toml::node& n, const std::string& src) {
     if (count > 100000) throw InputError(src, line_of(n), "too many scales");
     for (long i = 0; i < count; ++i) out.push_back(a + double(i) * c);
   } else {
-    throw InputError(src, line_of(n), "scales must be a list or \"start:stop:step\" (g)");
+    throw InputError(src, line_of(n), "scales must be a list, \"start:stop:step\" (g) or \"as recorded\"");
   }
   if (out.empty()) throw InputError(src, line_of(n), "the scale list is empty");
   for (std::size_t i = 0; i < out.size(); ++i) {
@@ -79,6 +82,15 @@ std::string record_name(const std::string& spec) {
     stem.resize(stem.size() - 2);
   }
   return stem;
+}
+
+// A lab recording's name: its file name without .gz and the text extension (Test013.txt.gz -> Test013).
+std::string lab_record_name(const std::string& file) {
+  std::string name = fs::path(file).filename().string();
+  for (const std::string ext : {".gz", ".txt", ".csv", ".tsv", ".dat"}) {
+    if (name.size() > ext.size() && name.compare(name.size() - ext.size(), ext.size(), ext) == 0) name.resize(name.size() - ext.size());
+  }
+  return name;
 }
 
 // Makes every file of a set spec absolute against base (keeping roles such as x=).
@@ -137,7 +149,7 @@ scenario::Job load_job(const std::string& path) {
   job.hash = text_hash(job.text);
   const toml::table root = parse_toml(job.text, path);
   const fs::path base = fs::path(path).parent_path();
-  reject_unknown(root, {"campaign", "object", "record", "records", "run", "sweep", "variant"}, path, "the job");
+  reject_unknown(root, {"campaign", "lab", "object", "record", "records", "run", "sweep", "variant"}, path, "the job");
 
   const auto* c = root["campaign"].as_table();
   if (!c) throw InputError(path, 0, "missing [campaign] table");
@@ -157,7 +169,7 @@ scenario::Job load_job(const std::string& path) {
     job.seed = static_cast<std::uint64_t>(*v);
   }
   const toml::node* scales = c->get("scales");
-  if (!scales) throw InputError(path, line_of(*c), "[campaign] needs scales (list or \"start:stop:step\", g)");
+  if (!scales) throw InputError(path, line_of(*c), "[campaign] needs scales (list or \"start:stop:step\", g, or \"as recorded\")");
   job.scales_g = parse_scales(*scales, path);
   if (const auto* r = c->get("rotations")) {
     const auto v = r->value<std::int64_t>();
@@ -261,12 +273,18 @@ scenario::Job load_job(const std::string& path) {
     for (const auto& node : *arr) {
       const auto* t = node.as_table();
       if (!t) throw InputError(path, line_of(node), "each [[record]] must be a table");
-      reject_unknown(*t, {"name", "motion", "start", "end", "earthquake", "align"}, path, "[[record]]");
+      reject_unknown(*t, {"name", "motion", "lab", "start", "end", "earthquake", "align"}, path, "[[record]]");
       scenario::JobRecord r;
       const std::string motion = optional_string(*t, "motion", "", path);
-      if (motion.empty()) throw InputError(path, line_of(node), "[[record]] needs motion = \"NAME-X.AT2\" or \"H1.AT2,H2.AT2\"");
-      r.spec = resolve_spec(motion, base);
-      r.name = optional_string(*t, "name", record_name(motion), path);
+      const std::string lab = optional_string(*t, "lab", "", path);
+      if (motion.empty() == lab.empty())
+        throw InputError(path, line_of(node), "[[record]] needs motion = \"NAME-X.AT2\" (or \"H1.AT2,H2.AT2\") or lab = \"FILE\", one of them");
+      r.lab = !lab.empty();
+      r.spec = r.lab ? (fs::path(lab).is_absolute() ? fs::path(lab) : base / lab).lexically_normal().string()
+                     : resolve_spec(motion, base);
+      r.name = optional_string(*t, "name", r.lab ? lab_record_name(lab) : record_name(motion), path);
+      if (r.lab && t->contains("align"))
+        throw InputError(path, line_of(*t->get("align")), "[[record]] align applies to AT2 sets, not to lab = recordings");
       r.origin_file = path;
       r.origin_line = line_of(node);
       r.start = optional_number(*t, "start", 0.0, path);
@@ -282,10 +300,19 @@ scenario::Job load_job(const std::string& path) {
     }
   }
   if (job.records.empty()) throw InputError(path, 0, "the job has no records");
+  // the [lab] table: read here, so a bad format stops the job before any work
+  job.lab_format = lab_format_from_table(root, path);
+  if (const auto* lab = root.get("lab")) {
+    const bool used = std::any_of(job.records.begin(), job.records.end(), [](const auto& r) { return r.lab; });
+    if (!used) throw InputError(path, line_of(*lab), "[lab] is given but no [[record]] has lab = \"FILE\"");
+  }
   std::set<std::string> record_names;
   for (auto& r : job.records) {
     // every file of the set must exist now, not at the first task
-    std::stringstream parts(r.spec);
+    if (r.lab && !fs::exists(r.spec)) {
+      throw InputError(r.origin_file, r.origin_line, "record " + r.name + ": lab recording not found: " + r.spec);
+    }
+    std::stringstream parts(r.lab ? std::string() : r.spec);
     std::string part;
     while (std::getline(parts, part, ',')) {
       const auto eq = part.find('=');

@@ -4,6 +4,7 @@
 
 #include "rigid/core/error.hpp"
 #include "rigid/io/at2.hpp"
+#include "rigid/io/lab_recording.hpp"
 #include "rigid/io/scene_file.hpp"
 #include "rigid/motion/measures.hpp"
 
@@ -47,7 +48,7 @@ scenario::Model load_model(const scenario::Job& job) {
   for (const auto& r : job.records) {
     SetReadOptions read;
     read.align.resample = r.resample;
-    records.push_back(windowed_record(r, read_motion_set(r.spec, read)));
+    records.push_back(windowed_record(r, r.lab ? read_lab_motion(r.spec, job.lab_format) : read_motion_set(r.spec, read)));
     // once per record: every case scales this record, and the GMRotI50 measure is costly
     per_g.push_back(motion::target_pga_factor(records.back(), 1.0));
   }

@@ -179,6 +179,17 @@ def make_inputs(d):
     job_file("sweep_empty.job.toml", "[sweep]\ncount = 4\nrestitution = [0.3, 0.1]\n")
     job_file("sweep_unknown.job.toml", "[sweep]\ncount = 4\nviscosity = [0.1, 0.2]\n")
     job_file("sweep_outside.job.toml", "[sweep]\ncount = 2\ncom_offset_x_m = [0.3, 0.5]\n")
+    # lab (shake-table) recordings: a good one, and jobs naming them
+    write(d, "table.txt", "Time [s]\tAcceleration [g]\tDisplacement [V]\n" +
+          "".join("%.5f\t%.6f\t%.4f\n" % (i / 800.0, 0.1 * ((i * 7919) % 13 - 6) / 6.0, 0.0) for i in range(800)))
+    os.mkfifo(os.path.join(d, "fifo.txt.gz"))
+    lab_job = ('[campaign]\nscales = %s\nrotations = 1\n[[object]]\nscene = "block.toml"\n'
+               '[[record]]\nlab = "%s"\n%s')
+    write(d, "lab_missing.job.toml", lab_job % ('"as recorded"', "none.txt.gz", ""))
+    write(d, "lab_badkey.job.toml", lab_job % ('"as recorded"', "table.txt", "[lab]\nchanel = \"acceleration\"\n"))
+    write(d, "lab_badunit.job.toml", lab_job % ('"as recorded"', "table.txt", "[lab]\nacceleration_unit = \"furlong\"\n"))
+    write(d, "lab_both.job.toml", lab_job % ('"as recorded"', "table.txt", 'motion = "stochastic_s1-X.AT2"\n'))
+    write(d, "lab_scales.job.toml", lab_job % ('"as recoded"', "table.txt", ""))
     sphere_facets = sphere_stl(os.path.join(d, "sphere.stl"), SPHERE_FACETS)
     write(d, "sphere.model", "block pedestal.stl\n1 0 0 0\nblock sphere.stl\n0 0 0 0\n")
     return sphere_facets
@@ -275,6 +286,19 @@ def cases(d, sphere_facets):
          ["sweep_outside.job.toml:9:", "variant 0", "outside the block"]),
         ("window past the record on the command line", demo + ["--start", "100"], e, ["--start", "window"]),
         ("AT2 path that is a directory", ["run", "block.toml", "--motion", "dir-X.AT2"], e, ["dir-X.AT2", "directory"]),
+        # lab recordings (rigid run/motion info --lab, [[record]] lab = ... in jobs)
+        ("FIFO as a lab recording", ["run", "block.toml", "--lab", "fifo.txt.gz"], e, ["fifo.txt.gz", "regular"]),
+        ("/dev/zero as a lab recording", ["motion", "info", "--lab", "/dev/zero"], e, ["/dev/zero", "regular"]),
+        ("a lab recording of 1 s", ["run", "block.toml", "--lab", "table.txt", "--duration", "0.05"], "ok", []),
+        ("--lab and --motion together", demo + ["--lab", "table.txt"], e, ["--lab"]),
+        ("--lab-scale nan", ["run", "block.toml", "--lab", "table.txt", "--lab-scale", "nan"], e, ["--lab-scale"]),
+        ("--lab-channel velocity", ["motion", "info", "--lab", "table.txt", "--lab-channel", "velocity"], e, ["--lab-channel"]),
+        ("--lab-filter-order 40", ["motion", "info", "--lab", "table.txt", "--lab-filter-order", "40"], e, ["--lab-filter-order"]),
+        ("missing lab recording in a job", camp("lab_missing.job.toml", "--dry-run"), e, ["lab_missing.job.toml:6:", "none.txt.gz"]),
+        ("unknown [lab] key in a job", camp("lab_badkey.job.toml", "--dry-run"), e, ["lab_badkey.job.toml:", "chanel"]),
+        ("unknown unit in a job's [lab]", camp("lab_badunit.job.toml", "--dry-run"), e, ["lab_badunit.job.toml:8:", "furlong"]),
+        ("lab and motion in one [[record]]", camp("lab_both.job.toml", "--dry-run"), e, ["lab_both.job.toml:6:", "one of them"]),
+        ('scales = "as recoded"', camp("lab_scales.job.toml", "--dry-run"), e, ["lab_scales.job.toml:2:", "as recorded"]),
         # scans (rigid model import, issue 13)
         ("import a good cube", imp("cube.obj"), "ok", []),
         ("import an open mesh", imp("open.obj"), e, ["open.obj", "open edge", "3 open edges, at facets"]),

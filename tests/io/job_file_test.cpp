@@ -48,6 +48,50 @@ scene = "../models/demo/block_a02.toml"
 motion = "../waveforms/demo/stochastic_s1-X.AT2"
 )";
 
+// a lab recording written beside the job (the job resolves it relative to itself)
+const char* kLabJob = R"([campaign]
+scales = "as recorded"
+
+[[object]]
+scene = "../models/demo/block_a02.toml"
+
+[[record]]
+lab = "test_lab_recording.txt"
+
+[lab]
+channel = "displacement"
+displacement_unit = "mm"
+band_hz = [0.2, 20.0]
+filter_order = 2
+acceleration_column = "Acceleration [g]"
+)";
+
+TEST_F(JobFile, ALabRecordAsRecordedReadsItsFormatFromTheLabTable) {
+  const fs::path recording = fs::path(RIGID_SOURCE_DIR) / "jobs" / "test_lab_recording.txt";
+  std::ofstream(recording) << "t\ta\td\n0\t0\t0\n";
+  const auto job = load_job(write(kLabJob));
+  fs::remove(recording);
+  EXPECT_TRUE(job.as_recorded());
+  ASSERT_EQ(job.scales_g.size(), 1u);
+  ASSERT_EQ(job.records.size(), 1u);
+  EXPECT_TRUE(job.records[0].lab);
+  EXPECT_EQ(job.records[0].name, "test_lab_recording");
+  EXPECT_EQ(fs::path(job.records[0].spec).filename(), "test_lab_recording.txt");
+  EXPECT_EQ(job.lab_format.channel, motion::LabChannel::displacement);
+  EXPECT_EQ(job.lab_format.displacement_unit, "mm");
+  EXPECT_EQ(job.lab_format.acceleration.name, "Acceleration [g]");
+  EXPECT_EQ(job.lab_format.processing.order, 2);
+  EXPECT_DOUBLE_EQ(job.lab_format.processing.low_hz, 0.2);
+  EXPECT_DOUBLE_EQ(job.lab_format.processing.high_hz, 20.0);
+}
+
+TEST_F(JobFile, ABadLabTableOrLabRecordIsRefusedAtItsLine) {
+  std::string job = kLabJob;
+  expect_error(job, "lab recording not found", 7);
+  const std::string unused = std::string(kGood) + "[lab]\nchannel = \"acceleration\"\n";
+  expect_error(unused, "no [[record]] has lab", 9);
+}
+
 TEST_F(JobFile, GoodJobLoadsWithTheStudysDefaults) {
   const auto job = load_job(write(kGood));
   ASSERT_EQ(job.scales_g.size(), 5u);

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "rigid/motion/lab_format.hpp"
 #include "rigid/scenario/accuracy.hpp"
 #include "rigid/scenario/case.hpp"
 #include "rigid/scenario/scene.hpp"
@@ -32,7 +33,9 @@ struct JobObject {
 /// One record (a ground-motion set) of a campaign.
 struct JobRecord {
   std::string name;        ///< unique record name
-  std::string spec;        ///< motion-set spec with resolved paths (see io::resolve_set)
+  std::string spec;        ///< motion-set spec with resolved paths (see io::resolve_set); lab: the file
+  /// A lab recording ([[record]] lab = "FILE"), read with Job::lab_format, instead of an AT2 set
+  bool lab = false;
   double start = 0;        ///< window start (unit: s)
   double end = std::numeric_limits<double>::infinity();  ///< window end (unit: s)
   std::string earthquake;  ///< from the record list, may be empty
@@ -44,6 +47,10 @@ struct JobRecord {
   std::string origin_file;  ///< where the record is given (job file or record list), for messages
   long origin_line = 0;     ///< its line there
 };
+
+/// The one scale of a campaign "as recorded" ([campaign] scales = "as recorded"): each record at
+/// factor 1, no PGA scaling (a target PGA of 0 scales nothing, scenario::case_motion).
+inline constexpr double kAsRecordedScale = 0.0;
 
 struct Job {
   std::string path;        ///< the job file
@@ -66,6 +73,10 @@ struct Job {
   std::vector<JobRecord> records;
   std::string record_list;        ///< the record-list file (resolved path), empty for [[record]] tables
   std::vector<double> scales_g;   ///< target GMRotI50 PGA of each scale, increasing (unit: g)
+  /// scales = "as recorded": scales_g is {kAsRecordedScale}, every record simulated as it is
+  bool as_recorded() const { return scales_g.size() == 1 && scales_g[0] == kAsRecordedScale; }
+  /// The job's [lab] table: how its lab records ([[record]] lab = ...) are read and processed
+  motion::LabFormat lab_format;
   int rotations = 2;              ///< random rotations per (record, scale)
   /// Fixed rotation angles instead of random ones ([campaign] rotation_angles_deg; unit: deg):
   /// one per rotation index, e.g. [0.0] drives every block with the x component along x, as the

@@ -1,0 +1,85 @@
+#pragma once
+/// Processing of raw laboratory (shake-table) signals into a ground acceleration: baseline
+/// correction, a zero-phase Butterworth band-pass, and double differentiation of a displacement
+/// channel. No file I/O here (rigid::io reads the recordings, io/lab_recording.hpp).
+///
+/// The band-pass is designed by liquid-dsp (Debian libliquid-dev, liquid_iirdes: Butterworth,
+/// band-pass, second-order sections), applied forward then backward in double precision exactly
+/// as scipy.signal.sosfiltfilt does with its defaults (padtype "odd", padlen 3 (2 n_sections + 1),
+/// each pass started from the sections' steady state scaled by its first sample).
+#include <array>
+#include <string>
+#include <vector>
+
+namespace rigid::motion {
+
+/// What is subtracted from a raw signal before filtering.
+enum class LabBaseline {
+  none,   ///< nothing
+  mean,   ///< the mean (the default: a constant offset of the transducer)
+  linear, ///< the least-squares line a + b t (an offset and a drift)
+  polynomial  ///< the least-squares polynomial of LabProcessing::baseline_degree
+};
+
+/// The lab signal processing options (defaults: mean removed, band-pass 0.1-25 Hz, order 4).
+struct LabProcessing {
+  LabBaseline baseline = LabBaseline::mean;
+  int baseline_degree = 2;   ///< degree of the `polynomial` baseline, 0..10
+  bool band_pass = true;     ///< false: no filter (the signal is used as recorded, baseline removed)
+  double low_hz = 0.1;       ///< lower corner (unit: Hz), -3 dB of the one-way filter, > 0
+  double high_hz = 25.0;     ///< upper corner (unit: Hz), > low_hz, < Nyquist
+  int order = 4;             ///< Butterworth order of the low-pass prototype, 1..8 (band-pass: 2 order poles)
+};
+
+/// One second-order section: y = (b0 + b1 z^-1 + b2 z^-2) / (1 + a1 z^-1 + a2 z^-2) x.
+struct Biquad {
+  double b0 = 1, b1 = 0, b2 = 0, a1 = 0, a2 = 0;
+};
+
+/// The Butterworth band-pass [low_hz, high_hz] of the given prototype order at time step dt
+/// (unit: s), as `order` second-order sections designed by liquid-dsp (single precision: the
+/// coefficients carry float round-off, ~1e-7 relative). Throws std::invalid_argument unless
+/// 0 < low_hz < high_hz < 0.5/dt and 1 <= order <= 8.
+std::vector<Biquad> butterworth_bandpass(double low_hz, double high_hz, int order, double dt);
+
+/// |H(f)| of the cascade at frequency f (unit: Hz) for time step dt (one pass; the
+/// forward-backward filter has |H|^2).
+double gain_at(const std::vector<Biquad>& sections, double f_hz, double dt);
+
+/// One causal pass of the cascade (transposed direct form II, double precision) from the given
+/// initial state (2 values per section; empty = at rest).
+std::vector<double> sos_filter(const std::vector<Biquad>& sections, const std::vector<double>& x,
+                               const std::vector<std::array<double, 2>>& state = {});
+
+/// Zero-phase filtering, scipy.signal.sosfiltfilt with its defaults: the signal is extended at
+/// each end by padlen = 3 (2 sections + 1) samples of odd reflection (2 x[0] - x[padlen..1] before,
+/// 2 x[n-1] - x[n-2..n-1-padlen] after), filtered forward from the steady-state section states
+/// (scipy.signal.sosfilt_zi) times the first extended sample, reversed, filtered again from the
+/// steady state times its first sample, reversed, and the padding removed. Throws
+/// std::invalid_argument if the signal has padlen samples or fewer.
+std::vector<double> filtfilt(const std::vector<Biquad>& sections, const std::vector<double>& x);
+
+/// The signal minus its baseline (least squares over t = i dt; polynomial degree `degree` when
+/// kind is polynomial), solved with Eigen's column-pivoting QR on a scaled time.
+std::vector<double> remove_baseline(const std::vector<double>& x, LabBaseline kind, int degree = 2);
+
+/// Second derivative by central differences, (x[i+1] - 2 x[i] + x[i-1]) / dt^2, exact for a
+/// quadratic; the first and last samples take their neighbour's value. At frequency f the
+/// operator's gain is (2 - 2 cos(2 pi f dt)) / dt^2 instead of (2 pi f)^2: 0.3 % low at 25 Hz
+/// and 800 Hz sampling.
+std::vector<double> second_derivative(const std::vector<double>& x, double dt);
+
+/// Baseline then band-pass (when enabled) of an acceleration series (any unit; the result has it).
+std::vector<double> process_acceleration(const std::vector<double>& acc, double dt,
+                                         const LabProcessing& p);
+
+/// The acceleration of a displacement series: baseline, band-pass (when enabled), then
+/// second_derivative (unit: the displacement's per s^2). Filtering first keeps the
+/// differentiation's amplification of high-frequency transducer noise out of the band.
+std::vector<double> acceleration_from_displacement(const std::vector<double>& disp, double dt,
+                                                   const LabProcessing& p);
+
+/// "none", "mean", "linear", "polynomial".
+const char* lab_baseline_name(LabBaseline b);
+
+}  // namespace rigid::motion

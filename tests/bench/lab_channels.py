@@ -1,0 +1,75 @@
+#!/usr/bin/env python3
+"""Which channel of a shake-table recording should drive the pedestal: the accelerometer
+(band-passed) or the displacement transducer (band-passed, differentiated twice)?
+
+Over every test of a lab's sheet (default ../shared/shaketable/tests.csv), runs
+`rigid motion info --lab FILE --json` once per channel with the default format (band-pass
+0.1-25 Hz, order 4, zero-phase) and prints, per channel and for their ratio, the median and the
+5-95 % range of PGA, PGV and PGV/PGA, and each channel's PGA against the sheet's pga_g.
+
+usage: lab_channels.py RIGID [TESTS.csv] [--csv OUT.csv]
+"""
+import csv
+import json
+import os
+import subprocess
+import sys
+
+import numpy as np
+
+
+def info(rigid, path, channel):
+    out = subprocess.run([rigid, "motion", "info", "--json", "--lab", path, "--lab-channel", channel],
+                         check=True, capture_output=True, text=True).stdout
+    return json.loads(out)
+
+
+def spread(v):
+    v = np.asarray(v, float)
+    return "median %.3f, 5-95 %% %.3f-%.3f, min %.3f, max %.3f" % (
+        np.median(v), np.percentile(v, 5), np.percentile(v, 95), v.min(), v.max())
+
+
+def main():
+    args = sys.argv[1:]
+    out_csv = None
+    if "--csv" in args:
+        i = args.index("--csv")
+        out_csv = args[i + 1]
+        del args[i:i + 2]
+    rigid = os.path.abspath(args[0])
+    sheet = args[1] if len(args) > 1 else os.path.join(os.path.dirname(__file__), "..", "..", "..", "shared",
+                                                       "shaketable", "tests.csv")
+    root = os.path.dirname(os.path.abspath(sheet))
+    with open(sheet) as f:
+        rows = list(csv.DictReader(f))
+    table = []
+    for row in rows:
+        path = row["file"] if os.path.isabs(row["file"]) else os.path.join(root, row["file"])
+        a, d = info(rigid, path, "acceleration"), info(rigid, path, "displacement")
+        table.append({"test_no": row["test_no"], "sheet_pga_g": float(row["pga_g"]),
+                      "sheet_pgv_pga_s": float(row["pgv_over_pga_s"]),
+                      "acc_pga_g": a["pga_g"], "acc_pgv_m_s": a["pgv_m_s"], "acc_pgv_pga_s": a["pgv_pga_s"],
+                      "disp_pga_g": d["pga_g"], "disp_pgv_m_s": d["pgv_m_s"], "disp_pgv_pga_s": d["pgv_pga_s"]})
+    col = lambda k: np.array([r[k] for r in table])
+    print("%d tests of %s" % (len(table), sheet))
+    print("PGA displacement/acceleration channel:      " + spread(col("disp_pga_g") / col("acc_pga_g")))
+    print("PGV displacement/acceleration channel:      " + spread(col("disp_pgv_m_s") / col("acc_pgv_m_s")))
+    print("PGV/PGA displacement/acceleration channel:  " + spread(col("disp_pgv_pga_s") / col("acc_pgv_pga_s")))
+    for ch in ("acc", "disp"):
+        r = col(ch + "_pga_g") / col("sheet_pga_g")
+        q = col(ch + "_pgv_pga_s") / col("sheet_pgv_pga_s")
+        print("%-4s PGA / sheet pga_g:          %s; |diff| median %.3f" % (ch, spread(r), np.median(np.abs(r - 1))))
+        print("%-4s PGV/PGA / sheet's:          %s; |diff| median %.3f" % (ch, spread(q), np.median(np.abs(q - 1))))
+    big = np.abs(col("disp_pga_g") / col("acc_pga_g") - 1) > 0.2
+    print("tests whose channels differ by more than 20 %% in PGA: %d" % big.sum())
+    if out_csv:
+        with open(out_csv, "w", newline="") as f:
+            w = csv.DictWriter(f, fieldnames=list(table[0]))
+            w.writeheader()
+            w.writerows(table)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
