@@ -19,6 +19,9 @@ void set_campaign_arguments(int& argc, char**& argv) {
   g_argv = &argv;
 }
 
+int& campaign_argc() { return *g_argc; }
+char**& campaign_argv() { return *g_argv; }
+
 struct CampaignCommand {
   campaign::CampaignOptions options;
   std::string progress = "auto";  // auto | bar | log | none
@@ -66,7 +69,7 @@ void register_campaign_command(CLI::App& app) {
     campaign::CampaignOptions& options = command->options;
     attach_progress(options, command->progress, command->log_interval);
     options.on_dry_run = print_dry_run;
-    const campaign::CampaignResult result = campaign::run_campaign(*g_argc, *g_argv, options);
+    const campaign::CampaignResult result = campaign::run_campaign(campaign_argc(), campaign_argv(), options);
     if (result.cube) {
       print_summary(*result.cube, result.output);
       print_failures(*result.cube);

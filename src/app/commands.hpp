@@ -18,7 +18,12 @@ void register_plot_command(CLI::App& app);
 void register_fragility_commands(CLI::App& app);
 void register_study_command(CLI::App& app);
 void register_export_command(CLI::App& app);
+/// `rigid shaketable calibrate|predict`: a scanned rock against shake-table tests.
+void register_shaketable_command(CLI::App& app);
 /// The campaign initialises MPI, which wants main()'s arguments.
 void set_campaign_arguments(int& argc, char**& argv);
+/// main()'s arguments, for the commands that start MPI.
+int& campaign_argc();
+char**& campaign_argv();
 
 }  // namespace rigid::app

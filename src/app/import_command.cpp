@@ -21,6 +21,7 @@
 #include "rigid/io/stl.hpp"
 #include "rigid/scenario/rocking_parameters.hpp"
 #include "rigid/scenario/scene.hpp"
+#include "import_scan.hpp"
 #include "scene_input.hpp"
 
 namespace rigid::app {
@@ -28,21 +29,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct ImportOptions {
-  std::string scan;
-  std::string out;               // DIR/NAME
-  double scale = 1.0;            // file unit -> m
-  std::string up = "z";          // the file's axis that points up
-  std::string contact_shape = "hull";
-  int max_vertices = 0;          // 0: 128 for a hull, 48 per piece for a decomposition
-  double concavity = 0.02;
-  int max_pieces = 128;
-  std::string pedestal = "box";  // box or a scan of the pedestal
-  double pedestal_margin = 0.02; // m
-  double density = 2600;         // kg/m^3
-  double flatten_base = 0;       // m: cut the base flat this far above its lowest point
-  double split_z = std::nan("");  // m: one scan of rock and pedestal, cut by the plane z = split_z
-};
 
 // A closed mesh from a soup the split made (both parts are closed by construction).
 geometry::ClosedMesh closed_part(const geometry::TriangleSoup& soup, const std::string& what) {
@@ -129,6 +115,8 @@ io::Json report_json(const ContactReport& r) {
   return j;
 }
 
+}  // namespace
+
 void import_scan(const ImportOptions& o) {
   if (!(o.scale > 0) || !std::isfinite(o.scale)) throw InputError("", 0, "--scale must be a positive number");
   if (!(o.flatten_base >= 0 && o.flatten_base < 1)) throw InputError("", 0, "--flatten-base must be in [0, 1) m");
@@ -138,6 +126,7 @@ void import_scan(const ImportOptions& o) {
   if (!(o.concavity >= 0 && o.concavity < 1)) throw InputError("", 0, "--concavity must be in [0, 1)");
   if (o.max_pieces < 1) throw InputError("", 0, "--max-pieces must be at least 1");
   if (!(o.pedestal_margin >= 0 && o.pedestal_margin < 10)) throw InputError("", 0, "--pedestal-margin must be in [0, 10) m");
+  if (!(o.tilt_deg >= 0 && o.tilt_deg < 90)) throw InputError("", 0, "--tilt-rule must be in (0, 90) deg");
   const Mat3 rotation = io::up_rotation(o.up);
   const fs::path out(o.out);
   const std::string name = out.filename().string();
@@ -218,7 +207,8 @@ void import_scan(const ImportOptions& o) {
   char density[64];
   std::snprintf(density, sizeof density, "density = %.17g\n", o.density);
   physics.replace(physics.find(study_density), study_density.size(), density);
-  const std::string body = physics + "\n[failure]\nrule = \"below\"\n\n" + blocks;
+  const std::string failure = o.tilt_deg > 0 ? "rule = \"tilt\"\ntilt_deg = " + std::to_string(o.tilt_deg) : "rule = \"below\"";
+  const std::string body = physics + "\n[failure]\n" + failure + "\n\n" + blocks;
   std::ofstream(scene_path) << header << body;
   // settle it on its pedestal: the campaigns start from this state
   const scenario::Scene scene = load_scene_with_warnings(scene_path.string());
@@ -267,8 +257,6 @@ void import_scan(const ImportOptions& o) {
   std::printf("wrote %s.{toml,state.toml,import.json} and its meshes\n", o.out.c_str());
 }
 
-}  // namespace
-
 void add_import_subcommand(CLI::App& model_command) {
   auto o = std::make_shared<ImportOptions>();
   CLI::App* cmd = model_command.add_subcommand(
@@ -295,6 +283,9 @@ void add_import_subcommand(CLI::App& model_command) {
                   "three lowest asperities")
       ->capture_default_str();
   cmd->add_option("--density", o->density, "Rock density written to the scene (kg/m^3)")->capture_default_str();
+  cmd->add_option("--tilt-rule", o->tilt_deg,
+                  "Failure rule: overturned once tilted beyond this angle (deg; for a rock on a wide table, where it "
+                  "cannot fall below its pedestal); default: fallen below the pedestal");
   cmd->callback([o] { import_scan(*o); });
 }
 

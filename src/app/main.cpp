@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
   rigid::app::register_fragility_commands(app);
   rigid::app::register_study_command(app);
   rigid::app::register_export_command(app);
+  rigid::app::register_shaketable_command(app);
   rigid::app::set_campaign_arguments(argc, argv);
   if (argc <= 1) {
     std::fputs(app.help().c_str(), stdout);

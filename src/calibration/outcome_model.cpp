@@ -102,6 +102,38 @@ std::vector<Member> confidence_set(const std::vector<Candidate>& ranked, double 
   return out;
 }
 
+OutcomeGrid select_variants(const OutcomeGrid& grid, const std::vector<int>& variants) {
+  std::vector<double> headings;
+  for (int h = 0; h < grid.headings(); ++h) headings.push_back(grid.heading_deg(h));
+  OutcomeGrid out(int(variants.size()), grid.tests(), headings);
+  for (std::size_t k = 0; k < variants.size(); ++k) {
+    for (int t = 0; t < grid.tests(); ++t) {
+      for (int h = 0; h < grid.headings(); ++h) out.set(int(k), t, h, grid.overturned(variants[k], t, h));
+    }
+  }
+  return out;
+}
+
+std::vector<Member> leading_members(std::vector<Member> members, double weight, int max_variants) {
+  std::sort(members.begin(), members.end(), [](const Member& a, const Member& b) {
+    if (a.weight != b.weight) return a.weight > b.weight;
+    return better(a.candidate, b.candidate);
+  });
+  std::vector<Member> out;
+  std::vector<int> variants;
+  double covered = 0;
+  for (const Member& m : members) {
+    if (covered >= weight) break;
+    const bool known = std::find(variants.begin(), variants.end(), m.candidate.variant) != variants.end();
+    if (!known && int(variants.size()) >= max_variants) continue;
+    if (!known) variants.push_back(m.candidate.variant);
+    out.push_back(m);
+    covered += m.weight;
+  }
+  for (Member& m : out) m.weight /= covered;
+  return out;
+}
+
 std::vector<double> ensemble_probability(const OutcomeGrid& grid, const std::vector<Member>& members) {
   std::vector<double> p(std::size_t(grid.tests()), 0.0);
   for (const Member& m : members) {

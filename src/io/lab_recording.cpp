@@ -490,4 +490,8 @@ std::string describe_lab_processing(const LabFormat& f) {
   return s;
 }
 
+LabFormat read_lab_format(const std::string& path) {
+  return lab_format_from_toml(read_input_file(path, kMaxTextFileBytes), path);
+}
+
 }  // namespace rigid::io

@@ -41,6 +41,9 @@ class OutcomeGrid {
   std::vector<std::int8_t> cells_;
 };
 
+/// The grid of a subset of its variants (in the order given).
+OutcomeGrid select_variants(const OutcomeGrid& grid, const std::vector<int>& variants);
+
 /// One candidate model of the real tests.
 struct Candidate {
   int variant = 0;   ///< physics variant (index in the design)
@@ -78,6 +81,11 @@ struct Member {
   double weight = 0;
 };
 std::vector<Member> confidence_set(const std::vector<Candidate>& ranked, double log_likelihood_drop = 1.92);
+
+/// The members that carry most of the weight, for predictions that must simulate each member's
+/// variant: the heaviest first until `weight` is covered or another variant would exceed
+/// `max_variants`; weights renormalised.
+std::vector<Member> leading_members(std::vector<Member> members, double weight = 0.9, int max_variants = 3);
 
 /// P(overturn) of every test averaged over an ensemble.
 std::vector<double> ensemble_probability(const OutcomeGrid& grid, const std::vector<Member>& members);

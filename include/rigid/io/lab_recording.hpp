@@ -52,6 +52,9 @@ LabColumn parse_lab_column(std::string_view text);
 /// an integer (1-based) or a header name. Unknown keys and bad values: InputError at their line.
 LabFormat lab_format_from_toml(std::string_view toml_text, const std::string& file);
 
+/// lab_format_from_toml of a file (read through the bounded reader of every text input).
+LabFormat read_lab_format(const std::string& path);
+
 /// The raw columns of a recording, in the file's units (time in s).
 struct LabTable {
   std::string source;             ///< the file

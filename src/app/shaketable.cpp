@@ -1,0 +1,100 @@
+#include "shaketable.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "rigid/core/error.hpp"
+#include "rigid/core/types.hpp"
+#include "rigid/io/lab_recording.hpp"
+#include "rigid/io/scene_file.hpp"
+#include "rigid/scenario/rocking_parameters.hpp"
+
+namespace rigid::app::shaketable {
+
+std::string Physics::label() const {
+  char text[160];
+  if (contact == "penalty") {
+    std::snprintf(text, sizeof text, "%s penalty K=%.3g D=%g mu=%.2f", base.c_str(), normal_stiffness, damping, friction);
+  } else {
+    std::snprintf(text, sizeof text, "%s rigid e=%.2f mu=%.2f", base.c_str(), restitution, friction);
+  }
+  return text;
+}
+
+std::vector<std::pair<std::string, std::variant<double, std::string>>> Physics::variant_table() const {
+  std::vector<std::pair<std::string, std::variant<double, std::string>>> t;
+  t.emplace_back("scene", base_scene);
+  t.emplace_back("friction", friction);
+  if (contact == "penalty") t.emplace_back("damping", damping);
+  else t.emplace_back("restitution", restitution);
+  return t;
+}
+
+LabInput lab_input(const std::string& format_file) {
+  LabInput in;
+  in.format_file = format_file;
+  if (!format_file.empty()) {
+    in.format = io::read_lab_format(format_file);
+  }
+  return in;
+}
+
+std::vector<io::DesignJob::Record> strong_motion_windows(const io::LabTestList& tests, const LabInput& lab,
+                                                         double level_g) {
+  std::vector<io::DesignJob::Record> out;
+  const double level = level_g * kGravity;
+  for (const io::LabTest& t : tests.tests) {
+    const motion::GroundMotion m = io::read_lab_motion(t.file, lab.format);
+    long first = -1, last = -1;
+    for (std::size_t i = 0; i < m.x.size(); ++i) {
+      if (std::abs(m.x[i]) > level) {
+        if (first < 0) first = long(i);
+        last = long(i);
+      }
+    }
+    io::DesignJob::Record r;
+    r.lab = t.file;
+    if (first < 0) {
+      r.start = 0;
+      r.end = std::min(2.0, m.duration());
+    } else {
+      r.start = std::max(0.0, double(first) * m.dt - 1.0);
+      r.end = std::min(m.duration(), double(last) * m.dt + 1.0);
+    }
+    out.push_back(r);
+  }
+  return out;
+}
+
+double static_toppling_g(const std::string& scene) {
+  const auto rocking = scenario::rocking_parameters(io::load_scene(scene));
+  if (!rocking) throw InputError(scene, 0, "has no single free block standing on its pedestal (no rocking parameters)");
+  return std::tan(rocking->alpha);
+}
+
+calibration::OutcomeGrid outcome_grid(const io::Cube& cube, const std::vector<double>& headings_deg) {
+  const int variants = int(cube.objects.size());
+  const int tests = int(cube.records.size());
+  const int headings = cube.rotations;
+  if (headings != int(headings_deg.size()) || cube.scales_g.size() != 1)
+    throw InputError("", 0, "a designed campaign's cube has an unexpected shape");
+  calibration::OutcomeGrid grid(variants, tests, headings_deg);
+  for (int v = 0; v < variants; ++v) {
+    const io::ObjectCube& o = cube.objects[std::size_t(v)];
+    for (int t = 0; t < tests; ++t) {
+      for (int h = 0; h < headings; ++h) {
+        const auto code = static_cast<io::CellOutcome>(o.outcome[std::size_t(t * headings + h)]);
+        if (code != io::CellOutcome::survived && code != io::CellOutcome::overturned) {
+          throw InputError("", 0, "cell (" + io::object_label(o) + ", record " + cube.records[std::size_t(t)].name +
+                                      ", heading " + std::to_string(headings_deg[std::size_t(h)]) + ") was not simulated (" +
+                                      io::outcome_name(std::int8_t(code)) + ")");
+        }
+        grid.set(v, t, h, code == io::CellOutcome::overturned);
+      }
+    }
+  }
+  return grid;
+}
+
+}  // namespace rigid::app::shaketable

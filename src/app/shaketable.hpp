@@ -1,0 +1,56 @@
+#pragma once
+// What `rigid shaketable calibrate` and `predict` share: the physics a design varies, the
+// strong-motion windows of the recorded table motions, the designed campaigns and the outcome
+// grid read back from their cubes (docs/validation-shaketable.md).
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "rigid/calibration/outcome_model.hpp"
+#include "rigid/io/cube.hpp"
+#include "rigid/io/design_job.hpp"
+#include "rigid/io/lab_tests.hpp"
+#include "rigid/motion/lab_format.hpp"
+
+namespace rigid::app::shaketable {
+
+/// One physics variant of a design: which model of the scanned base, and the contact law.
+struct Physics {
+  std::string base;          ///< the base model's name (e.g. "flat_5mm")
+  std::string base_scene;    ///< the scene of the base and contact model, settled with that contact (absolute path)
+  double flatten_m = 0;      ///< how the base model was made: --flatten-base (unit: m)
+  std::string contact = "rigid";
+  double normal_stiffness = 1e8;  ///< penalty only: K_N = K_S (unit: N/m^1.5)
+  double damping = 2;        ///< penalty only: Hunt-Crossley D (unit: s/m)
+  double restitution = 0;    ///< rigid only (unit: 1)
+  double friction = 0.6;     ///< unit: 1
+  /// One line for tables: "flat_5mm penalty K=1e+06 D=2 mu=0.60".
+  std::string label() const;
+  /// The job's [[variant]] table: the scene (base and contact model) and the law's other values.
+  std::vector<std::pair<std::string, std::variant<double, std::string>>> variant_table() const;
+};
+
+/// The recordings' format: a TOML file's [lab] table, or the default (this lab's export).
+struct LabInput {
+  std::string format_file;
+  motion::LabFormat format;
+};
+LabInput lab_input(const std::string& format_file);
+
+/// The part of each test's motion that can move the rock: from 1 s before the first sample whose
+/// acceleration exceeds `level_g` to 1 s after the last (the whole record when none does: 2 s).
+/// A rock at rest on its base cannot start to rock or slide below its quasi-static toppling
+/// acceleration, so with level = half of it nothing is cut that could decide the outcome, and the
+/// run's free time after the window lets a rocking rock settle or fall.
+std::vector<io::DesignJob::Record> strong_motion_windows(const io::LabTestList& tests, const LabInput& lab,
+                                                         double level_g);
+
+/// The smallest quasi-static toppling acceleration of a scene's free block (unit: g).
+double static_toppling_g(const std::string& scene);
+
+/// The outcome grid of a designed campaign's cube: variant v, test t (record t), heading h
+/// (rotation index h). Throws InputError if a cell is not simulated or failed.
+calibration::OutcomeGrid outcome_grid(const io::Cube& cube, const std::vector<double>& headings_deg);
+
+
+}  // namespace rigid::app::shaketable

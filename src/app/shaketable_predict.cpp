@@ -1,0 +1,227 @@
+// `rigid shaketable predict`: P(overturn) of each listed shake-table test for a (calibrated)
+// scene, averaged over the calibration's ensemble (heading window, lapse, the physics left
+// uncertain) when SCENE.calibration.json lies beside it. Never reads the outcome column until the
+// predictions are written; then scores them against it.
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <set>
+#include <sstream>
+
+#include "campaign_report.hpp"
+#include "commands.hpp"
+#include "rigid/campaign/driver.hpp"
+#include "rigid/core/error.hpp"
+#include "rigid/io/json.hpp"
+#include "shaketable.hpp"
+#include "shaketable_report.hpp"
+
+namespace rigid::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct PredictOptions {
+  std::string scene, tests, out, lab_format, progress = "auto";
+};
+
+// One member of the ensemble: which variant of the job, which of its rotations, its weight.
+struct Member {
+  int variant = 0;
+  std::vector<int> rotations;
+  double weight = 1, lapse = 0;
+};
+
+struct Prediction {
+  io::LabTestList tests;
+  shaketable::LabInput lab;
+  std::vector<Member> members;
+  std::vector<double> rotations;
+  std::string json;
+  int stage = 0;
+};
+
+double number(const io::Json& j, const char* key, const std::string& file) {
+  if (!j.contains(key) || !j[key].is_number()) throw InputError(file, 0, std::string("ensemble member without a number '") + key + "'");
+  return j[key].get<double>();
+}
+
+campaign::CampaignOptions prepare(Prediction& p, const PredictOptions& o) {
+  p.tests = io::read_lab_tests(o.tests);
+  p.lab = shaketable::lab_input(o.lab_format);
+  const fs::path scene = fs::absolute(o.scene).lexically_normal();
+  io::DesignJob job;
+  job.object_name = "rock";
+  job.scene = scene.string();
+  job.comment = "rigid shaketable predict " + o.scene + " --tests " + o.tests + "\n(written by the command; run again to resume)";
+  std::vector<std::string> scenes{scene.string()};
+  std::string json = o.scene;
+  if (json.size() > 5 && json.ends_with(".toml")) json = json.substr(0, json.size() - 5);
+  json += ".calibration.json";
+  std::set<double> rotation_set;
+  if (fs::exists(json)) {
+    p.json = json;
+    io::Json j;
+    try {
+      std::ifstream in(json);
+      j = io::Json::parse(in);
+    } catch (const std::exception& e) {
+      throw InputError(json, 0, std::string("not a calibration file: ") + e.what());
+    }
+    if (!j.contains("ensemble") || !j["ensemble"].is_array() || j["ensemble"].empty())
+      throw InputError(json, 0, "has no ensemble");
+    std::map<std::string, int> variant_of;
+    for (const auto& m : j["ensemble"]) {
+      if (!m.contains("scene") || !m["scene"].is_string() || !m.contains("rotations_deg") || !m["rotations_deg"].is_array())
+        throw InputError(json, 0, "ensemble member without scene or rotations_deg");
+      Member member;
+      member.weight = number(m, "weight", json);
+      member.lapse = number(m, "lapse", json);
+      const std::string file = (fs::path(json).parent_path() / m["scene"].get<std::string>()).lexically_normal().string();
+      const auto [it, added] = variant_of.emplace(file, int(variant_of.size()));
+      if (added) {
+        job.variants.push_back({{"scene", fs::absolute(file).string()}});
+        scenes.push_back(file);
+      }
+      member.variant = it->second;
+      for (const auto& r : m["rotations_deg"]) {
+        if (!r.is_number()) throw InputError(json, 0, "rotations_deg must be numbers");
+        rotation_set.insert(r.get<double>());
+      }
+      p.members.push_back(member);
+    }
+    int k = 0;
+    for (const auto& m : j["ensemble"]) {
+      for (const auto& r : m["rotations_deg"]) {
+        const double angle = r.get<double>();
+        p.members[std::size_t(k)].rotations.push_back(int(std::distance(rotation_set.begin(), rotation_set.find(angle))));
+      }
+      ++k;
+    }
+  } else {
+    rotation_set.insert(0.0);
+    p.members.push_back({0, {0}, 1.0, 0.0});
+  }
+  p.rotations.assign(rotation_set.begin(), rotation_set.end());
+  double weakest = 1e300;
+  for (const std::string& s : scenes) weakest = std::min(weakest, shaketable::static_toppling_g(s));
+  job.records = shaketable::strong_motion_windows(p.tests, p.lab, 0.5 * weakest);
+  job.lab_format_file = o.lab_format.empty() ? "" : fs::absolute(o.lab_format).string();
+  job.rotation_angles_deg = p.rotations;
+  const std::string work = o.out + ".work";
+  std::error_code ec;
+  fs::create_directories(work, ec);
+  if (ec) throw InputError(work, 0, "cannot create the prediction's folder: " + ec.message());
+  campaign::CampaignOptions options;
+  options.job = (fs::path(work) / "predict.toml").string();
+  options.output = (fs::path(work) / "predict.h5").string();
+  io::write_design_job(options.job, job);
+  attach_progress(options, o.progress, 10);
+  std::printf("shaketable: %zu tests x %zu ensemble scenes x %zu headings = %zu runs%s\n", p.tests.tests.size(),
+              scenes.size() - (p.json.empty() ? 0 : 1), p.rotations.size(),
+              p.tests.tests.size() * (job.variants.empty() ? 1 : job.variants.size()) * p.rotations.size(),
+              p.json.empty() ? " (no calibration file beside the scene: one run per test)" : "");
+  std::fflush(stdout);
+  p.stage = 1;
+  return options;
+}
+
+void finish(const Prediction& p, const PredictOptions& o, const io::Cube& cube) {
+  const int tests = int(cube.records.size());
+  const int headings = cube.rotations;
+  std::vector<double> probability(std::size_t(tests), 0.0);
+  double total = 0;
+  for (const Member& m : p.members) total += m.weight;
+  for (const Member& m : p.members) {
+    const io::ObjectCube& object = cube.objects[std::size_t(m.variant)];
+    for (int t = 0; t < tests; ++t) {
+      int over = 0;
+      for (int h : m.rotations) {
+        const auto code = static_cast<io::CellOutcome>(object.outcome[std::size_t(t * headings + h)]);
+        if (code != io::CellOutcome::survived && code != io::CellOutcome::overturned)
+          throw InputError(o.out, 0, "test " + std::to_string(p.tests.tests[std::size_t(t)].test_no) + " was not simulated (" +
+                                         io::outcome_name(std::int8_t(code)) + ")");
+        over += code == io::CellOutcome::overturned ? 1 : 0;
+      }
+      const double share = double(over) / double(m.rotations.size());
+      probability[std::size_t(t)] += m.weight / total * (0.5 * m.lapse + (1 - m.lapse) * share);
+    }
+  }
+  std::ostringstream csv;
+  csv << "test_no,record,pga_g,pgv_over_pga_s,p_overturn,predicted\n";
+  for (int t = 0; t < tests; ++t) {
+    const io::LabTest& test = p.tests.tests[std::size_t(t)];
+    const io::RecordMeta& meta = cube.records[std::size_t(t)];
+    char line[512];
+    std::snprintf(line, sizeof line, "%ld,%s,%.5f,%.5f,%.6f,%d\n", test.test_no, test.record.c_str(), meta.gmroti_pga_g,
+                  meta.pgv_pga_s, probability[std::size_t(t)], probability[std::size_t(t)] >= 0.5 ? 1 : 0);
+    csv << line;
+  }
+  const std::string tmp = o.out + ".tmp";
+  {
+    std::ofstream f(tmp, std::ios::trunc);
+    f << csv.str();
+    f.flush();
+    if (!f) {
+      std::error_code ec;
+      fs::remove(tmp, ec);
+      throw InputError(o.out, 0, "cannot write");
+    }
+  }
+  std::error_code ec;
+  fs::rename(tmp, o.out, ec);
+  if (ec) throw InputError(o.out, 0, "cannot write: " + ec.message());
+  std::printf("wrote %s (%d tests; P(overturn) over %zu ensemble members%s)\n", o.out.c_str(), tests, p.members.size(),
+              p.json.empty() ? "" : (" from " + p.json).c_str());
+  // only now the outcomes, if the list has them
+  if (p.tests.has_outcomes) {
+    std::vector<int> observed;
+    for (const io::LabTest& t : p.tests.tests) observed.push_back(*t.overturned);
+    shaketable::print_scores("against the observed outcomes", calibration::score(probability, observed));
+  }
+}
+
+}  // namespace
+
+void add_shaketable_predict(CLI::App& parent) {
+  auto o = std::make_shared<PredictOptions>();
+  CLI::App* cmd = parent.add_subcommand(
+      "predict",
+      "P(overturn) of each shake-table test for a scene (a calibrated one averages over its calibration's ensemble); "
+      "writes one CSV row per test; scores the predictions when the list has an overturned column (never read before)");
+  cmd->add_option("scene", o->scene, "The scene, e.g. OUT.toml of rigid shaketable calibrate")->required();
+  cmd->add_option("--tests", o->tests, "Test list CSV (test_no,record,...,file[,overturned]); file relative to the CSV")->required();
+  cmd->add_option("--out", o->out, "Predictions CSV: test_no,record,pga_g,pgv_over_pga_s,p_overturn,predicted")->required();
+  cmd->add_option("--lab-format", o->lab_format, "TOML file whose [lab] table says how to read the recordings");
+  cmd->add_option("--progress", o->progress, "auto, bar, log or none")->capture_default_str()->check(CLI::IsMember({"auto", "bar", "log", "none"}));
+  cmd->callback([o] {
+    int status = 0;
+    {
+      const campaign::MpiSession session(campaign_argc(), campaign_argv());
+      Prediction p;
+      const auto next = [&](const campaign::CampaignResult*) -> std::optional<campaign::CampaignOptions> {
+        if (p.stage == 0) return prepare(p, *o);
+        return std::nullopt;
+      };
+      const campaign::CampaignResult result = campaign::run_campaign_sequence(session, next);
+      if (session.rank() == 0 && result.status == 0 && result.cube) finish(p, *o, *result.cube);
+      status = result.status;
+    }
+    if (status != 0) std::exit(status);
+  });
+}
+
+void add_shaketable_calibrate(CLI::App& parent);
+
+void register_shaketable_command(CLI::App& app) {
+  CLI::App* cmd = app.add_subcommand("shaketable", "A scanned rock against shake-table tests: calibrate its physics on "
+                                                   "observed outcomes, predict others (docs/validation-shaketable.md)");
+  cmd->require_subcommand(1);
+  add_shaketable_calibrate(*cmd);
+  add_shaketable_predict(*cmd);
+}
+
+}  // namespace rigid::app

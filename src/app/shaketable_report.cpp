@@ -1,0 +1,255 @@
+#include "shaketable_report.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+
+#include "rigid/core/error.hpp"
+#include "rigid/io/json.hpp"
+#include "rigid/io/scene_writer.hpp"
+
+namespace rigid::app::shaketable {
+namespace {
+
+namespace fs = std::filesystem;
+using calibration::Candidate;
+using calibration::Member;
+using calibration::OutcomeGrid;
+using calibration::Scores;
+
+io::Json scores_json(const Scores& s) {
+  io::Json j;
+  j["tests"] = s.tests;
+  j["accuracy"] = s.accuracy;
+  j["balanced_accuracy"] = s.balanced_accuracy;
+  j["precision"] = s.precision;
+  j["recall"] = s.recall;
+  j["brier"] = s.brier;
+  j["confusion"] = {{"true_positive", s.true_positive},
+                    {"false_negative", s.false_negative},
+                    {"false_positive", s.false_positive},
+                    {"true_negative", s.true_negative}};
+  return j;
+}
+
+io::Json physics_json(const Physics& p) {
+  io::Json j;
+  j["base"] = p.base;
+  j["flatten_base_m"] = p.flatten_m;
+  j["contact"] = p.contact;
+  if (p.contact == "penalty") {
+    j["normal_stiffness_n_m1_5"] = p.normal_stiffness;
+    j["damping_s_m"] = p.damping;
+  } else {
+    j["restitution"] = p.restitution;
+  }
+  j["friction"] = p.friction;
+  return j;
+}
+
+// Signed difference b - a on the circle, in (-180, 180] (unit: deg).
+double turn_between(double a, double b) {
+  double d = std::remainder(b - a, 360.0);
+  return d == -180.0 ? 180.0 : d;
+}
+
+std::vector<std::pair<std::string, std::variant<double, std::string>>> physics_changes(const Physics& p) {
+  std::vector<std::pair<std::string, std::variant<double, std::string>>> t;
+  t.emplace_back("contact", p.contact);
+  t.emplace_back("friction", p.friction);
+  if (p.contact == "penalty") {
+    t.emplace_back("normal_stiffness", p.normal_stiffness);
+    t.emplace_back("shear_stiffness", p.normal_stiffness);
+    t.emplace_back("damping", p.damping);
+  } else {
+    t.emplace_back("restitution", p.restitution);
+  }
+  return t;
+}
+
+// Each variant of a stage on its own: its best heading, spread and lapse, scored in and out of
+// sample (the heading refitted without the held-out record).
+io::Json variants_table(const OutcomeGrid& grid, const std::vector<Physics>& physics, const std::vector<int>& y,
+                        const std::vector<int>& group) {
+  io::Json rows = io::Json::array();
+  const std::vector<bool> all(y.size(), true);
+  for (int v = 0; v < grid.variants(); ++v) {
+    const OutcomeGrid one = calibration::select_variants(grid, {v});
+    const std::vector<Candidate> ranked = calibration::rank_candidates(one, y, all, {});
+    const Candidate& best = ranked.front();
+    std::vector<double> p_in(y.size());
+    for (std::size_t t = 0; t < y.size(); ++t) p_in[t] = calibration::overturn_probability(one, best, int(t));
+    const Scores in = calibration::score(p_in, y);
+    const Scores cv = calibration::score(calibration::cross_validated_probability(one, y, group, {}), y);
+    io::Json row = physics_json(physics[std::size_t(v)]);
+    row["label"] = physics[std::size_t(v)].label();
+    row["heading_deg"] = grid.heading_deg(best.heading);
+    row["heading_spread_deg"] = best.spread_deg;
+    row["lapse"] = best.lapse;
+    row["log_likelihood"] = best.log_likelihood;
+    row["in_sample"] = {{"accuracy", in.accuracy}, {"balanced_accuracy", in.balanced_accuracy}};
+    row["cross_validated"] = {{"accuracy", cv.accuracy}, {"balanced_accuracy", cv.balanced_accuracy}};
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+void write_json(const std::string& path, const io::Json& j) {
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::trunc);
+    out << j.dump(2) << "\n";
+    out.flush();
+    if (!out) {
+      std::error_code ec;
+      fs::remove(tmp, ec);
+      throw InputError(path, 0, "cannot write");
+    }
+  }
+  std::error_code ec;
+  fs::rename(tmp, path, ec);
+  if (ec) throw InputError(path, 0, "cannot write: " + ec.message());
+}
+
+}  // namespace
+
+void print_scores(const char* title, const Scores& s) {
+  std::printf("%s: accuracy %.3f, balanced accuracy %.3f, precision %.3f, recall %.3f, Brier %.3f\n", title, s.accuracy,
+              s.balanced_accuracy, s.precision, s.recall, s.brier);
+  std::printf("  confusion (rows observed, columns predicted): overturned %d | %d   stood %d | %d\n", s.true_positive,
+              s.false_negative, s.false_positive, s.true_negative);
+}
+
+void write_calibration(const CalibrationReport& r) {
+  const OutcomeGrid& grid = *r.stages.back().first;
+  const std::vector<Physics>& physics = r.stages.back().second;
+  const std::vector<int>& y = r.observed;
+  const std::vector<bool> all(y.size(), true);
+  const std::vector<Candidate> ranked = calibration::rank_candidates(grid, y, all, {});
+  const std::vector<Member> region = calibration::confidence_set(ranked);
+  const std::vector<Member> members = calibration::leading_members(region);
+  const Candidate& best = ranked.front();
+  const Physics& chosen = physics[std::size_t(best.variant)];
+  const double heading = grid.heading_deg(best.heading);
+  const Scores in = calibration::score(calibration::ensemble_probability(grid, members), y);
+  const Scores cv = calibration::score(calibration::cross_validated_probability(grid, y, r.group, {}), y);
+
+  // the calibrated scene: the chosen base model and contact law, the rock turned so that the
+  // table's axis is the scene's x axis
+  const fs::path out(r.out);
+  const std::string name = out.filename().string();
+  const std::string scene = r.out + ".toml";
+  io::SceneChanges changes;
+  changes.physics = physics_changes(chosen);
+  changes.turn_free_blocks_deg = -heading;
+  changes.comment = name + ": " + r.scan + " calibrated on " + r.tests_csv + " by rigid shaketable calibrate (" +
+                    chosen.label() + ", the table's axis along x: heading " + std::to_string(heading) +
+                    " deg in the scan's frame). Its uncertainty: " + name + ".calibration.json";
+  io::write_derived_scene(chosen.base_scene, scene, changes);
+
+  // the ensemble predictions average over: each member's scene turned alike
+  io::Json ensemble = io::Json::array();
+  std::map<int, std::string> member_scene;
+  for (const Member& m : members) {
+    const Physics& p = physics[std::size_t(m.candidate.variant)];
+    if (!member_scene.count(m.candidate.variant)) {
+      if (m.candidate.variant == best.variant) {
+        member_scene[m.candidate.variant] = fs::path(scene).filename().string();
+      } else {
+        const std::string file = name + ".calibration/member_v" + std::to_string(m.candidate.variant) + ".toml";
+        io::SceneChanges c = changes;
+        c.physics = physics_changes(p);
+        c.comment = p.label() + ", turned as " + name + ".toml";
+        io::write_derived_scene(p.base_scene, (out.parent_path() / file).string(), c);
+        member_scene[m.candidate.variant] = file;
+      }
+    }
+    io::Json j = physics_json(p);
+    j["scene"] = member_scene[m.candidate.variant];
+    j["weight"] = m.weight;
+    j["lapse"] = m.candidate.lapse;
+    j["heading_deg"] = grid.heading_deg(m.candidate.heading);
+    j["heading_spread_deg"] = m.candidate.spread_deg;
+    io::Json turns = io::Json::array();
+    for (int h : grid.window(m.candidate.heading, m.candidate.spread_deg))
+      turns.push_back(turn_between(heading, grid.heading_deg(h)));
+    j["rotations_deg"] = turns;  // of the motion, relative to the calibrated scene
+    ensemble.push_back(j);
+  }
+
+  // intervals: the values within the 95 % likelihood-ratio region
+  double turn_lo = 0, turn_hi = 0, spread_hi = 0, lapse_lo = 1, lapse_hi = 0;
+  std::set<std::string> bases, contacts;
+  std::set<double> stiffness, damping, restitution, friction;
+  for (const Member& m : region) {
+    const Physics& p = physics[std::size_t(m.candidate.variant)];
+    const double d = turn_between(heading, grid.heading_deg(m.candidate.heading));
+    turn_lo = std::min(turn_lo, d);
+    turn_hi = std::max(turn_hi, d);
+    spread_hi = std::max(spread_hi, m.candidate.spread_deg);
+    lapse_lo = std::min(lapse_lo, m.candidate.lapse);
+    lapse_hi = std::max(lapse_hi, m.candidate.lapse);
+    bases.insert(p.base);
+    contacts.insert(p.contact);
+    if (p.contact == "penalty") {
+      stiffness.insert(p.normal_stiffness);
+      damping.insert(p.damping);
+    } else {
+      restitution.insert(p.restitution);
+    }
+    friction.insert(p.friction);
+  }
+  io::Json j;
+  j["scan"] = r.scan;
+  j["tests"] = r.tests_csv;
+  j["scene"] = fs::path(scene).filename().string();
+  j["lab_format"] = r.lab_format_file.empty() ? "default" : r.lab_format_file;
+  j["tests_count"] = long(y.size());
+  j["overturned_count"] = long(std::count(y.begin(), y.end(), 1));
+  j["method"] = "maximum likelihood over the final stage's design: P(overturn) = lapse/2 + (1 - lapse) x the share of "
+                "the headings within the spread that overturn the simulated rock; 95 % region = log-likelihood within "
+                "1.92 of the best; cross-validation leaves out one recorded motion at a time";
+  io::Json params;
+  params["heading_deg"] = {{"value", heading}, {"interval", {heading + turn_lo, heading + turn_hi}}};
+  params["heading_spread_deg"] = {{"value", best.spread_deg}, {"interval", {0.0, spread_hi}}};
+  params["lapse"] = {{"value", best.lapse}, {"interval", {lapse_lo, lapse_hi}}};
+  params["base"] = {{"value", chosen.base}, {"in_region", bases}};
+  params["contact"] = {{"value", chosen.contact}, {"in_region", contacts}};
+  if (chosen.contact == "penalty") {
+    params["normal_stiffness_n_m1_5"] = {{"value", chosen.normal_stiffness}, {"in_region", stiffness}};
+    params["damping_s_m"] = {{"value", chosen.damping}, {"in_region", damping}};
+  } else {
+    params["restitution"] = {{"value", chosen.restitution}, {"in_region", restitution}};
+  }
+  params["friction"] = {{"value", chosen.friction}, {"in_region", friction}};
+  j["parameters"] = params;
+  j["log_likelihood"] = best.log_likelihood;
+  j["region_size"] = long(region.size());
+  j["in_sample"] = scores_json(in);
+  j["cross_validated"] = scores_json(cv);
+  j["ensemble"] = ensemble;
+  io::Json stages = io::Json::array();
+  for (const auto& [g, phys] : r.stages) {
+    io::Json s;
+    io::Json headings = io::Json::array();
+    for (int h = 0; h < g->headings(); ++h) headings.push_back(g->heading_deg(h));
+    s["headings_deg"] = headings;
+    s["parameter_sets"] = variants_table(*g, phys, y, r.group);
+    stages.push_back(s);
+  }
+  j["stages"] = stages;
+  j["wall_s"] = r.wall_s;
+  const std::string json_path = r.out + ".calibration.json";
+  write_json(json_path, j);
+
+  std::printf("\ncalibrated: %s, heading %.1f deg [%.1f, %.1f] (spread %.0f deg, lapse %.2f)\n", chosen.label().c_str(),
+              heading, heading + turn_lo, heading + turn_hi, best.spread_deg, best.lapse);
+  print_scores("in sample", in);
+  print_scores("cross-validated (one recorded motion left out at a time)", cv);
+  std::printf("wrote %s, %s (%.0f s)\n", scene.c_str(), json_path.c_str(), r.wall_s);
+}
+
+}  // namespace rigid::app::shaketable

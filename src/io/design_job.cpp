@@ -1,0 +1,80 @@
+#include "rigid/io/design_job.hpp"
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <toml++/toml.h>
+
+#include "input_file.hpp"
+#include "rigid/core/error.hpp"
+
+namespace rigid::io {
+
+namespace fs = std::filesystem;
+
+void write_design_job(const std::string& path, const DesignJob& job) {
+  toml::table root;
+  toml::array angles;
+  for (double a : job.rotation_angles_deg) angles.push_back(a);
+  root.insert("campaign", toml::table{{"seed", static_cast<std::int64_t>(job.seed)},
+                                      {"scales", "as recorded"},
+                                      {"rotation_angles_deg", angles},
+                                      {"stop_after", 0}});
+  toml::array objects;
+  objects.push_back(toml::table{{"name", job.object_name}, {"scene", job.scene}});
+  root.insert("object", objects);
+  if (!job.variants.empty()) {
+    toml::array variants;
+    for (const auto& v : job.variants) {
+      toml::table t;
+      for (const auto& [key, value] : v) {
+        if (const double* d = std::get_if<double>(&value)) t.insert(key, *d);
+        else t.insert(key, std::get<std::string>(value));
+      }
+      variants.push_back(t);
+    }
+    root.insert("variant", variants);
+  }
+  toml::array records;
+  for (const auto& r : job.records) records.push_back(toml::table{{"lab", r.lab}, {"start", r.start}, {"end", r.end}});
+  root.insert("record", records);
+  if (!job.lab_format_file.empty()) {
+    const std::string text = read_input_file(job.lab_format_file, kMaxTextFileBytes);
+    toml::table source;
+    try {
+      source = toml::parse(text, job.lab_format_file);
+    } catch (const toml::parse_error& e) {
+      throw InputError(job.lab_format_file, long(e.source().begin.line), std::string(e.description()));
+    }
+    const toml::table* lab = source["lab"].as_table();
+    if (!lab) throw InputError(job.lab_format_file, 0, "has no [lab] table (the recordings' format)");
+    root.insert("lab", *lab);
+  }
+  root.insert("run", toml::table{{"free_time_s", job.free_time_s}});
+
+  std::ostringstream text;
+  std::istringstream comment(job.comment);
+  for (std::string line; std::getline(comment, line);) text << "# " << line << "\n";
+  text << toml::toml_formatter(root, toml::toml_formatter::default_flags & ~toml::format_flags::indentation) << "\n";
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    out << text.str();
+    out.flush();
+    if (!out) {
+      std::error_code ec;
+      fs::remove(tmp, ec);
+      throw InputError(path, 0, "cannot write the job file");
+    }
+  }
+  std::error_code ec;
+  fs::rename(tmp, path, ec);
+  if (ec) {
+    fs::remove(tmp, ec);
+    throw InputError(path, 0, "cannot write the job file: " + ec.message());
+  }
+}
+
+}  // namespace rigid::io
