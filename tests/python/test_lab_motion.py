@@ -140,6 +140,13 @@ def reader_cases(d):
     mid = slice(len(t) // 4, 3 * len(t) // 4)
     err = np.abs(x_v[mid] - expected[mid]).max() / np.abs(expected).max()
     check(err < 2e-3, "displacement channel (V x 5.9797e-4 in) differentiated twice: -w^2 x to %.2g" % err)
+    # combined: the same displacement below 2 Hz, the accelerometer above (here both hold the same
+    # motion, so the merge is that motion)
+    acc_same = -w * w * 0.5 * 0.0254 * np.sin(w * t) / G
+    same = write(d, "same.txt", table(t, acc_same, disp))
+    info(same, "--lab-channel", "combined", dump=os.path.join(d, "k.csv"))
+    err = np.abs(read_dump(os.path.join(d, "k.csv"))[mid] - expected[mid]).max() / np.abs(expected).max()
+    check(err < 2e-3, "combined channel of two channels holding one motion: that motion to %.2g" % err)
     mm = write(d, "mm.txt", table(t, acc, disp * 5.9797e-4 * 25.4, header="t\ta [g]\td [mm]"))
     info(mm, "--lab-channel", "displacement", "--lab-displacement-unit", "mm", dump=os.path.join(d, "j.csv"))
     check(np.allclose(read_dump(os.path.join(d, "j.csv")), x_v, rtol=0, atol=1e-5 * np.abs(x_v).max()), "displacement in mm")

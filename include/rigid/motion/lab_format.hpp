@@ -20,7 +20,10 @@ enum class LabDelimiter {
 /// Which channel becomes the ground acceleration.
 enum class LabChannel {
   acceleration,  ///< the accelerometer column, band-passed
-  displacement   ///< the displacement column, band-passed and differentiated twice
+  displacement,  ///< the displacement column, band-passed and differentiated twice
+  /// both: the differentiated displacement below LabProcessing::crossover_hz, the accelerometer
+  /// above it (motion::merge_complementary), each band-passed first
+  combined
 };
 
 /// A column, by its 1-based index or by its name in the (last) header line.
