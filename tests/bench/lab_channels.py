@@ -1,11 +1,13 @@
 #!/usr/bin/env python3
 """Which channel of a shake-table recording should drive the pedestal: the accelerometer
-(band-passed) or the displacement transducer (band-passed, differentiated twice)?
+(band-passed), the displacement transducer (band-passed, differentiated twice), or both combined
+(the displacement below 2 Hz, the accelerometer above)?
 
 Over every test of a lab's sheet (default ../shared/shaketable/tests.csv), runs
 `rigid motion info --lab FILE --json` once per channel with the default format (band-pass
-0.1-25 Hz, order 4, zero-phase) and prints, per channel and for their ratio, the median and the
-5-95 % range of PGA, PGV and PGV/PGA, and each channel's PGA against the sheet's pga_g.
+0.1-25 Hz, order 4, zero-phase) and prints the median and 5-95 % range of the two single
+channels' ratio, and each channel's PGA, PGV/PGA and PGD against the sheet (the table's stroke
+bounds a physical PGD).
 
 usage: lab_channels.py RIGID [TESTS.csv] [--csv OUT.csv]
 """
@@ -46,21 +48,24 @@ def main():
     table = []
     for row in rows:
         path = row["file"] if os.path.isabs(row["file"]) else os.path.join(root, row["file"])
-        a, d = info(rigid, path, "acceleration"), info(rigid, path, "displacement")
-        table.append({"test_no": row["test_no"], "sheet_pga_g": float(row["pga_g"]),
-                      "sheet_pgv_pga_s": float(row["pgv_over_pga_s"]),
-                      "acc_pga_g": a["pga_g"], "acc_pgv_m_s": a["pgv_m_s"], "acc_pgv_pga_s": a["pgv_pga_s"],
-                      "disp_pga_g": d["pga_g"], "disp_pgv_m_s": d["pgv_m_s"], "disp_pgv_pga_s": d["pgv_pga_s"]})
+        entry = {"test_no": row["test_no"], "overturned": row.get("overturned", ""), "sheet_pga_g": float(row["pga_g"]),
+                 "sheet_pgv_pga_s": float(row["pgv_over_pga_s"])}
+        for ch, name in (("acc", "acceleration"), ("disp", "displacement"), ("comb", "combined")):
+            j = info(rigid, path, name)
+            entry.update({ch + "_pga_g": j["pga_g"], ch + "_pgv_m_s": j["pgv_m_s"], ch + "_pgv_pga_s": j["pgv_pga_s"],
+                          ch + "_pgd_m": j["pgd_m"]})
+        table.append(entry)
     col = lambda k: np.array([r[k] for r in table])
     print("%d tests of %s" % (len(table), sheet))
     print("PGA displacement/acceleration channel:      " + spread(col("disp_pga_g") / col("acc_pga_g")))
     print("PGV displacement/acceleration channel:      " + spread(col("disp_pgv_m_s") / col("acc_pgv_m_s")))
     print("PGV/PGA displacement/acceleration channel:  " + spread(col("disp_pgv_pga_s") / col("acc_pgv_pga_s")))
-    for ch in ("acc", "disp"):
+    for ch in ("acc", "disp", "comb"):
         r = col(ch + "_pga_g") / col("sheet_pga_g")
         q = col(ch + "_pgv_pga_s") / col("sheet_pgv_pga_s")
         print("%-4s PGA / sheet pga_g:          %s; |diff| median %.3f" % (ch, spread(r), np.median(np.abs(r - 1))))
         print("%-4s PGV/PGA / sheet's:          %s; |diff| median %.3f" % (ch, spread(q), np.median(np.abs(q - 1))))
+        print("%-4s PGD (m):                    %s" % (ch, spread(col(ch + "_pgd_m"))))
     big = np.abs(col("disp_pga_g") / col("acc_pga_g") - 1) > 0.2
     print("tests whose channels differ by more than 20 %% in PGA: %d" % big.sum())
     if out_csv:

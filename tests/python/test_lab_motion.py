@@ -10,9 +10,9 @@
   second-order sections, and the zero-phase filtering against scipy.signal.sosfiltfilt on the same
   data and coefficients (1e-6 of the peak).
 - The real recordings of ../shared/shaketable (skipped with a message when absent): every one of
-  the 161 reads; the band-passed PGA lies within 50 % of the lab sheet's pga_g for every test the
-  specimen survived (median difference < 5 %); the few beyond are tests where it overturned,
-  whose peaks come with the fall.
+  the 161 reads; the PGA of the default (combined) channel lies within 50 % of the lab sheet's
+  pga_g for every test the specimen survived (median difference < 10 %); the few beyond are tests
+  where it overturned, whose peaks come with the fall.
 
 usage: test_lab_motion.py RIGID SHARED_DIR
 exit 77 (skipped) when numpy or scipy is missing.
@@ -51,8 +51,12 @@ def rigid(*args):
     return p.returncode, p.stdout, p.stderr
 
 
-def info(path, *flags, dump=None):
-    args = ["motion", "info", "--json", "--lab", path] + list(flags)
+def info(path, *flags, dump=None, default_channel=False):
+    """`motion info --lab` as JSON; the accelerometer channel unless flags or default_channel say otherwise"""
+    flags = list(flags)
+    if "--lab-channel" not in flags and not default_channel:
+        flags += ["--lab-channel", "acceleration"]
+    args = ["motion", "info", "--json", "--lab", path] + flags
     if dump:
         args += ["--dump", dump]
     status, out, err = rigid(*args)
@@ -227,14 +231,14 @@ def real_data_cases():
         rows = list(csv.DictReader(f))
     ratios = []
     for row in rows:
-        j = info(os.path.join(root, row["file"]))
+        j = info(os.path.join(root, row["file"]), default_channel=True)
         ratios.append(j["pga_g"] / float(row["pga_g"]))
     ratios = np.array(ratios)
     fell = np.array([row["overturned"] == "1" for row in rows])
     far = np.abs(ratios - 1) > 0.5
     check(len(rows) == 161, "all %d recordings read" % len(rows))
-    check(np.median(np.abs(ratios - 1)) < 0.05,
-          "recomputed PGA / sheet's pga_g: median %.3f, median |diff| %.3f" % (np.median(ratios), np.median(np.abs(ratios - 1))))
+    check(np.median(np.abs(ratios - 1)) < 0.10,
+          "the default (combined) channel's PGA / sheet's pga_g: median %.3f, median |diff| %.3f" % (np.median(ratios), np.median(np.abs(ratios - 1))))
     # a specimen that falls hits the table: the largest accelerations of those few tests come at
     # the fall, not from the drive; every test it survived must stay within 50 % of the sheet
     standing = [rows[i]["test_no"] for i in np.flatnonzero(far & ~fell)]
