@@ -9,7 +9,11 @@ Over every test of a lab's sheet (default ../shared/shaketable/tests.csv), runs
 channels' ratio, and each channel's PGA, PGV/PGA and PGD against the sheet (the table's stroke
 bounds a physical PGD).
 
-usage: lab_channels.py RIGID [TESTS.csv] [--csv OUT.csv]
+With --spectra, also reads every 5th recording with numpy and prints, per frequency band, the
+ratio of the accelerometer's Fourier amplitude to the twice-differentiated displacement's (w^2 |X|):
+where the two transducers agree, and where each one is noise.
+
+usage: lab_channels.py RIGID [TESTS.csv] [--csv OUT.csv] [--spectra]
 """
 import csv
 import json
@@ -32,8 +36,27 @@ def spread(v):
         np.median(v), np.percentile(v, 5), np.percentile(v, 95), v.min(), v.max())
 
 
+def spectra(rows, root):
+    bands = [(0.1, 0.3), (0.3, 0.6), (0.6, 1), (1, 2), (2, 5), (5, 10), (10, 18), (18, 25)]
+    dt, g, inch_per_volt = 1 / 800.0, 9.80665, 5.9797e-4
+    ratios = []
+    for row in rows[::5]:
+        d = np.loadtxt(os.path.join(root, row["file"]), skiprows=1)
+        a = (d[:, 1] - d[:, 1].mean()) * g
+        x = (d[:, 2] - d[:, 2].mean()) * inch_per_volt * 0.0254
+        f = np.fft.rfftfreq(len(a), dt)
+        fa, fx = np.abs(np.fft.rfft(a)), np.abs(np.fft.rfft(x)) * (2 * np.pi * f) ** 2
+        ratios.append([np.sqrt((fa[(f >= lo) & (f < hi)] ** 2).sum() / (fx[(f >= lo) & (f < hi)] ** 2).sum())
+                       for lo, hi in bands])
+    for (lo, hi), r in zip(bands, np.array(ratios).T):
+        print("%5.1f-%4.1f Hz accelerometer / differentiated displacement amplitude: %s" % (lo, hi, spread(r)))
+
+
 def main():
     args = sys.argv[1:]
+    want_spectra = "--spectra" in args
+    if want_spectra:
+        args.remove("--spectra")
     out_csv = None
     if "--csv" in args:
         i = args.index("--csv")
@@ -66,6 +89,8 @@ def main():
         print("%-4s PGA / sheet pga_g:          %s; |diff| median %.3f" % (ch, spread(r), np.median(np.abs(r - 1))))
         print("%-4s PGV/PGA / sheet's:          %s; |diff| median %.3f" % (ch, spread(q), np.median(np.abs(q - 1))))
         print("%-4s PGD (m):                    %s" % (ch, spread(col(ch + "_pgd_m"))))
+    if want_spectra:
+        spectra(rows, root)
     big = np.abs(col("disp_pga_g") / col("acc_pga_g") - 1) > 0.2
     print("tests whose channels differ by more than 20 %% in PGA: %d" % big.sum())
     if out_csv:
