@@ -3,7 +3,7 @@
 
 Reads every `#include "..."` and `#include <...>` line of src/<module>/ and include/rigid/<module>/
 and checks it against the dependencies src/CMakeLists.txt declares (read from its rigid_module()
-calls and the `rigid` executable's link line; README, "Layout and architecture"), today:
+calls and the `rigid` executable's link line; docs/architecture.md, "Layout and modules"), today:
 
   core <- geometry <- contact <- dynamics;  core <- motion, rocking;
   scenario <- dynamics, motion, rocking;  study <- scenario;  io <- scenario;  campaign <- io;
