@@ -1,5 +1,5 @@
-// `rigid bench`: speed of the engine on the reference scenes of the issue tracker, as medians of
-// repeated runs on this machine (one core).
+// `rigid bench`: speed of the engine on its reference scenes (the geode and the peer scene,
+// docs/performance.md), as medians of repeated runs on this machine (one core).
 #include <algorithm>
 #include <chrono>
 #include <cmath>

@@ -19,8 +19,8 @@ void add_lab_options(CLI::App& cmd, LabFlags& o) {
   cmd.add_option("--lab-header-lines", o.header_lines, "Lines before the data (default 1; the last names the columns)");
   cmd.add_option("--lab-time-column", o.time_column, "Time column, 1-based (default 1; unit: s)");
   cmd.add_option("--lab-channel", o.channel,
-                 "acceleration (default: the accelerometer, band-passed) or displacement (band-passed, "
-                 "differentiated twice)");
+                 "acceleration (the accelerometer, band-passed), displacement (band-passed, differentiated "
+                 "twice) or combined (displacement below --lab-crossover-hz, accelerometer above)");
   cmd.add_option("--lab-acceleration-column", o.acceleration_column, "Acceleration column: number or header name (default 2)");
   cmd.add_option("--lab-acceleration-unit", o.acceleration_unit, "g (default), m/s^2 or cm/s^2");
   cmd.add_option("--lab-displacement-column", o.displacement_column, "Displacement column: number or header name (default 3)");
@@ -32,6 +32,7 @@ void add_lab_options(CLI::App& cmd, LabFlags& o) {
   cmd.add_option("--lab-baseline-degree", o.baseline_degree, "Degree of the polynomial baseline (default 2)");
   cmd.add_option("--lab-band-hz", o.band, "Zero-phase Butterworth band-pass LOW,HIGH in Hz (default 0.1,25) or none");
   cmd.add_option("--lab-filter-order", o.filter_order, "Butterworth order (default 4)");
+  cmd.add_option("--lab-crossover-hz", o.crossover_hz, "Crossover of the combined channel (Hz, default 2)");
 }
 
 namespace {
@@ -44,7 +45,7 @@ void reject_lab_flags_without_file(const LabFlags& o) {
   if (!o.file.empty()) return;
   const bool any = !o.format.empty() || o.delimiter || o.channel || o.acceleration_column || o.acceleration_unit ||
                    o.displacement_column || o.displacement_unit || o.volts_length_unit || o.baseline || o.band ||
-                   o.header_lines || o.time_column || o.baseline_degree || o.filter_order || o.volts_to_length || o.scale;
+                   o.header_lines || o.time_column || o.baseline_degree || o.filter_order || o.volts_to_length || o.scale || o.crossover_hz;
   if (any) throw InputError("", 0, "the --lab-* options need --lab FILE");
 }
 
@@ -61,7 +62,7 @@ io::LabFormat lab_format_from_flags(const LabFlags& o) {
   if (o.delimiter && !io::parse_lab_delimiter(*o.delimiter, f.delimiter)) bad("--lab-delimiter", "must be tab, comma or whitespace");
   if (o.header_lines) f.header_lines = *o.header_lines;
   if (o.time_column) f.time = {*o.time_column, ""};
-  if (o.channel && !io::parse_lab_channel(*o.channel, f.channel)) bad("--lab-channel", "must be acceleration or displacement");
+  if (o.channel && !io::parse_lab_channel(*o.channel, f.channel)) bad("--lab-channel", "must be acceleration, displacement or combined");
   if (o.acceleration_column) f.acceleration = io::parse_lab_column(*o.acceleration_column);
   if (o.acceleration_unit) f.acceleration_unit = *o.acceleration_unit;
   if (o.displacement_column) f.displacement = io::parse_lab_column(*o.displacement_column);
@@ -85,6 +86,7 @@ io::LabFormat lab_format_from_flags(const LabFlags& o) {
     }
   }
   if (o.filter_order) f.processing.order = *o.filter_order;
+  if (o.crossover_hz) f.processing.crossover_hz = *o.crossover_hz;
   io::check_lab_format(f, "", 0);
   return f;
 }

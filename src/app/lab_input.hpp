@@ -17,7 +17,7 @@ struct LabFlags {
   std::optional<std::string> delimiter, channel, acceleration_column, acceleration_unit, displacement_column,
       displacement_unit, volts_length_unit, baseline, band;
   std::optional<int> header_lines, time_column, baseline_degree, filter_order;
-  std::optional<double> volts_to_length, scale;
+  std::optional<double> volts_to_length, scale, crossover_hz;
 };
 
 void add_lab_options(CLI::App& cmd, LabFlags& o);

@@ -47,7 +47,7 @@ const char* end_name(scenario::ActiveEffects::End end) {
   }
 }
 
-// The effects a run simulated (issue 6), as the "effects" object of --json.
+// The effects a run simulated (docs/engine.md, effect selection), as the "effects" object of --json.
 io::Json effects_json(const scenario::ActiveEffects& e) {
   io::Json j;
   j["selected"] = e.selected;

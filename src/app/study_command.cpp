@@ -1,4 +1,4 @@
-// `rigid study accuracy`: what accuracy costs in time (issue 6; docs/accuracy.md). Finds and reads
+// `rigid study accuracy`: what accuracy costs in time (docs/accuracy.md). Finds and reads
 // the real record, runs the study (rigid/study/accuracy_study.hpp: cases, oracles, sweep), writes
 // DIR/accuracy.csv, then DIR/accuracy_pareto.png and DIR/accuracy_table.md with
 // src/plot/accuracy_plot.py.

@@ -622,7 +622,7 @@ void write_cube(const std::string& path, const Cube& cube) {
   const std::string tmp = path + ".tmp";
   // Built in memory (HDF5's core driver, no backing store) and written out here: HDF5 never
   // meets a disk error, which it reports as a multi-line stack and, in 1.10, follows with a crash
-  // at exit while closing the file it could not write (issue 12); ours is one errno line.
+  // at exit while closing the file it could not write; ours is one errno line.
   std::vector<unsigned char> image;
   {
     Hid fcpl = h.own(H5Pcreate(H5P_FILE_CREATE), H5Pclose, "creating a file creation property list");

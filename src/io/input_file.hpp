@@ -1,7 +1,6 @@
 #pragma once
 // Reading an input file whole, safely: a FIFO, device or directory given as an input would block
-// or grow memory without bound, so only regular files up to a size limit are read (README
-// "Robustness"). Private to rigid_io.
+// or grow memory without bound, so only regular files up to a size limit are read (docs/robustness.md). Private to rigid_io.
 #include <cstdint>
 #include <string>
 

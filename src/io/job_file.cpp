@@ -368,7 +368,7 @@ scenario::Job load_job(const std::string& path) {
       }
       job.accuracy = *name;
     }
-    // effect selection (issue 6): "auto" simulates only what the scene and motion call for
+    // effect selection: "auto" simulates only what the scene and motion call for
     if (const auto* e = run->get("effects")) {
       const auto name = e->value<std::string>();
       if (!name || (*name != "auto" && *name != "all")) {

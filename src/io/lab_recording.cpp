@@ -197,12 +197,13 @@ bool parse_lab_delimiter(std::string_view text, LabDelimiter& out) {
 }
 
 const char* lab_channel_name(LabChannel c) {
-  return c == LabChannel::acceleration ? "acceleration" : "displacement";
+  return c == LabChannel::acceleration ? "acceleration" : c == LabChannel::displacement ? "displacement" : "combined";
 }
 
 bool parse_lab_channel(std::string_view text, LabChannel& out) {
   if (text == "acceleration") out = LabChannel::acceleration;
   else if (text == "displacement") out = LabChannel::displacement;
+  else if (text == "combined") out = LabChannel::combined;
   else return false;
   return true;
 }
@@ -234,10 +235,10 @@ void check_lab_format(const LabFormat& f, const std::string& source, long line) 
     if (c->index < 0 || (c->index == 0 && c->name.empty()) || c->index > 1000)
       bad(key, "must be a column number from 1 to 1000 or a header name");
   }
-  const LabColumn& used = f.channel == LabChannel::acceleration ? f.acceleration : f.displacement;
-  if (used.index > 0 && used.index == f.time.index)
-    bad(f.channel == LabChannel::acceleration ? "acceleration_column" : "displacement_column",
-        "is the time column (" + std::to_string(f.time.index) + ")");
+  if (f.channel != LabChannel::displacement && f.acceleration.index > 0 && f.acceleration.index == f.time.index)
+    bad("acceleration_column", "is the time column (" + std::to_string(f.time.index) + ")");
+  if (f.channel != LabChannel::acceleration && f.displacement.index > 0 && f.displacement.index == f.time.index)
+    bad("displacement_column", "is the time column (" + std::to_string(f.time.index) + ")");
   if (acceleration_unit_to_si(f.acceleration_unit) == 0.0)
     bad("acceleration_unit", "must be g, m/s^2 or cm/s^2, not '" + f.acceleration_unit + "'");
   if (canonical_unit(f.displacement_unit) != "v" && length_unit_to_si(f.displacement_unit) == 0.0)
@@ -254,6 +255,11 @@ void check_lab_format(const LabFormat& f, const std::string& source, long line) 
       bad("band_hz", "needs 0 < low < high (Hz), got " + num(p.low_hz) + "-" + num(p.high_hz));
     if (p.order < 1 || p.order > 8) bad("filter_order", "must be 1 to 8");
   }
+  if (f.channel == LabChannel::combined) {
+    if (!p.band_pass) bad("band_hz", "the combined channel needs a band-pass");
+    if (!(p.crossover_hz > p.low_hz) || !(p.crossover_hz < p.high_hz))
+      bad("crossover_hz", "must lie inside the band (" + num(p.low_hz) + "-" + num(p.high_hz) + " Hz)");
+  }
 }
 
 LabFormat lab_format_from_toml(std::string_view toml_text, const std::string& file) {
@@ -269,7 +275,7 @@ LabFormat lab_format_from_table(const toml::table& root, const std::string& file
   reject_unknown(*t,
                  {"delimiter", "header_lines", "time_column", "channel", "acceleration_column", "acceleration_unit",
                   "displacement_column", "displacement_unit", "volts_to_length", "volts_length_unit", "scale",
-                  "baseline", "baseline_degree", "band_hz", "filter_order"},
+                  "baseline", "baseline_degree", "band_hz", "filter_order", "crossover_hz"},
                  file, "[lab]");
   const auto integer = [&](const char* key, int fallback) {
     const toml::node* n = t->get(key);
@@ -300,7 +306,7 @@ LabFormat lab_format_from_table(const toml::table& root, const std::string& file
   keyword("delimiter", parse_lab_delimiter, f.delimiter, "\"tab\", \"comma\" or \"whitespace\"");
   f.header_lines = integer("header_lines", f.header_lines);
   f.time = column("time_column", f.time);
-  keyword("channel", parse_lab_channel, f.channel, "\"acceleration\" or \"displacement\"");
+  keyword("channel", parse_lab_channel, f.channel, "\"acceleration\", \"displacement\" or \"combined\"");
   f.acceleration = column("acceleration_column", f.acceleration);
   f.acceleration_unit = optional_string(*t, "acceleration_unit", f.acceleration_unit, file);
   f.displacement = column("displacement_column", f.displacement);
@@ -323,6 +329,7 @@ LabFormat lab_format_from_table(const toml::table& root, const std::string& file
     }
   }
   f.processing.order = integer("filter_order", f.processing.order);
+  f.processing.crossover_hz = optional_number(*t, "crossover_hz", f.processing.crossover_hz, file);
   check_lab_format(f, file, line_of(*node));
   return f;
 }
@@ -332,8 +339,7 @@ LabTable read_lab_table(const std::filesystem::path& path_in, const LabFormat& f
   const std::string text = file_text(path);
   LabTable table;
   table.source = path;
-  const LabColumn& channel = f.channel == LabChannel::acceleration ? f.acceleration : f.displacement;
-  const char* channel_name = lab_channel_name(f.channel);
+  const bool want_acc = f.channel != LabChannel::displacement, want_disp = f.channel != LabChannel::acceleration;
 
   std::size_t pos = 0;
   long line_no = 0;
@@ -366,22 +372,29 @@ LabTable read_lab_table(const std::filesystem::path& path_in, const LabFormat& f
       throw InputError(path, header_line, "expected a header line, found numbers (set header_lines)");
   }
   const std::size_t time_at = column_position(f.time, header_cells, f.header_lines > 0, path, header_line, "time");
-  const std::size_t value_at = column_position(channel, header_cells, f.header_lines > 0, path, header_line, channel_name);
+  const std::size_t none = std::size_t(-1);
+  const std::size_t acc_at =
+      want_acc ? column_position(f.acceleration, header_cells, f.header_lines > 0, path, header_line, "acceleration") : none;
+  const std::size_t disp_at =
+      want_disp ? column_position(f.displacement, header_cells, f.header_lines > 0, path, header_line, "displacement") : none;
+  std::size_t need = time_at + 1;
+  if (want_acc) need = std::max(need, acc_at + 1);
+  if (want_disp) need = std::max(need, disp_at + 1);
   if (f.header_lines > 0) {
-    const std::size_t need = std::max(time_at, value_at) + 1;
     if (header_cells.size() < need)
       throw InputError(path, header_line, "the header has " + std::to_string(header_cells.size()) +
                                               " columns, the format reads column " + std::to_string(need));
     // a unit in the header must be the one the format converts from
-    const std::string said = header_unit(header_cells[value_at]);
-    const std::string& unit = f.channel == LabChannel::acceleration ? f.acceleration_unit : f.displacement_unit;
-    if (!said.empty() && canonical_unit(said) != canonical_unit(unit))
-      throw InputError(path, header_line, "the " + std::string(channel_name) + " column's header '" +
-                                              printable(header_cells[value_at]) + "' says " + said +
-                                              ", the format says " + unit);
+    const auto check_unit = [&](std::size_t at, const std::string& unit, const char* what) {
+      const std::string said = header_unit(header_cells[at]);
+      if (!said.empty() && canonical_unit(said) != canonical_unit(unit))
+        throw InputError(path, header_line, std::string("the ") + what + " column's header '" +
+                                                printable(header_cells[at]) + "' says " + said + ", the format says " + unit);
+    };
+    if (want_acc) check_unit(acc_at, f.acceleration_unit, "acceleration");
+    if (want_disp) check_unit(disp_at, f.displacement_unit, "displacement");
   }
 
-  const std::size_t need = std::max(time_at, value_at) + 1;
   while (next_line(line)) {
     if (trim(line).empty()) {
       // blank lines may end the file, not interrupt it
@@ -417,7 +430,8 @@ LabTable read_lab_table(const std::filesystem::path& path_in, const LabFormat& f
     if (!table.time.empty() && !(t > table.time.back()))
       throw InputError(path, line_no, "time " + num(t) + " s does not increase (previous " + num(table.time.back()) + " s)");
     table.time.push_back(t);
-    table.values.push_back(cell(value_at, channel_name));
+    if (want_acc) table.acceleration.push_back(cell(acc_at, "acceleration"));
+    if (want_disp) table.displacement.push_back(cell(disp_at, "displacement"));
   }
   if (table.time.size() < kMinSamples)
     throw InputError(path, line_no, "only " + std::to_string(table.time.size()) + " samples, at least " +
@@ -439,19 +453,24 @@ LabTable read_lab_table(const std::filesystem::path& path_in, const LabFormat& f
 motion::GroundMotion read_lab_motion(const std::filesystem::path& path, const LabFormat& f) {
   check_lab_format(f, "", 0);
   const LabTable table = read_lab_table(path, f);
-  std::vector<double> v = table.values;
-  double to_si = 0.0;
-  if (f.channel == LabChannel::acceleration) {
-    to_si = acceleration_unit_to_si(f.acceleration_unit);
-  } else {
-    const bool volts = canonical_unit(f.displacement_unit) == "v";
-    to_si = volts ? f.volts_to_length * length_unit_to_si(f.volts_length_unit) : length_unit_to_si(f.displacement_unit);
-  }
-  for (double& x : v) x *= to_si * f.scale;
+  std::vector<double> acc = table.acceleration, disp = table.displacement;
+  const double acc_to_si = acceleration_unit_to_si(f.acceleration_unit) * f.scale;
+  const bool volts = canonical_unit(f.displacement_unit) == "v";
+  const double disp_to_si =
+      (volts ? f.volts_to_length * length_unit_to_si(f.volts_length_unit) : length_unit_to_si(f.displacement_unit)) * f.scale;
+  for (double& x : acc) x *= acc_to_si;
+  for (double& x : disp) x *= disp_to_si;
   motion::GroundMotion m;
+  const motion::LabProcessing& p = f.processing;
   try {
-    m.x = f.channel == LabChannel::acceleration ? motion::process_acceleration(v, table.dt, f.processing)
-                                                : motion::acceleration_from_displacement(v, table.dt, f.processing);
+    switch (f.channel) {
+      case LabChannel::acceleration: m.x = motion::process_acceleration(acc, table.dt, p); break;
+      case LabChannel::displacement: m.x = motion::acceleration_from_displacement(disp, table.dt, p); break;
+      case LabChannel::combined:
+        m.x = motion::merge_complementary(motion::acceleration_from_displacement(disp, table.dt, p),
+                                          motion::process_acceleration(acc, table.dt, p), p.crossover_hz, p.order, table.dt);
+        break;
+    }
   } catch (const std::invalid_argument& e) {
     throw InputError(table.source, 0, e.what());
   }
@@ -468,14 +487,15 @@ motion::GroundMotion read_lab_motion(const std::filesystem::path& path, const La
 }
 
 std::string describe_lab_processing(const LabFormat& f) {
-  const bool acc = f.channel == LabChannel::acceleration;
-  std::string s = std::string(lab_channel_name(f.channel)) + " channel (column " +
-                  (acc ? f.acceleration : f.displacement).describe() + ", " +
-                  (acc ? f.acceleration_unit
-                       : canonical_unit(f.displacement_unit) == "v"
-                             ? "V x " + num(f.volts_to_length) + " " + f.volts_length_unit
-                             : f.displacement_unit) +
-                  ")";
+  const std::string acc = "acceleration column " + f.acceleration.describe() + " in " + f.acceleration_unit;
+  const std::string disp = "displacement column " + f.displacement.describe() + " in " +
+                           (canonical_unit(f.displacement_unit) == "v"
+                                ? "V x " + num(f.volts_to_length) + " " + f.volts_length_unit
+                                : f.displacement_unit);
+  std::string s = f.channel == LabChannel::acceleration   ? acc
+                  : f.channel == LabChannel::displacement ? disp + " (differentiated twice)"
+                                                          : disp + " (differentiated twice) below " +
+                                                                num(f.processing.crossover_hz) + " Hz, " + acc + " above";
   if (f.scale != 1.0) s += ", scaled by " + num(f.scale);
   const motion::LabProcessing& p = f.processing;
   if (p.baseline == motion::LabBaseline::polynomial)
@@ -486,7 +506,6 @@ std::string describe_lab_processing(const LabFormat& f) {
     s += ", band-pass " + num(p.low_hz) + "-" + num(p.high_hz) + " Hz order " + std::to_string(p.order) + " zero-phase";
   else
     s += ", not filtered";
-  if (!acc) s += ", differentiated twice";
   return s;
 }
 

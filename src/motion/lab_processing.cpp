@@ -70,6 +70,42 @@ std::vector<Biquad> butterworth_bandpass(double low_hz, double high_hz, int orde
   return sections;
 }
 
+namespace {
+
+std::vector<Biquad> one_sided(liquid_iirdes_bandtype band, double fc_hz, int order, double dt) {
+  if (!(dt > 0) || !std::isfinite(dt)) throw std::invalid_argument("the time step must be positive");
+  if (!(fc_hz > 0) || !(fc_hz < 0.5 / dt))
+    throw std::invalid_argument("the corner must lie in (0, Nyquist) (" + std::to_string(int(0.5 / dt)) + " Hz)");
+  if (order < 1 || order > 8) throw std::invalid_argument("the filter order must be 1 to 8");
+  const unsigned n = unsigned(order), sections = (n + 1) / 2;
+  std::vector<float> b(3 * sections), a(3 * sections);
+  if (liquid_iirdes(LIQUID_IIRDES_BUTTER, band, LIQUID_IIRDES_SOS, n, float(fc_hz * dt), 0.0f, 1.0f, 60.0f, b.data(),
+                    a.data()) != 0)
+    throw std::invalid_argument("liquid-dsp refused the filter design");
+  std::vector<Biquad> out(sections);
+  for (unsigned i = 0; i < sections; ++i) out[i] = {b[3 * i], b[3 * i + 1], b[3 * i + 2], a[3 * i + 1], a[3 * i + 2]};
+  return out;
+}
+
+}  // namespace
+
+std::vector<Biquad> butterworth_lowpass(double fc_hz, int order, double dt) {
+  return one_sided(LIQUID_IIRDES_LOWPASS, fc_hz, order, dt);
+}
+
+std::vector<Biquad> butterworth_highpass(double fc_hz, int order, double dt) {
+  return one_sided(LIQUID_IIRDES_HIGHPASS, fc_hz, order, dt);
+}
+
+std::vector<double> merge_complementary(const std::vector<double>& low, const std::vector<double>& high,
+                                        double crossover_hz, int order, double dt) {
+  if (low.size() != high.size()) throw std::invalid_argument("the two channels differ in length");
+  std::vector<double> out = filtfilt(butterworth_lowpass(crossover_hz, order, dt), low);
+  const std::vector<double> h = filtfilt(butterworth_highpass(crossover_hz, order, dt), high);
+  for (std::size_t i = 0; i < out.size(); ++i) out[i] += h[i];
+  return out;
+}
+
 double gain_at(const std::vector<Biquad>& sections, double f_hz, double dt) {
   const std::complex<double> z1 = std::polar(1.0, -2.0 * kPiLocal * f_hz * dt);  // z^-1
   std::complex<double> h = 1.0;
@@ -96,7 +132,10 @@ std::vector<double> sos_filter(const std::vector<Biquad>& sections, const std::v
 }
 
 std::vector<double> filtfilt(const std::vector<Biquad>& sections, const std::vector<double>& x) {
-  const std::size_t pad = 3 * (2 * sections.size() + 1);
+  // scipy's padlen: 3 (2 sections + 1), less the trailing zeros of first-order sections
+  std::size_t first_order = 0;
+  for (const Biquad& s : sections) first_order += s.b2 == 0.0 && s.a2 == 0.0;
+  const std::size_t pad = 3 * (2 * sections.size() + 1 - first_order);
   const std::size_t n = x.size();
   if (n <= pad)
     throw std::invalid_argument("the signal needs more than " + std::to_string(pad) +

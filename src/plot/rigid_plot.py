@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Fragility maps, per-record curves, a probit fit, 3D-vs-2D difference maps and scenario tables
-from Rigid's HDF5 fragility cubes (README "The fragility cube (HDF5)"; physics.md sections 1, 11).
+from Rigid's HDF5 fragility cubes (docs/cube.md; physics.md sections 1, 11).
 
     rigid_plot.py maps  CUBE --out DIR [--object NAME]... [--variant K] [--pgv-pga S] [--alpha [NAME=]RAD]...
                         [--p [NAME=]RAD_S]...

@@ -56,7 +56,7 @@ motion::GroundMotion case_motion(const Model& model, const Case& c) {
     t.pga_factor_per_g = model.pga_factor_per_g(c.record);
   }
   // The 2D reference takes the record's x component as scaled, whatever the rotation: a 2D
-  // fragility (Purvance et al. 2008, the study's reference, physics.md §11) is a function of the
+  // fragility (Purvance et al. 2008, physics.md §1) is a function of the
   // record's PGA and PGV alone. Projecting the rotated motion on x instead would weaken the
   // shaking by |cos| of a random angle that the 2D block cannot feel.
   if (model.kind() == ModelKind::dem3d) t.rotation = c.rotation_deg * kPi / 180.0;

@@ -71,7 +71,7 @@ ShakingRun::ShakingRun(const Scene& scene, const GroundDrive& ground, const RunS
   while (double(motion_end_step_) * dt_ < motion_end_) ++motion_end_step_;
   while (motion_end_step_ > 0 && double(motion_end_step_ - 1) * dt_ >= motion_end_) --motion_end_step_;
 
-  // which effects this scene and motion call for (issue 6)
+  // which effects this scene and motion call for: skipping work whose result is known saves time
   ActiveEffects& fx = out_.effects;
   fx.selected = select_;
   fx.vertical_motion = std::any_of(ground.velocity.begin(), ground.velocity.end(), [](const Vec3& v) { return v.z() != 0; });
@@ -120,7 +120,7 @@ RunOutcome ShakingRun::run() {
 //    below sleep_wake_fraction (1/2) of the threshold and of the largest acceleration already met.
 //    A load applied suddenly overshoots a spring's static deflection at most twice, so no corner
 //    unloads and no larger elastic tilt comes (resonance of the block's rocking mode on its
-//    springs aside: README, Effect selection). The outcome is then decided, and the trajectory
+//    springs aside: docs/performance.md, "Effect selection, measured"). The outcome is then decided, and the trajectory
 //    until then is the all-effects one.
 //  - while the ground is exactly still (zero acceleration), once they have been at rest by the
 //    run's own rule for rest_time. Not on a ground that moves at all: freezing a block at rest

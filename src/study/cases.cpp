@@ -156,7 +156,7 @@ std::vector<Case> study_cases(const StudyOptions& o, const motion::GroundMotion&
     c.duration = o.quick ? 2.0 : 10.0;
     // oracles: energy is conserved (relative drift, energy_err); a symmetric vertex-down drop
     // gives no torque, so the time before the geode first turns by 1 degree tells how long the
-    // numerical symmetry lasts (README: 14 bounces here, 9 in the study's code, 3 in 3DEC)
+    // numerical symmetry lasts (docs/validation.md: 14 bounces here, 9 in the study's code, 3 in 3DEC)
     c.oracle = Oracle::energy_conservation;
     c.oracle_value = 0;
     c.model_quantity = "first_1deg_turn_s";

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""CTest `robustness` (issue 12, "An adversarial pass"): every bad input the pass found, through
+"""CTest `robustness` (docs/robustness.md): every bad input a deliberate adversarial pass found, through
 the real command line. Each case must end within 10 s under a 2 GB address-space limit with exit
 status 2 and exactly one stderr line `rigid: error: ...` (the inward mesh: exit 0 and exactly one
 `rigid: warning:` line). The 10 s are CPU seconds (RLIMIT_CPU), so a loaded CI machine does not
@@ -299,7 +299,7 @@ def cases(d, sphere_facets):
         ("unknown unit in a job's [lab]", camp("lab_badunit.job.toml", "--dry-run"), e, ["lab_badunit.job.toml:8:", "furlong"]),
         ("lab and motion in one [[record]]", camp("lab_both.job.toml", "--dry-run"), e, ["lab_both.job.toml:6:", "one of them"]),
         ('scales = "as recoded"', camp("lab_scales.job.toml", "--dry-run"), e, ["lab_scales.job.toml:2:", "as recorded"]),
-        # scans (rigid model import, issue 13)
+        # scans (rigid model import)
         ("import a good cube", imp("cube.obj"), "ok", []),
         ("import an open mesh", imp("open.obj"), e, ["open.obj", "open edge", "3 open edges, at facets"]),
         ("import a non-manifold edge", imp("nonmanifold.obj"), e, ["nonmanifold.obj", "non-manifold"]),

@@ -1,6 +1,6 @@
 // What one whole-cube rewrite costs (io::write_cube: the compaction of src/campaign/master.cpp,
 // no longer the checkpoint itself, see checkpoint_bench.cpp): its time grows with the campaign's
-// size (issue 15 sizes campaigns of 5e6 cells). Cubes of the study's layout (study_cube.hpp).
+// size (uncertainty campaigns reach 5e6 cells). Cubes of the study's layout (study_cube.hpp).
 //
 //   cmake --build build --target cube_write_bench && build/tests/cube_write_bench
 //

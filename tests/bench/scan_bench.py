@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Scan benchmarks (issue 13), figures for the README; not a CTest (timings are no tests).
+"""Scan benchmarks, the figures of docs/rocks.md; not a CTest (timings are no tests).
 
 1. `rigid model import` of a generated 1e6-facet closed rock (a subdivided icosahedron with
    seeded bumps, binary STL): median wall time of 3 runs and the peak resident memory.

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Campaign trust (issue 12): a resume never mixes inputs, a failed write never aborts or loses
+# Campaign trust: a resume never mixes inputs, a failed write never aborts or loses
 # results, one campaign per output, journal records checked one by one. The oracle is always an
 # uninterrupted run of the same inputs (compare_cubes.py), never numbers copied from the code.
 # Usage: trust_test.sh MODE RIGID_EXECUTABLE SOURCE_DIR

@@ -5,7 +5,7 @@
 #  - more slender blocks are more fragile (overturn fraction falls from alpha 0.1 to 0.4), in both;
 #  - where the rotated motion is aligned with the block's weak axis (|cos| >= 0.9), a block that
 #    topples in the 2D (rigid, no-sliding) model also fails in 3D: the 3D adds failure modes
-#    (sliding off the pedestal, compliant contacts; README "Validation against the 2D model") but
+#    (sliding off the pedestal, compliant contacts; docs/validation.md, "Against the 2D rocking model") but
 #    must not miss rocking overturns (>= 90 % of those cells; across the weak axis the 3D block is
 #    rightly stabler);
 #  - the difference maps and the mismatch table are written, and the cubes carry alpha_rad.

@@ -1,5 +1,5 @@
 // Record lists (table TSV, .ABF) and the comparison of the study's tabulated GMRotI50 values with
-// the values computed from the shared PEER files (issue acceptance; waveforms/GROUND_MOTIONS.md).
+// the values computed from the shared PEER files (docs/ground-motions.md, "The study's table against the shared records").
 #include "rigid/io/record_list.hpp"
 
 #include <gtest/gtest.h>
@@ -129,7 +129,7 @@ TEST(TableComparison, ComputedVsTabulatedGmroti) {
   std::map<std::string, RecordEntry> rows;
   for (const auto& e : read_record_list(table.string()).records) rows[e.file] = e;
 
-  // outliers explained in waveforms/GROUND_MOTIONS.md, each with the evidence checked below
+  // outliers explained in docs/ground-motions.md, each with the evidence checked below
   const std::set<std::string> explained = {"059v2-X.AT2", "CHY074-X.AT2", "H_E06-X.AT2",
                                            "DZC-X.AT2",   "GBZ-X.AT2",    "H_EMO-X.AT2",
                                            "CHY104-X.AT2"};
@@ -156,7 +156,7 @@ TEST(TableComparison, ComputedVsTabulatedGmroti) {
       EXPECT_TRUE(a) << name << " PGA " << c.pga_rel_diff;
       EXPECT_TRUE(v) << name << " PGV " << c.pgv_rel_diff;
     }
-    // the evidence quoted in GROUND_MOTIONS.md
+    // the evidence quoted in docs/ground-motions.md
     if (name == "059v2-X.AT2") {
       EXPECT_LT(c.entry.gmroti_pga_g, c.rotd0_pga_g);  // below any
     }

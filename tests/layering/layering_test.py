@@ -3,7 +3,7 @@
 
 Reads every `#include "..."` and `#include <...>` line of src/<module>/ and include/rigid/<module>/
 and checks it against the dependencies src/CMakeLists.txt declares (read from its rigid_module()
-calls and the `rigid` executable's link line; README, "Layout and architecture"), today:
+calls and the `rigid` executable's link line; docs/architecture.md, "Layout and modules"), today:
 
   core <- geometry <- contact <- dynamics;  core <- motion, rocking;
   scenario <- dynamics, motion, rocking;  study <- scenario;  io <- scenario;  campaign <- io;
@@ -11,8 +11,9 @@ calls and the `rigid` executable's link line; README, "Layout and architecture")
 
 (a module may include its own headers and those of every module below it, transitively), and the
 third-party rules: the engine core (geometry .. scenario, study) includes only Eigen and the standard
-library; only io includes HDF5, toml++, nettle and assimp; nlohmann-json is io's and above (io/json.hpp);
-only campaign includes MPI and zlib; spdlog is campaign's and app's (campaign/log.hpp); only app includes CLI11; POSIX headers (unistd.h, sys/...)
+library, and motion liquid-dsp (the lab band-pass design: numerics, no I/O); only io includes HDF5,
+toml++, nettle and assimp; nlohmann-json is io's and above (io/json.hpp); only campaign includes MPI;
+zlib is io's (gzip lab recordings) and campaign's (journal checksums); spdlog is campaign's and app's (campaign/log.hpp); only app includes CLI11; POSIX headers (unistd.h, sys/...)
 only io, campaign and app. A quoted include that is not "rigid/..." must be a private header of
 the module's own src/<module>/ folder.
 
@@ -51,7 +52,8 @@ THIRD_PARTY = {
     "assimp": {"io"},
     "json": {"io", "campaign", "app"},
     "mpi": {"campaign"},
-    "zlib": {"campaign"},
+    "zlib": {"io", "campaign"},
+    "liquid": {"motion"},
     "spdlog": {"campaign", "app"},
     "cli11": {"app"},
 }
@@ -79,6 +81,8 @@ def family(header):
         return "mpi"
     if header in ("zlib.h",):
         return "zlib"
+    if header.startswith("liquid/"):
+        return "liquid"
     if header.startswith("spdlog/"):
         return "spdlog"
     if header.startswith("CLI/"):

@@ -105,6 +105,24 @@ TEST(LabBandPass, RefusesABandOutsideNyquistOrAnImpossibleOrder) {
   EXPECT_THROW(filtfilt(butterworth_bandpass(0.1, 25.0, 4, kDt), std::vector<double>(27, 1.0)), std::invalid_argument);
 }
 
+// |H_lp|^2 + |H_hp|^2 = 1 for Butterworth filters of one order and corner: 1 / (1 + x^2n) and
+// x^2n / (1 + x^2n), x = tan(pi f dt) / tan(pi fc dt)
+TEST(LabMerge, ASignalBothChannelsShareIsKeptAndEachChannelOnlyCountsOnItsSide) {
+  const double fc = 2.0;
+  for (double f : {0.5, 2.0, 6.0}) {
+    const std::vector<double> x = tapered_sine(f, 1.0, 40.0);
+    EXPECT_LT(middle_error(merge_complementary(x, x, fc, 4, kDt), x), 1e-3) << f << " Hz";
+  }
+  for (double f : {0.5, 1.0, 4.0, 8.0}) {
+    const double r = std::tan(kPi * f * kDt) / std::tan(kPi * fc * kDt), hp = std::pow(r, 8) / (1 + std::pow(r, 8));
+    const std::vector<double> x = tapered_sine(f, 1.0, 40.0), zero(x.size(), 0.0);
+    const auto [s1, c1] = sine_fit(merge_complementary(zero, x, fc, 4, kDt), f);  // the high side alone
+    EXPECT_NEAR(std::hypot(s1, c1), hp, 1e-3 * hp + 1e-5) << f << " Hz";
+    const auto [s2, c2] = sine_fit(merge_complementary(x, zero, fc, 4, kDt), f);  // the low side alone
+    EXPECT_NEAR(std::hypot(s2, c2), 1 - hp, 1e-3 * (1 - hp) + 1e-5) << f << " Hz";
+  }
+}
+
 TEST(LabDifferentiation, TheSecondDifferenceOfASineIsMinusOmegaSquaredTimesIt) {
   const double f = 2.0, w = 2 * kPi * f, a = 0.01;
   const std::vector<double> x = sine(f, a, 5.0, 0.3);

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Checks a Rigid fragility cube from outside C++: h5py reads it as documented in
-CUBE_LAYOUT.md, h5dump accepts it, and compare_cubes.py sees exactly the differences it should.
+docs/cube.md, h5dump accepts it, and compare_cubes.py sees exactly the differences it should.
 
     /usr/bin/python3 tests/python/test_cube.py FIXTURE.h5
 

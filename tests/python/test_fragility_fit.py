@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Fragility fits against independent oracles (issue 14):
+"""Fragility fits against independent oracles (docs/hazard.md):
 
 1. Planted parameters: Bernoulli cells drawn from a known lognormal fragility (theta, beta) on a
    campaign's layout (records x scales x rotations, the study's stop rule), fitted; over 200

@@ -1,6 +1,5 @@
 #!/usr/bin/python3
-"""`rigid fragility` and `rigid hazard` (src/plot/rigid_fragility.py) against independent oracles
-(issue 14):
+"""`rigid fragility` and `rigid hazard` (src/plot/rigid_fragility.py) against independent oracles:
 
 1. Rate of toppling: a lognormal fragility under a power-law hazard H(a) = k0 a^-k has the closed
    form lambda = k0 theta^-k exp(k^2 beta^2 / 2); the integration matches within 0.5 % over k 1-4

@@ -10,9 +10,9 @@
   second-order sections, and the zero-phase filtering against scipy.signal.sosfiltfilt on the same
   data and coefficients (1e-6 of the peak).
 - The real recordings of ../shared/shaketable (skipped with a message when absent): every one of
-  the 161 reads; the band-passed PGA lies within 50 % of the lab sheet's pga_g for every test the
-  specimen survived (median difference < 5 %); the few beyond are tests where it overturned,
-  whose peaks come with the fall.
+  the 161 reads; the PGA of the default (combined) channel lies within 50 % of the lab sheet's
+  pga_g for every test the specimen survived (median difference < 10 %); the few beyond are tests
+  where it overturned, whose peaks come with the fall.
 
 usage: test_lab_motion.py RIGID SHARED_DIR
 exit 77 (skipped) when numpy or scipy is missing.
@@ -51,8 +51,12 @@ def rigid(*args):
     return p.returncode, p.stdout, p.stderr
 
 
-def info(path, *flags, dump=None):
-    args = ["motion", "info", "--json", "--lab", path] + list(flags)
+def info(path, *flags, dump=None, default_channel=False):
+    """`motion info --lab` as JSON; the accelerometer channel unless flags or default_channel say otherwise"""
+    flags = list(flags)
+    if "--lab-channel" not in flags and not default_channel:
+        flags += ["--lab-channel", "acceleration"]
+    args = ["motion", "info", "--json", "--lab", path] + flags
     if dump:
         args += ["--dump", dump]
     status, out, err = rigid(*args)
@@ -140,6 +144,13 @@ def reader_cases(d):
     mid = slice(len(t) // 4, 3 * len(t) // 4)
     err = np.abs(x_v[mid] - expected[mid]).max() / np.abs(expected).max()
     check(err < 2e-3, "displacement channel (V x 5.9797e-4 in) differentiated twice: -w^2 x to %.2g" % err)
+    # combined: the same displacement below 2 Hz, the accelerometer above (here both hold the same
+    # motion, so the merge is that motion)
+    acc_same = -w * w * 0.5 * 0.0254 * np.sin(w * t) / G
+    same = write(d, "same.txt", table(t, acc_same, disp))
+    info(same, "--lab-channel", "combined", dump=os.path.join(d, "k.csv"))
+    err = np.abs(read_dump(os.path.join(d, "k.csv"))[mid] - expected[mid]).max() / np.abs(expected).max()
+    check(err < 2e-3, "combined channel of two channels holding one motion: that motion to %.2g" % err)
     mm = write(d, "mm.txt", table(t, acc, disp * 5.9797e-4 * 25.4, header="t\ta [g]\td [mm]"))
     info(mm, "--lab-channel", "displacement", "--lab-displacement-unit", "mm", dump=os.path.join(d, "j.csv"))
     check(np.allclose(read_dump(os.path.join(d, "j.csv")), x_v, rtol=0, atol=1e-5 * np.abs(x_v).max()), "displacement in mm")
@@ -220,14 +231,14 @@ def real_data_cases():
         rows = list(csv.DictReader(f))
     ratios = []
     for row in rows:
-        j = info(os.path.join(root, row["file"]))
+        j = info(os.path.join(root, row["file"]), default_channel=True)
         ratios.append(j["pga_g"] / float(row["pga_g"]))
     ratios = np.array(ratios)
     fell = np.array([row["overturned"] == "1" for row in rows])
     far = np.abs(ratios - 1) > 0.5
     check(len(rows) == 161, "all %d recordings read" % len(rows))
-    check(np.median(np.abs(ratios - 1)) < 0.05,
-          "recomputed PGA / sheet's pga_g: median %.3f, median |diff| %.3f" % (np.median(ratios), np.median(np.abs(ratios - 1))))
+    check(np.median(np.abs(ratios - 1)) < 0.10,
+          "the default (combined) channel's PGA / sheet's pga_g: median %.3f, median |diff| %.3f" % (np.median(ratios), np.median(np.abs(ratios - 1))))
     # a specimen that falls hits the table: the largest accelerations of those few tests come at
     # the fall, not from the drive; every test it survived must stay within 50 % of the sheet
     standing = [rows[i]["test_no"] for i in np.flatnonzero(far & ~fell)]

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Checks src/plot/rigid_plot.py (`rigid plot`) on synthetic cubes written here with h5py in the
-documented layout (README "The fragility cube (HDF5)"), with outcomes drawn from a KNOWN probit
+documented layout (docs/cube.md), with outcomes drawn from a KNOWN probit
 model, so the planted parameters are an independent oracle for the maximum-likelihood fit.
 
     /usr/bin/python3 tests/python/test_plot.py [PATH/rigid_plot.py]

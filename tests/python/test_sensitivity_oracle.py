@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Sensitivity oracle of uncertainty campaigns (issue 15), end to end through `rigid campaign` and
+"""Sensitivity oracle of uncertainty campaigns (docs/uncertainty.md), end to end through `rigid campaign` and
 `rigid fragility`.
 
 A rectangular block on a pedestal (the library's block_a04, 1 m tall) under a quasi-static record:

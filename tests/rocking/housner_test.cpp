@@ -157,8 +157,8 @@ TEST(RockingThreshold, RectangularPulseNonlinearSlenderWithinAlphaSquared) {
 
 // ------------------------------------------------------------------------------------------------
 // 2. Free rocking (linearised). Released from θ0 at rest: θ = α − (α − θ0) cosh(pt), so θ = 0
-// after t = (1/p) cosh⁻¹(1/(1 − θ0/α)). (physics.md §2 calls (4/p) cosh⁻¹(...) the "quarter
-// period"; that expression is the full period, four such quarters.) After an impact at speed ω
+// after t = (1/p) cosh⁻¹(1/(1 − θ0/α)), a quarter of the free-rocking period (physics.md §2).
+// After an impact at speed ω
 // the block leaves θ = 0 and returns after t = (2/p) atanh(ω/(p α)), from
 // θ = α (1 − cosh pt) + (ω/p) sinh pt = 0.
 

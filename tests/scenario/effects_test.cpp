@@ -1,4 +1,4 @@
-// Effect selection (issue 6, RunSettings::select_effects): a run that simulates only the effects
+// Effect selection (RunSettings::select_effects): a run that simulates only the effects
 // its scene and motion call for gives the answers of the run that simulates all of them, and the
 // report says what was skipped. Oracles: the all-effects run, rigid-block statics (g tan(alpha),
 // physics.md §2), exact integrals of piecewise-linear velocities, the energy balance.

@@ -219,7 +219,7 @@ TEST(StaticToppling, RectangularBlockIsTanAlpha) {
 }
 
 // g tan(alpha) is rigid-block statics (physics.md §2). At the study's stiffness the Hertz contacts
-// let the block tilt elastically first, which lowers the toppling acceleration by 1-3 % (README,
+// let the block tilt elastically first, which lowers the toppling acceleration by 1-3 % (docs/validation.md,
 // "What contact compliance does"); near-rigid contacts (1e10) must give the closed form.
 TEST(TiltTest, RectangularBlockTopplesAtGTanAlpha) {
   const double alpha = 0.2, h = 0.5, b = h * std::tan(alpha);

@@ -28,8 +28,8 @@ bool parse_contact_model(std::string_view name, ContactModel& model);
 /// Contact law: the model, and the parameters of each (penalty values: the original study's,
 /// physics.md §11).
 struct ContactLaw {
-  /// Which contact model (rigid by default: the rigid-block answer at the lower cost, README
-  /// "Rigid contact"); the stiffness and damping below belong to the penalty model only.
+  /// Which contact model (rigid by default: the rigid-block answer at the lower cost, docs/performance.md,
+  /// "Rigid contact: what it changes"); the stiffness and damping below belong to the penalty model only.
   ContactModel model = ContactModel::rigid;
   /// Normal restitution e_n of the rigid model's Newton impact law (unit: 1): 0 = plastic impact,
   /// Housner's assumption, under which a rocking block keeps r = 1 - 1.5 sin^2 alpha of its

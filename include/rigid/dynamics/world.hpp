@@ -143,7 +143,7 @@ struct StepStats {
   long sliding_steps = 0;    ///< of those, evaluations where a subcontact reached mu F_n
 };
 
-/// Optional work of the stepper (issue 6: simulate only the effects a scene calls for). The
+/// Optional work of the stepper (simulate only the effects a scene calls for, docs/engine.md). The
 /// defaults do all of it; each switch skips only work whose result is known in advance, so
 /// results do not change (see each).
 struct WorldEffects {

@@ -137,7 +137,7 @@ const char* failure_reason_name(int code);
 
 /// The default PGV/PGA bin edges (unit: s), used when Cube::pgv_pga_edges_s is empty: ten edges,
 /// nine bins, {0, 0.06, 0.08, 0.10, 0.12, 0.15, 0.20, 0.25, 0.35, inf}. Round numbers chosen so
-/// that the study's 154 records (PGV/PGA 0.033-0.50 s, docs/table3_6_records.tsv) fall 13-24 per
+/// that the study's 154 records (PGV/PGA 0.033-0.50 s, the study's table, ../shared/docs/table3_6_records.tsv) fall 13-24 per
 /// bin: narrow bins where the records are dense (0.06-0.15 s), wide ones in the tails.
 std::vector<double> default_pgv_pga_edges();
 

@@ -37,7 +37,7 @@ double length_unit_to_si(std::string_view unit);
 /// "tab", "comma", "whitespace"; parse returns false for anything else.
 const char* lab_delimiter_name(LabDelimiter d);
 bool parse_lab_delimiter(std::string_view text, LabDelimiter& out);
-/// "acceleration", "displacement"; parse returns false for anything else.
+/// "acceleration", "displacement", "combined"; parse returns false for anything else.
 const char* lab_channel_name(LabChannel c);
 bool parse_lab_channel(std::string_view text, LabChannel& out);
 /// "none", "mean", "linear", "polynomial"; false for anything else.
@@ -48,7 +48,7 @@ LabColumn parse_lab_column(std::string_view text);
 /// The `[lab]` table of a TOML document (text, file name for messages); the defaults when it has
 /// none. Keys: delimiter, header_lines, time_column, channel, acceleration_column,
 /// acceleration_unit, displacement_column, displacement_unit, volts_to_length, volts_length_unit,
-/// scale, baseline, baseline_degree, band_hz ([low, high] or "none"), filter_order. A column is
+/// scale, baseline, baseline_degree, band_hz ([low, high] or "none"), filter_order, crossover_hz. A column is
 /// an integer (1-based) or a header name. Unknown keys and bad values: InputError at their line.
 LabFormat lab_format_from_toml(std::string_view toml_text, const std::string& file);
 
@@ -60,12 +60,13 @@ struct LabTable {
   std::string source;             ///< the file
   std::vector<std::string> header;///< header lines (line ends stripped)
   std::vector<double> time;       ///< unit: s
-  std::vector<double> values;     ///< the chosen channel's column, in the file's unit
+  std::vector<double> acceleration;  ///< the acceleration column in its unit; empty unless read
+  std::vector<double> displacement;  ///< the displacement column in its unit; empty unless read
   double dt = 0.0;                ///< (t_last - t_first) / (n - 1) (unit: s)
   long first_data_line = 0;       ///< 1-based line of the first sample
 };
 
-/// Reads the time column and the column of f.channel from a file (gzip or plain text, detected
+/// Reads the time column and the column(s) f.channel needs from a file (gzip or plain text, detected
 /// from the content). Refuses what is not a regular file or is larger than 256 MB (compressed) or
 /// decompresses to more than 1 GB. InputError(file, line, ...) for: a corrupt or truncated gzip
 /// stream, fewer lines than the header, a header without the named column (or a numeric line
@@ -75,7 +76,8 @@ struct LabTable {
 LabTable read_lab_table(const std::filesystem::path& path, const LabFormat& f);
 
 /// The single entry point: reads the recording, converts the channel to m/s^2 (displacement: to
-/// m, then differentiated twice after the band-pass), applies the scale, baseline and band-pass,
+/// m, then differentiated twice after the band-pass; combined: both, merged at the crossover),
+/// applies the scale, baseline and band-pass,
 /// and returns a one-horizontal GroundMotion (x = the table's axis), dt from the time column,
 /// name = the file's stem without .txt/.gz, label_x = the channel, sources = {path}.
 motion::GroundMotion read_lab_motion(const std::filesystem::path& path, const LabFormat& f);

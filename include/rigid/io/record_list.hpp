@@ -1,5 +1,5 @@
 #pragma once
-/// Record lists: the study's table format (tab-separated, as docs/table3_6_records.tsv) and the
+/// Record lists: the study's table format (tab-separated, as the study's ../shared/docs/table3_6_records.tsv) and the
 /// original Rigid batch file (.ABF), plus the comparison of listed GMRotI values with the values
 /// computed from the files.
 #include <limits>
@@ -55,7 +55,7 @@ RecordList parse_abf(std::string_view text, const std::string& name);
 RecordList read_record_list(const std::string& path);
 
 /// Listed vs computed GMRotI50 values of one record. The study's listed values behave as
-/// whole-record values (waveforms/GROUND_MOTIONS.md), so the relative differences use the whole
+/// whole-record values (docs/ground-motions.md), so the relative differences use the whole
 /// record; the values on the listed window are reported beside them.
 struct RecordCheck {
   RecordEntry entry;

@@ -29,6 +29,9 @@ struct LabProcessing {
   double low_hz = 0.1;       ///< lower corner (unit: Hz), -3 dB of the one-way filter, > 0
   double high_hz = 25.0;     ///< upper corner (unit: Hz), > low_hz, < Nyquist
   int order = 4;             ///< Butterworth order of the low-pass prototype, 1..8 (band-pass: 2 order poles)
+  /// The combined channel's crossover (unit: Hz), inside the band: the displacement below it,
+  /// the accelerometer above it (merge_complementary, same order as the band-pass)
+  double crossover_hz = 2.0;
 };
 
 /// One second-order section: y = (b0 + b1 z^-1 + b2 z^-2) / (1 + a1 z^-1 + a2 z^-2) x.
@@ -42,6 +45,19 @@ struct Biquad {
 /// 0 < low_hz < high_hz < 0.5/dt and 1 <= order <= 8.
 std::vector<Biquad> butterworth_bandpass(double low_hz, double high_hz, int order, double dt);
 
+/// Butterworth low-pass and high-pass of the given order at corner fc_hz (liquid-dsp, single
+/// precision as above), as ceil(order / 2) sections. Throws std::invalid_argument unless
+/// 0 < fc_hz < 0.5/dt and 1 <= order <= 8.
+std::vector<Biquad> butterworth_lowpass(double fc_hz, int order, double dt);
+std::vector<Biquad> butterworth_highpass(double fc_hz, int order, double dt);
+
+/// filtfilt(low-pass, low) + filtfilt(high-pass, high) at one corner and order. Zero-phase
+/// Butterworth filters of one order and corner are power complementary, |H_lp|^2 + |H_hp|^2 = 1 at
+/// every frequency, so what both inputs share passes unchanged and each input contributes only
+/// on its side of the crossover. Inputs of equal length.
+std::vector<double> merge_complementary(const std::vector<double>& low, const std::vector<double>& high,
+                                        double crossover_hz, int order, double dt);
+
 /// |H(f)| of the cascade at frequency f (unit: Hz) for time step dt (one pass; the
 /// forward-backward filter has |H|^2).
 double gain_at(const std::vector<Biquad>& sections, double f_hz, double dt);
@@ -52,7 +68,7 @@ std::vector<double> sos_filter(const std::vector<Biquad>& sections, const std::v
                                const std::vector<std::array<double, 2>>& state = {});
 
 /// Zero-phase filtering, scipy.signal.sosfiltfilt with its defaults: the signal is extended at
-/// each end by padlen = 3 (2 sections + 1) samples of odd reflection (2 x[0] - x[padlen..1] before,
+/// each end by padlen = 3 (2 sections + 1 - first-order sections) samples of odd reflection (2 x[0] - x[padlen..1] before,
 /// 2 x[n-1] - x[n-2..n-1-padlen] after), filtered forward from the steady-state section states
 /// (scipy.signal.sosfilt_zi) times the first extended sample, reversed, filtered again from the
 /// steady state times its first sample, reversed, and the padding removed. Throws

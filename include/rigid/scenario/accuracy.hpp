@@ -1,5 +1,5 @@
 #pragma once
-/// Accuracy presets (issue 6; measured in docs/accuracy.md): named sets of the numerical settings
+/// Accuracy presets (measured in docs/accuracy.md): named sets of the numerical settings
 /// that trade accuracy for time. A preset sets the time-step safety factor (physics.md §10), the
 /// rotation integrator (physics.md §8) and the tolerances of the at-rest stop (RunSettings::
 /// rest_speed, rest_angular_speed, rest_time). It never touches the physics of a scene (density,

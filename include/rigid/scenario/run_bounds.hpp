@@ -1,5 +1,5 @@
 #pragma once
-/// Bounds that refuse a run as bad input before any work (README "Robustness"): a step above what
+/// Bounds that refuse a run as bad input before any work (docs/robustness.md): a step above what
 /// the contact model allows gives a wrong answer with exit 0, a step count beyond any budget is a
 /// hang, and blocks that start deep inside each other explode. Each check throws
 /// rigid::InputError without a file; the caller (io, app) adds the file or the option.

@@ -71,7 +71,7 @@ struct RunSettings {
   /// observe_interval of simulated time, and once more when the run ends.
   std::function<void(const dynamics::World&)> observer;
   double observe_interval = 0.02;  ///< unit: s
-  /// Simulate only the effects the scene and motion call for (issue 6: no vertical work without a
+  /// Simulate only the effects the scene and motion call for (no vertical work without a
   /// vertical component, pair culling, sleeping, sliding bookkeeping only where friction can be
   /// exceeded). false = every effect simulated, the reference the selection is checked against.
   bool select_effects = true;

@@ -51,7 +51,7 @@ struct TiltTestResult {
 /// from a snapshot of the ramp just below the level, ramp on to it and hold it for hold_time. The
 /// ramp alone lags the onset of toppling (the rock needs time to rotate that far), the hold tests
 /// do not. For a rigid rectangular block of slenderness alpha the answer is g tan(alpha); the
-/// study's soft Hertz contacts lower it by 1-3 % (README, "What contact compliance does").
+/// study's soft Hertz contacts lower it by 1-3 % (docs/validation.md, "What contact compliance does").
 TiltTestResult tilt_test(const Scene& settled, double azimuth, const TiltTestSettings& settings = {});
 
 /// Tilt tests in `azimuths` directions evenly spaced from +x (8: every 45 degrees).

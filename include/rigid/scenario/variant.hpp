@@ -1,7 +1,7 @@
 #pragma once
 /// Variants of a campaign: each one changes the physical assumptions of every object (friction,
 /// restitution, stiffness, density, centre of mass, size, contact model, or the mesh itself) so a
-/// campaign can carry the epistemic uncertainty of its objects (issue 15). The catalogue of what a
+/// campaign can carry the epistemic uncertainty of its objects (docs/uncertainty.md). The catalogue of what a
 /// variant may change, the seeded designs that sample them (Latin hypercube, grid) and their
 /// application to a scene. No I/O.
 #include <cstdint>

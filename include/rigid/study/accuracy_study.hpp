@@ -1,5 +1,5 @@
 #pragma once
-/// The accuracy study (issue 6; docs/accuracy.md): what accuracy costs in time. Reference scenes
+/// The accuracy study (docs/accuracy.md): what accuracy costs in time. Reference scenes
 /// built in code are run with the settings that trade accuracy for time (time-step safety factor,
 /// rotation integrator, the at-rest stop tolerances) with the default contact model, and with both
 /// contact models (penalty at several stiffnesses, rigid at several time steps: a model axis, not a
