@@ -123,7 +123,7 @@ std::map<double, std::string> import_bases(const CalibrateOptions& o, const fs::
 
 // The base model's scene with the contact model's law, settled with it: a soft contact sinks and
 // leans the rock, and a run that started from the rigid pose would begin with that motion.
-std::string settled_scene(const std::string& base_scene, const Physics& p, const fs::path& work) {
+std::string settled_scene(const std::string& scan, const std::string& base_scene, const Physics& p, const fs::path& work) {
   char name[96];
   if (p.contact == "penalty") std::snprintf(name, sizeof name, "%s_k%.3g", p.base.c_str(), p.normal_stiffness);
   else std::snprintf(name, sizeof name, "%s_rigid", p.base.c_str());
@@ -138,7 +138,16 @@ std::string settled_scene(const std::string& base_scene, const Physics& p, const
   }
   changes.comment = std::string(name) + ": " + base_scene + " with the " + p.contact + " contact model, settled with it";
   io::write_derived_scene(base_scene, scene, changes);
-  const scenario::Scene settled = scenario::equilibrate(io::load_scene(scene), dynamics::StepSettings{});
+  const scenario::Scene placed = io::load_scene(scene);
+  const scenario::Scene settled = scenario::equilibrate(placed, dynamics::StepSettings{});
+  for (std::size_t i = 0; i < placed.bodies.size(); ++i) {
+    const double turned = scenario::tilt(placed.bodies[i].orientation, settled.bodies[i].orientation) * 180 / kPi;
+    if (!placed.bodies[i].fixed && turned > 5.0) {
+      char text[200];
+      std::snprintf(text, sizeof text, "does not stand on its base: settling with %s contact tilted it %.1f deg", p.contact.c_str(), turned);
+      throw InputError(scan, 0, text);
+    }
+  }
   io::save_state(scene.substr(0, scene.size() - 5) + ".state.toml", settled);
   return scene;
 }
@@ -220,7 +229,7 @@ campaign::CampaignOptions prepare(Calibration& c, const CalibrateOptions& o) {
       p.restitution = o.restitution.front();
       p.damping = o.damping.front();
       p.friction = o.friction.front();
-      p.base_scene = settled_scene(scene, p, c.work);
+      p.base_scene = settled_scene(o.scan, scene, p, c.work);
       c.stage1.push_back(p);
     }
   }

@@ -1,0 +1,187 @@
+#!/usr/bin/env python3
+"""CTest `shaketable_python`: `rigid shaketable calibrate` and `predict` on a synthetic lab whose
+outcomes the model itself generated, so the truth is known.
+
+- Planted recovery: an asymmetric prism (a scan this test writes) stands on a table turned by a
+  planted heading of 60 deg; sine motions of three frequencies and six amplitudes, written as a
+  lab exports them (gzip, tab-separated, time / acceleration in g / displacement in V), are run
+  one by one with `rigid run --lab --rotation 60`, and their outcomes become the test list.
+  Calibration over a ring of headings must find the heading again (modulo 180 deg: the table
+  pushes both ways), fit the outcomes it was given (in-sample accuracy 1) and write a scene that
+  `rigid run` accepts.
+- Prediction never reads the outcome column: the same predictions with it removed or shuffled.
+- Bad test lists and scans: one line naming the file (and line), exit 2.
+
+usage: test_shaketable.py RIGID
+"""
+import csv
+import gzip
+import json
+import math
+import os
+import random
+import subprocess
+import sys
+import tempfile
+
+RIGID = os.path.abspath(sys.argv[1])
+ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+failures = []
+passes = []
+
+
+def check(ok, what):
+    print(("ok    " if ok else "FAIL  ") + what, flush=True)
+    (passes if ok else failures).append(what)
+
+
+def run(*args, cwd=None):
+    return subprocess.run([RIGID, *args], capture_output=True, text=True, env=ENV, cwd=cwd, timeout=900)
+
+
+def write_prism(path, tilt_x=0.0):
+    """A prism 0.9 m tall on an irregular convex pentagon (no mirror symmetry); tilt_x leans it."""
+    base = [(0.16, 0.0), (0.05, 0.12), (-0.11, 0.08), (-0.13, -0.06), (0.04, -0.11)]
+    h = 0.9
+    v = [(x, y, 0.0) for x, y in base] + [(x + tilt_x, y, h) for x, y in base]
+    n = len(base)
+    faces = [[n - 1 - k for k in range(n)], [n + k for k in range(n)]]  # bottom (outward down), top
+    for k in range(n):
+        a, b = k, (k + 1) % n
+        faces.append([a, b, n + b])
+        faces.append([a, n + b, n + a])
+    with open(path, "w") as f:
+        for p in v:
+            f.write("v %.6f %.6f %.6f\n" % p)
+        for face in faces:
+            for i in range(1, len(face) - 1):
+                f.write("f %d %d %d\n" % (face[0] + 1, face[i] + 1, face[i + 1] + 1))
+
+
+def write_motion(path, freq, amp_g, duration=4.0, dt=0.005):
+    """A sine of the table: acceleration in g, displacement in V (the lab's 5.9797e-4 in per V)."""
+    w = 2 * math.pi * freq
+    with gzip.open(path, "wt") as f:
+        f.write("Time [s]\tAcceleration [g]\tDisplacement [V]\n")
+        for i in range(int(duration / dt) + 1):
+            t = i * dt
+            a = amp_g * math.sin(w * t)
+            x = -amp_g * 9.80665 / (w * w) * math.sin(w * t)  # m
+            f.write("%.5f\t%.7f\t%.7f\n" % (t, a, x / 0.0254 / 5.9797e-4))
+
+
+def write_tests(path, rows, columns):
+    with open(path, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=columns, extrasaction="ignore")
+        w.writeheader()
+        for r in rows:
+            w.writerow(r)
+
+
+def main():
+    tmp = tempfile.mkdtemp(prefix="rigid_shaketable_")
+    scan = os.path.join(tmp, "prism.obj")
+    write_prism(scan)
+    os.makedirs(os.path.join(tmp, "motions"))
+    # the planted model: the imported prism, rigid contact, tilt rule, on a wide table
+    planted = os.path.join(tmp, "planted", "prism")
+    r = run("model", "import", scan, "--out", planted, "--pedestal-margin", "0.5", "--tilt-rule", "30",
+            "--max-vertices", "64")
+    check(r.returncode == 0, "planted model imports (%s)" % r.stderr.strip()[:200])
+    rows = []
+    number = 1
+    for freq, amps in ((0.8, (0.08, 0.12, 0.16, 0.2, 0.25, 0.3)), (1.6, (0.1, 0.15, 0.2, 0.3, 0.4, 0.5)),
+                       (3.0, (0.15, 0.25, 0.35, 0.5, 0.7, 0.9))):
+        for amp in amps:
+            name = "Test%03d.txt.gz" % number
+            write_motion(os.path.join(tmp, "motions", name), freq, amp)
+            out = run("run", planted + ".toml", "--lab", os.path.join(tmp, "motions", name), "--rotation", "60",
+                      "--json")
+            over = json.loads(out.stdout)["overturned"] if out.returncode == 0 else None
+            rows.append({"test_no": number, "record": "sine_%gHz" % freq, "pgv_over_pga_s": "", "pga_g": amp,
+                         "file": "motions/" + name, "overturned": int(bool(over))})
+            number += 1
+    overturned = sum(r["overturned"] for r in rows)
+    check(0 < overturned < len(rows), "planted outcomes mixed: %d of %d overturned" % (overturned, len(rows)))
+    columns = ["test_no", "record", "pgv_over_pga_s", "pga_g", "file", "overturned"]
+    tests = os.path.join(tmp, "tests.csv")
+    write_tests(tests, rows, columns)
+
+    out = os.path.join(tmp, "cal", "prism")
+    r = run("shaketable", "calibrate", scan, "--tests", tests, "--out", out, "--flatten-mm", "0",
+            "--contact-models", "rigid", "--restitution", "0", "--friction", "0.6", "--headings", "12",
+            "--refine-step", "10", "--progress", "none")
+    check(r.returncode == 0, "calibrate runs (%s)" % r.stderr.strip()[-300:])
+    if r.returncode == 0:
+        with open(out + ".calibration.json") as f:
+            cal = json.load(f)
+        h = cal["parameters"]["heading_deg"]["value"]
+        off = abs(math.remainder(h - 60.0, 180.0))
+        check(off <= 10.0 + 1e-9, "heading recovered: %.1f deg (planted 60, modulo 180)" % h)
+        check(cal["in_sample"]["accuracy"] == 1.0, "in-sample accuracy %.3f on outcomes the model made" %
+              cal["in_sample"]["accuracy"])
+        check(cal["cross_validated"]["tests"] == len(rows), "cross-validation covers every test")
+        check(len(cal["stages"]) == 2 and len(cal["stages"][0]["parameter_sets"]) == 1, "both stages reported")
+        rr = run("run", out + ".toml", "--lab", os.path.join(tmp, "motions", "Test001.txt.gz"))
+        check(rr.returncode == 0, "the calibrated scene runs (%s)" % rr.stderr.strip()[:200])
+
+        # predict: the outcome column is never read
+        preds = []
+        for variant in ("with", "without", "shuffled"):
+            t = os.path.join(tmp, "tests_%s.csv" % variant)
+            rs = [dict(x) for x in rows]
+            cols = columns
+            if variant == "without":
+                cols = columns[:-1]
+            if variant == "shuffled":
+                flips = [x["overturned"] for x in rs]
+                random.Random(3).shuffle(flips)
+                for x, y in zip(rs, flips):
+                    x["overturned"] = y
+            write_tests(t, rs, cols)
+            p = os.path.join(tmp, "pred_%s.csv" % variant)
+            rp = run("shaketable", "predict", out + ".toml", "--tests", t, "--out", p, "--progress", "none")
+            check(rp.returncode == 0, "predict (%s outcomes) runs (%s)" % (variant, rp.stderr.strip()[-200:]))
+            preds.append(open(p).read() if rp.returncode == 0 else None)
+            if variant == "with":
+                check("accuracy" in rp.stdout, "predict scores against the outcomes it has")
+            if variant == "without":
+                check("accuracy" not in rp.stdout, "predict without outcomes prints no score")
+        check(preds[0] is not None and preds[0] == preds[1] == preds[2],
+              "predictions identical with the outcomes kept, removed and shuffled")
+        got = [int(l.split(",")[-1]) for l in preds[0].strip().splitlines()[1:]] if preds[0] else []
+        check(got == [x["overturned"] for x in rows], "predict reproduces the planted outcomes")
+
+    # bad input: one line naming the file, exit 2
+    def bad(name, text, expect, extra=()):
+        t = os.path.join(tmp, name)
+        with open(t, "w") as f:
+            f.write(text)
+        r = run("shaketable", "calibrate", scan, "--tests", t, "--out", os.path.join(tmp, "bad", name), *extra)
+        lines = r.stderr.strip().splitlines()
+        check(r.returncode == 2 and len(lines) == 1 and expect in lines[0] and name in lines[0],
+              "%s: exit %d, %s" % (name, r.returncode, lines))
+
+    head = "test_no,record,pgv_over_pga_s,pga_g,file,overturned\n"
+    bad("no_file_column.csv", "test_no,record,overturned\n1,a,0\n", "no 'file' column")
+    bad("missing_motion.csv", head + "1,a,,0.1,motions/Test001.txt.gz,0\n2,a,,0.1,motions/nope.txt.gz,1\n",
+        "missing_motion.csv:3")
+    bad("duplicate.csv", head + "1,a,,0.1,motions/Test001.txt.gz,0\n1,a,,0.1,motions/Test002.txt.gz,1\n", "listed twice")
+    bad("empty.csv", head, "no test")
+    bad("all_equal.csv", head + "1,a,,0.1,motions/Test001.txt.gz,1\n2,a,,0.1,motions/Test002.txt.gz,1\n",
+        "cannot identify")
+    bad("bad_outcome.csv", head + "1,a,,0.1,motions/Test001.txt.gz,yes\n", "not 0 or 1")
+    # a scan that will not stand: the prism leaning beyond its base
+    leaning = os.path.join(tmp, "leaning.obj")
+    write_prism(leaning, tilt_x=0.6)
+    r = run("shaketable", "calibrate", leaning, "--tests", tests, "--out", os.path.join(tmp, "lean", "x"),
+            "--flatten-mm", "0", "--contact-models", "rigid", "--progress", "none")
+    lines = r.stderr.strip().splitlines()
+    check(r.returncode == 2 and len(lines) == 1 and "leaning.obj" in lines[0], "a scan that cannot stand: %s" % lines)
+
+    print("%d passed, %d failed" % (len(passes), len(failures)))
+    sys.exit(1 if failures else 0)
+
+
+if __name__ == "__main__":
+    main()
