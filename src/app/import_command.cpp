@@ -213,6 +213,14 @@ void import_scan(const ImportOptions& o) {
   // settle it on its pedestal: the campaigns start from this state
   const scenario::Scene scene = load_scene_with_warnings(scene_path.string());
   const scenario::Scene settled = scenario::equilibrate(scene, dynamics::StepSettings{});
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    const double turned = scenario::tilt(scene.bodies[i].orientation, settled.bodies[i].orientation) * 180 / kPi;
+    if (!scene.bodies[i].fixed && turned > 5.0) {
+      char text[200];
+      std::snprintf(text, sizeof text, "does not stand on its base: it tips over (%.0f deg) while settling on its pedestal", turned);
+      throw InputError(o.scan, 0, text);
+    }
+  }
   const std::string state = name + ".state.toml";
   io::save_state((dir / state).string(), settled);
   std::ofstream(scene_path) << header << "state = \"" << state << "\"\n\n" << body;

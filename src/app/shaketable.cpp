@@ -24,10 +24,11 @@ std::string Physics::label() const {
 
 std::vector<std::pair<std::string, std::variant<double, std::string>>> Physics::variant_table() const {
   std::vector<std::pair<std::string, std::variant<double, std::string>>> t;
+  // every variant of a job sets the same parameters: each law ignores the other's
   t.emplace_back("scene", base_scene);
   t.emplace_back("friction", friction);
-  if (contact == "penalty") t.emplace_back("damping", damping);
-  else t.emplace_back("restitution", restitution);
+  t.emplace_back("damping", damping);
+  t.emplace_back("restitution", restitution);
   return t;
 }
 
