@@ -83,7 +83,10 @@ class Staging {
       if (level == level.parent_path()) break;
     }
     fs::create_directories(dir_, ec);
-    if (ec) throw InputError("", 0, "--out: cannot create directory " + dir_.string() + ": " + ec.message());
+    if (ec) {
+      remove_created();
+      throw InputError("", 0, "--out: cannot create directory " + dir_.string() + ": " + ec.message());
+    }
     path_ = dir_ / ("." + name + ".import-" + std::to_string(::getpid()));
     fs::remove_all(path_, ec);
     if (!fs::create_directory(path_, ec) || ec) {
