@@ -8,7 +8,8 @@
 #   bash setup.sh sanitize  install, build the engine libraries and a representative subset of
 #                         the test executables with AddressSanitizer + UndefinedBehaviorSanitizer
 #                         (in build-sanitize) and run their tests (ctest -L sanitize; CI runs it
-#                         after `test`; 11 of the 13 `stability` cases, tests/labels.cmake)
+#                         after `test`; 11 of the 13 `stability` cases, tests/labels.cmake), then
+#                         fuzzes the PLY and OBJ readers for 20 s each (clang, in build-fuzz)
 # Environment: BUILD_DIR (default build), JOBS (default nproc), RIGID_CMAKE_ARGS (extra cmake args).
 set -euo pipefail
 cd "$(dirname "$0")"
@@ -22,7 +23,8 @@ packages=(build-essential cmake git pkg-config
   googletest libgtest-dev libtomlplusplus-dev libbenchmark-dev libode-dev libliquid-dev
   python3 python3-numpy python3-h5py python3-matplotlib python3-scipy
   python3-xarray python3-h5netcdf python3-netcdf4 python3-pandas python3-statsmodels
-  slurm-wlm munge)
+  slurm-wlm munge
+  clang libclang-rt-dev libcgal-dev libgmp-dev libmpfr-dev)
 
 missing=()
 for p in "${packages[@]}"; do
@@ -97,6 +99,22 @@ case "$action" in
     # run in the Release suite)
     ctest --test-dir "$build_dir" --output-on-failure -j "$jobs" -L sanitize
     echo "setup: sanitize: ctest took $((SECONDS - start)) s"
+    # the mesh readers under libFuzzer (clang, tests/fuzz): a fixed time each from the seed files
+    # (tests/data/ply, tests/data/obj), 2 GB and 10 s per input; a crash, a sanitizer report or an
+    # exception other than rigid::InputError fails the step and leaves the input in $fuzz_dir
+    start=$SECONDS
+    fuzz_dir=${FUZZ_BUILD_DIR:-build-fuzz}
+    # shellcheck disable=SC2086
+    cmake -S . -B "$fuzz_dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRIGID_FUZZ=ON \
+      -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ ${RIGID_CMAKE_ARGS:-} >/dev/null
+    cmake --build "$fuzz_dir" -j "$jobs" --target ply_fuzz obj_fuzz
+    for format in ply obj; do
+      corpus="$fuzz_dir/corpus_$format"
+      mkdir -p "$corpus"
+      "$fuzz_dir/tests/${format}_fuzz" -max_total_time="${FUZZ_SECONDS:-20}" -max_len=4096 -rss_limit_mb=2048 \
+        -timeout=10 -print_final_stats=1 -artifact_prefix="$fuzz_dir/${format}_" "$corpus" "tests/data/$format"
+    done
+    echo "setup: sanitize: mesh reader fuzzing took $((SECONDS - start)) s"
     ;;
   demo)
     # The main job: a small real campaign on the bundled models and generated waveforms, on two

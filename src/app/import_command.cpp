@@ -2,6 +2,7 @@
 // checked mesh (mass properties), its contact shape (a reduced hull or a convex decomposition),
 // a pedestal, a settled state, and a report of what the contact shape costs in accuracy.
 #include <cmath>
+#include <cerrno>
 #include <cstring>
 #include <optional>
 #include <cstdio>
@@ -10,6 +11,8 @@
 #include <memory>
 #include <string>
 #include <vector>
+
+#include <unistd.h>
 
 #include "commands.hpp"
 #include "rigid/core/error.hpp"
@@ -43,6 +46,67 @@ geometry::TriangleSoup soup_of(const geometry::ClosedMesh& mesh) {
   for (const auto& t : mesh.triangles) soup.push_back({mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]});
   return soup;
 }
+
+// Text output that fails loudly (a full disk or a vanished directory is an input problem).
+void write_text(const fs::path& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  if (!out) throw InputError(path.string(), 0, std::string("cannot open for writing: ") + std::strerror(errno));
+  out << text;
+  out.close();
+  if (!out) throw InputError(path.string(), 0, "write failed");
+}
+
+// The import writes into a private directory inside the output directory and moves its files
+// into place only once every check has passed: a failed import leaves neither half a model nor a
+// directory it created.
+class Staging {
+ public:
+  explicit Staging(const fs::path& dir, const std::string& name) : dir_(dir.empty() ? fs::path(".") : dir) {
+    std::error_code ec;
+    for (fs::path level = dir_; !level.empty() && !fs::exists(level, ec); level = level.parent_path()) {
+      created_.push_back(level);
+      if (level == level.parent_path()) break;
+    }
+    fs::create_directories(dir_, ec);
+    if (ec) {
+      remove_created();
+      throw InputError("", 0, "--out: cannot create directory " + dir_.string() + ": " + ec.message());
+    }
+    path_ = dir_ / ("." + name + ".import-" + std::to_string(::getpid()));
+    fs::remove_all(path_, ec);
+    if (!fs::create_directory(path_, ec) || ec) {
+      remove_created();
+      throw InputError("", 0, "--out: cannot write in directory " + dir_.string() + ": " +
+                                  (ec ? ec.message() : std::string("it exists")));
+    }
+  }
+  Staging(const Staging&) = delete;
+  Staging& operator=(const Staging&) = delete;
+  ~Staging() {
+    std::error_code ec;
+    fs::remove_all(path_, ec);
+    if (!committed_) remove_created();
+  }
+  const fs::path& path() const { return path_; }
+  // every staged file to the output directory (replacing the files of an earlier import)
+  void commit() {
+    for (const auto& entry : fs::directory_iterator(path_)) {
+      std::error_code ec;
+      fs::rename(entry.path(), dir_ / entry.path().filename(), ec);
+      if (ec) throw InputError((dir_ / entry.path().filename()).string(), 0, "cannot write it: " + ec.message());
+    }
+    committed_ = true;
+  }
+
+ private:
+  void remove_created() {
+    std::error_code ec;
+    for (const fs::path& level : created_) fs::remove(level, ec);  // innermost first; only if empty
+  }
+  fs::path dir_, path_;
+  std::vector<fs::path> created_;  // directories this import created, innermost first
+  bool committed_ = false;
+};
 
 // What a body's contact shape is and what it costs, for the report.
 struct ContactReport {
@@ -115,9 +179,83 @@ io::Json report_json(const ContactReport& r) {
   return j;
 }
 
-}  // namespace
+// The bounding box of a mesh's vertices.
+std::pair<Vec3, Vec3> bounds(const std::vector<Vec3>& vertices) {
+  Vec3 lo = vertices.front(), hi = lo;
+  for (const Vec3& v : vertices) {
+    lo = lo.cwiseMin(v);
+    hi = hi.cwiseMax(v);
+  }
+  return {lo, hi};
+}
 
-void import_scan(const ImportOptions& o) {
+// Rock sizes a scan in metres falls between (unit: m): outside, the units are the likely mistake.
+constexpr double kSmallestRock = 0.01, kLargestRock = 50;
+
+std::string metres(double m) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g m", m);
+  return buf;
+}
+
+// A pedestal scan must lie under the rock: their footprints overlap.
+void check_pedestal_under_rock(const geometry::ClosedMesh& rock, const geometry::ClosedMesh& pedestal,
+                               const ImportOptions& o) {
+  const auto [rlo, rhi] = bounds(rock.vertices);
+  const auto [plo, phi] = bounds(pedestal.vertices);
+  const bool overlap = rlo.x() < phi.x() && plo.x() < rhi.x() && rlo.y() < phi.y() && plo.y() < rhi.y();
+  if (!overlap) {
+    char buf[200];
+    std::snprintf(buf, sizeof buf, "its footprint x %.3g..%.3g, y %.3g..%.3g m misses the rock's x %.3g..%.3g, y %.3g..%.3g m",
+                  plo.x(), phi.x(), plo.y(), phi.y(), rlo.x(), rhi.x(), rlo.y(), rhi.y());
+    throw InputError(o.pedestal, 0, std::string("the pedestal is not under the rock: ") + buf +
+                                        " (both scans must share units, axes and origin)");
+  }
+  if (plo.z() >= rhi.z()) {
+    throw InputError(o.pedestal, 0, "the pedestal lies above the rock (both scans must share units, axes and origin)");
+  }
+}
+
+// Why a settled rock rests on nothing, as far as the import can tell.
+std::string likely_cause(const scenario::LooseBlock& loose, const ImportOptions& o, double size) {
+  if (!(size >= kSmallestRock && size <= kLargestRock)) {
+    return "the rock is " + metres(size) + " across: is --scale right (the file's unit in metres)?";
+  }
+  if (loose.turn > 0.5) {
+    return "it toppled off its pedestal: is --up right (the file's axis that points up, now " + o.up + ")?";
+  }
+  return "is the pedestal under the rock, and are --up (now " + o.up + ") and --scale right?";
+}
+
+// What --repair changed in one scan, in a line and in the report.
+std::string describe(const std::string& path, const io::ScanRepair& r) {
+  char buf[400];
+  std::snprintf(buf, sizeof buf,
+                "%s: --repair: %zu -> %zu facets (%zu removed, %zu added), %zu holes filled, %zu left open, %zu edge "
+                "pairs stitched, %s; volume %.6g -> %.6g m^3 (%+.3f %%)",
+                path.c_str(), r.facets_before, r.facets_after, r.facets_removed, r.facets_added, r.holes_filled,
+                r.holes_left, r.edges_stitched, r.self_intersections_left ? "self-intersections left" : "no self-intersection left",
+                r.volume_before, r.volume_after, 100 * (r.volume_after / r.volume_before - 1));
+  return buf;
+}
+
+io::Json repair_json(const std::string& path, const io::ScanRepair& r) {
+  io::Json j;
+  j["scan"] = path;
+  j["facets_before"] = long(r.facets_before);
+  j["facets_after"] = long(r.facets_after);
+  j["facets_removed"] = long(r.facets_removed);
+  j["facets_added"] = long(r.facets_added);
+  j["holes_filled"] = long(r.holes_filled);
+  j["holes_left"] = long(r.holes_left);
+  j["edges_stitched"] = long(r.edges_stitched);
+  j["self_intersections_left"] = r.self_intersections_left;
+  j["volume_before_m3"] = r.volume_before;
+  j["volume_after_m3"] = r.volume_after;
+  return j;
+}
+
+void check_options(const ImportOptions& o) {
   if (!(o.scale > 0) || !std::isfinite(o.scale)) throw InputError("", 0, "--scale must be a positive number");
   if (!(o.flatten_base >= 0 && o.flatten_base < 1)) throw InputError("", 0, "--flatten-base must be in [0, 1) m");
   if (!(o.density >= 1 && o.density <= 1e5)) throw InputError("", 0, "--density must be between 1 and 1e5 kg/m^3");
@@ -127,23 +265,38 @@ void import_scan(const ImportOptions& o) {
   if (o.max_pieces < 1) throw InputError("", 0, "--max-pieces must be at least 1");
   if (!(o.pedestal_margin >= 0 && o.pedestal_margin < 10)) throw InputError("", 0, "--pedestal-margin must be in [0, 10) m");
   if (!(o.tilt_deg >= 0 && o.tilt_deg < 90)) throw InputError("", 0, "--tilt-rule must be in (0, 90) deg");
+  if (o.split_z && !std::isfinite(*o.split_z)) throw InputError("", 0, "--split-z must be a finite height (m)");
+  if (o.split_z && o.pedestal != "box") throw InputError("", 0, "give either --split-z or --pedestal FILE, not both");
+  if (fs::path(o.out).filename().empty()) throw InputError("", 0, "--out needs DIR/NAME");
+}
+
+}  // namespace
+
+void import_scan(const ImportOptions& o) {
+  check_options(o);
   const Mat3 rotation = io::up_rotation(o.up);
   const fs::path out(o.out);
   const std::string name = out.filename().string();
-  if (name.empty()) throw InputError("", 0, "--out needs DIR/NAME");
   std::vector<std::string> warnings, notes;
-  geometry::ClosedMesh rock = io::read_scan(o.scan, o.scale, rotation, warnings);
+  std::vector<std::pair<std::string, io::ScanRepair>> repairs;  // scan -> what --repair changed
+  const auto read = [&](const std::string& path) {
+    if (!o.repair) return io::read_scan(path, o.scale, rotation, warnings);
+    io::ScanRepair repair;
+    geometry::ClosedMesh mesh = io::read_scan(path, o.scale, rotation, warnings, &repair);
+    repairs.emplace_back(path, repair);
+    return mesh;
+  };
+  geometry::ClosedMesh rock = read(o.scan);
   const std::size_t scan_facets = rock.triangles.size();
   std::optional<geometry::ClosedMesh> split_pedestal;
-  if (!std::isnan(o.split_z)) {
-    if (o.pedestal != "box") throw InputError("", 0, "give either --split-z or --pedestal FILE, not both");
+  if (o.split_z) {
     geometry::SplitMesh parts;
     try {
-      parts = geometry::split_by_plane(rock, o.split_z);
+      parts = geometry::split_by_plane(rock, *o.split_z);
     } catch (const std::invalid_argument& e) {
       throw InputError(o.scan, 0, std::string("--split-z: ") + (std::strchr(e.what(), ':') + 2));
     }
-    if (parts.level != o.split_z) notes.push_back("split at z = " + std::to_string(parts.level) + " m (moved off a vertex)");
+    if (parts.level != *o.split_z) notes.push_back("split at z = " + std::to_string(parts.level) + " m (moved off a vertex)");
     rock = closed_part(parts.above, o.scan + " above z = " + std::to_string(parts.level));
     split_pedestal = closed_part(parts.below, o.scan + " below z = " + std::to_string(parts.level));
   }
@@ -162,17 +315,24 @@ void import_scan(const ImportOptions& o) {
                        std::to_string(geometry::mass_properties(rock, 1.0).volume) + " m^3)");
   }
   // the rock's base at z = 0, centred over the origin; a pedestal scan moves with it
-  Vec3 lo = rock.vertices.front(), hi = lo;
-  for (const Vec3& v : rock.vertices) {
-    lo = lo.cwiseMin(v);
-    hi = hi.cwiseMax(v);
+  const auto [lo, hi] = bounds(rock.vertices);
+  const double size = (hi - lo).maxCoeff();
+  if (!(size >= kSmallestRock && size <= kLargestRock)) {
+    warnings.push_back(o.scan + ": the rock is " + metres(size) + " across, outside " + metres(kSmallestRock) + " to " +
+                       metres(kLargestRock) + ": is --scale right (the file's unit in metres, 0.001 for millimetres)?");
   }
   const Vec3 shift(-0.5 * (lo.x() + hi.x()), -0.5 * (lo.y() + hi.y()), -lo.z());
   for (Vec3& v : rock.vertices) v += shift;
+  std::optional<geometry::ClosedMesh> pedestal_scan;
+  if (!split_pedestal && o.pedestal != "box") {
+    pedestal_scan = read(o.pedestal);
+    for (Vec3& v : pedestal_scan->vertices) v += shift;
+    check_pedestal_under_rock(rock, *pedestal_scan, o);
+  }
   const ContactReport rock_report = contact_shape("rock", rock, o);
 
-  if (out.has_parent_path()) fs::create_directories(out.parent_path());
-  const fs::path dir = out.parent_path();
+  Staging staging(out.parent_path(), name);
+  const fs::path& dir = staging.path();
   std::string blocks;
   std::vector<ContactReport> reports{rock_report};
   if (split_pedestal) {
@@ -180,7 +340,10 @@ void import_scan(const ImportOptions& o) {
     for (Vec3& v : pedestal.vertices) v += shift;
     reports.push_back(contact_shape("pedestal", pedestal, o));
     blocks += write_body(dir, name, "pedestal", pedestal, reports.back(), true) + "\n";
-  } else if (o.pedestal == "box") {
+  } else if (pedestal_scan) {
+    reports.push_back(contact_shape("pedestal", *pedestal_scan, o));
+    blocks += write_body(dir, name, "pedestal", *pedestal_scan, reports.back(), true) + "\n";
+  } else {
     const double depth = std::max(0.2, 0.25 * (hi.z() - lo.z()));
     const Vec3 half = 0.5 * (hi - lo);
     const std::string file = name + "_pedestal.stl";
@@ -189,11 +352,6 @@ void import_scan(const ImportOptions& o) {
                                            Vec3(half.x() + o.pedestal_margin, half.y() + o.pedestal_margin, 0)),
                         "pedestal");
     blocks += "[[block]]\nname = \"pedestal\"\nstl = \"" + file + "\"\nfixed = true\n\n";
-  } else {
-    geometry::ClosedMesh pedestal = io::read_scan(o.pedestal, o.scale, rotation, warnings);
-    for (Vec3& v : pedestal.vertices) v += shift;
-    reports.push_back(contact_shape("pedestal", pedestal, o));
-    blocks += write_body(dir, name, "pedestal", pedestal, reports.back(), true) + "\n";
   }
   blocks += write_body(dir, name, "rock", rock, rock_report, false);
 
@@ -209,12 +367,16 @@ void import_scan(const ImportOptions& o) {
   physics.replace(physics.find(study_density), study_density.size(), density);
   const std::string failure = o.tilt_deg > 0 ? "rule = \"tilt\"\ntilt_deg = " + std::to_string(o.tilt_deg) : "rule = \"below\"";
   const std::string body = physics + "\n[failure]\n" + failure + "\n\n" + blocks;
-  std::ofstream(scene_path) << header << body;
-  // settle it on its pedestal: the campaigns start from this state
+  write_text(scene_path, header + body);
+  // settle it on its pedestal: the campaigns start from this state, which must rest on it
   const scenario::Scene scene = load_scene_with_warnings(scene_path.string());
-  const scenario::Scene settled = scenario::equilibrate(scene, dynamics::StepSettings{});
+  const scenario::Settled settled = scenario::settle(scene, dynamics::StepSettings{});
+  if (settled.loose) {
+    throw InputError(o.scan, 0, scenario::describe(*settled.loose) + ": " + likely_cause(*settled.loose, o, size));
+  }
+  // resting on the pedestal is not enough: a rock that fell over onto a wide one does not stand
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
-    const double turned = scenario::tilt(scene.bodies[i].orientation, settled.bodies[i].orientation) * 180 / kPi;
+    const double turned = scenario::tilt(scene.bodies[i].orientation, settled.scene.bodies[i].orientation) * 180 / kPi;
     if (!scene.bodies[i].fixed && turned > 5.0) {
       char text[200];
       std::snprintf(text, sizeof text, "does not stand on its base: it tips over (%.0f deg) while settling on its pedestal", turned);
@@ -222,8 +384,8 @@ void import_scan(const ImportOptions& o) {
     }
   }
   const std::string state = name + ".state.toml";
-  io::save_state((dir / state).string(), settled);
-  std::ofstream(scene_path) << header << "state = \"" << state << "\"\n\n" << body;
+  io::save_state((dir / state).string(), settled.scene);
+  write_text(scene_path, header + "state = \"" + state + "\"\n\n" + body);
 
   io::Json report;
   report["scan"] = o.scan;
@@ -234,19 +396,24 @@ void import_scan(const ImportOptions& o) {
   report["flatten_base_m"] = o.flatten_base;
   report["warnings"] = warnings;
   report["notes"] = notes;
+  io::Json repaired = io::Json::array();
+  for (const auto& [path, r] : repairs) repaired.push_back(repair_json(path, r));
+  if (o.repair) report["repair"] = repaired;
   io::Json bodies = io::Json::array();
   for (const auto& r : reports) bodies.push_back(report_json(r));
   report["bodies"] = bodies;
-  const auto rocking = scenario::rocking_parameters(settled);
+  const auto rocking = scenario::rocking_parameters(settled.scene);
   if (rocking) {
     report["alpha_rad"] = rocking->alpha;
     report["static_toppling_g"] = std::tan(rocking->alpha);
   }
-  std::ofstream(dir / (name + ".import.json")) << report.dump(2) << "\n";
+  write_text(dir / (name + ".import.json"), report.dump(2) + "\n");
+  staging.commit();
 
   for (const auto& w : warnings) std::fprintf(stderr, "rigid: warning: %s\n", w.c_str());
-  std::printf("%s: %zu facets, closed, manifold, oriented outward, no self-intersection\n", o.scan.c_str(),
-              scan_facets);
+  for (const auto& [path, r] : repairs) std::printf("%s\n", describe(path, r).c_str());
+  std::printf("%s: %zu facets%s, closed, manifold, oriented outward, no self-intersection\n", o.scan.c_str(),
+              scan_facets, o.repair ? " after --repair" : "");
   for (const auto& note : notes) std::printf("%s\n", note.c_str());
   std::printf("%-9s %13s %16s %7s %9s %22s\n", "body", "mesh m^3", "contact m^3", "pieces", "vertices",
               "budget Hausdorff m");
@@ -290,6 +457,9 @@ void add_import_subcommand(CLI::App& model_command) {
                   "Cut the base flat this far above its lowest point (m): a scan's rough base otherwise rests on its "
                   "three lowest asperities")
       ->capture_default_str();
+  cmd->add_flag("--repair", o->repair,
+               "Mend a scan's self-intersections, small holes (up to 64 edges) and open seams with CGAL, and "
+               "report what changed (facets removed and added, holes filled, volume)");
   cmd->add_option("--density", o->density, "Rock density written to the scene (kg/m^3)")->capture_default_str();
   cmd->add_option("--tilt-rule", o->tilt_deg,
                   "Failure rule: overturned once tilted beyond this angle (deg; for a rock on a wide table, where it "

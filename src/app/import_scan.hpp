@@ -1,7 +1,7 @@
 #pragma once
 // The import pipeline of `rigid model import`, also run by `rigid shaketable calibrate` for each
 // model of the scanned base it compares.
-#include <cmath>
+#include <optional>
 #include <string>
 
 namespace rigid::app {
@@ -19,7 +19,8 @@ struct ImportOptions {
   double pedestal_margin = 0.02; // m
   double density = 2600;         // kg/m^3
   double flatten_base = 0;       // m: cut the base flat this far above its lowest point
-  double split_z = std::nan("");  // m: one scan of rock and pedestal, cut by the plane z = split_z
+  std::optional<double> split_z;  // m: one scan of rock and pedestal, cut by the plane z = split_z
+  bool repair = false;            // mend self-intersections, small holes and seams (CGAL)
   double tilt_deg = 0;           // deg: failure rule "tilt" beyond this angle; 0: rule "below"
 };
 

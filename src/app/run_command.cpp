@@ -218,8 +218,11 @@ void register_run_command(CLI::App& app) {
   settle->add_option("--max-time", *settle_time, "Longest settling time (s)")->capture_default_str()->check(positive_number());
   settle->callback([settle_scene, settle_out, settle_time] {
     const scenario::Scene scene = load_scene_with_warnings(*settle_scene);
-    const scenario::Scene settled = scenario::equilibrate(scene, dynamics::StepSettings{}, *settle_time);
-    io::save_state(*settle_out, settled);
+    const scenario::Settled settled = scenario::settle(scene, dynamics::StepSettings{}, *settle_time);
+    if (settled.loose) {
+      throw InputError(*settle_scene, 0, scenario::describe(*settled.loose) + ": is it above a fixed block?");
+    }
+    io::save_state(*settle_out, settled.scene);
     std::printf("equilibrium state written to %s\n", settle_out->c_str());
   });
 }

@@ -4,12 +4,14 @@
 #include <assimp/scene.h>
 
 #include <assimp/Importer.hpp>
+#include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <string>
 
 #include "input_file.hpp"
+#include "ply_check.hpp"
 #include "rigid/core/error.hpp"
-#include "rigid/geometry/contact_shape.hpp"
 
 namespace rigid::io {
 namespace {
@@ -46,22 +48,41 @@ void append_node(const aiScene& scene, const aiNode& node, const aiMatrix4x4& pa
   for (unsigned c = 0; c < node.mNumChildren; ++c) append_node(scene, *node.mChildren[c], transform, path, soup);
 }
 
+// The format assimp is told: the name's extension, or "ply" for content that starts like a PLY
+// (assimp would detect it too, and the checks must run on what assimp reads)
+std::string format_hint(std::string_view bytes, const std::string& name) {
+  if (bytes.substr(0, 4) == "ply\n" || bytes.substr(0, 5) == "ply\r\n") return "ply";
+  std::string ext = std::filesystem::path(name).extension().string();
+  if (!ext.empty()) ext.erase(0, 1);
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return ext;
+}
+
 }  // namespace
 
-geometry::TriangleSoup read_mesh(const std::string& path) {
-  // the same existence, type and size checks as every other input file
-  check_input_file(path, kMaxMeshFileBytes);
+geometry::TriangleSoup read_mesh_from_memory(std::string_view bytes, const std::string& name) {
+  const std::string hint = format_hint(bytes, name);
+  if (hint == "ply") check_ply(bytes, name);
+  if (hint != "ply" && hint != "obj" && hint != "stl") {
+    throw InputError(name, 0, "cannot read it as a mesh: its name ends in neither .obj, .ply nor .stl");
+  }
+  if (bytes.empty()) throw InputError(name, 0, "the file is empty");
   Assimp::Importer importer;
   // triangulate polygons; nothing that would weld, repair or drop facets: the geometry checks
   // must see the file's defects to name them
-  const aiScene* scene = importer.ReadFile(path, aiProcess_Triangulate);
+  const aiScene* scene = importer.ReadFileFromMemory(bytes.data(), bytes.size(), aiProcess_Triangulate, hint.c_str());
   if (scene == nullptr || scene->mRootNode == nullptr) {
-    throw InputError(path, 0, "cannot read it as an OBJ, PLY or STL mesh: " + one_line(importer.GetErrorString()));
+    throw InputError(name, 0, "cannot read it as an OBJ, PLY or STL mesh: " + one_line(importer.GetErrorString()));
   }
   geometry::TriangleSoup soup;
-  append_node(*scene, *scene->mRootNode, aiMatrix4x4(), path, soup);
-  if (soup.empty()) throw InputError(path, 0, "the file holds no triangles");
+  append_node(*scene, *scene->mRootNode, aiMatrix4x4(), name, soup);
+  if (soup.empty()) throw InputError(name, 0, "the file holds no triangles");
   return soup;
+}
+
+geometry::TriangleSoup read_mesh(const std::string& path) {
+  // the same existence, type and size checks as every other input file
+  return read_mesh_from_memory(read_input_file(path, kMaxMeshFileBytes), path);
 }
 
 Mat3 up_rotation(const std::string& up) {
@@ -73,32 +94,6 @@ Mat3 up_rotation(const std::string& up) {
     return Quat::FromTwoVectors(axis, Vec3::UnitZ()).toRotationMatrix();
   }
   throw InputError("", 0, "--up must be one of x, -x, y, -y, z, -z (the file's axis that points up)");
-}
-
-geometry::ClosedMesh read_scan(const std::string& path, double scale, const Mat3& rotation,
-                               std::vector<std::string>& warnings) {
-  geometry::TriangleSoup soup = io::read_mesh(path);
-  const std::vector<std::size_t> collapsed = geometry::drop_collapsed_facets(soup);
-  if (!collapsed.empty()) {
-    std::string list;
-    for (std::size_t k = 0; k < collapsed.size() && k < 8; ++k) list += (k ? ", " : "") + std::to_string(collapsed[k]);
-    warnings.push_back(path + ": dropped " + std::to_string(collapsed.size()) +
-                       " facets with two corners at one point (no area): " + list + (collapsed.size() > 8 ? ", ..." : ""));
-  }
-  if (soup.empty()) throw InputError(path, 0, "the file holds no facet with an area");
-  for (auto& t : soup) {
-    for (Vec3* p : {&t.a, &t.b, &t.c}) *p = scale * (rotation * *p);
-  }
-  geometry::MeshOptions options;
-  options.require_convex = false;
-  geometry::ClosedMesh mesh = geometry::make_closed_mesh(soup, options, path);
-  for (const auto& w : mesh.warnings) warnings.push_back(path + ": " + w);
-  const auto crossing = geometry::find_self_intersection(mesh);
-  if (crossing[0] >= 0) {
-    throw InputError(path, 0, "facet " + std::to_string(crossing[1]) + ": crosses facet " + std::to_string(crossing[0]) +
-                                  " (the surface intersects itself)");
-  }
-  return mesh;
 }
 
 }  // namespace rigid::io

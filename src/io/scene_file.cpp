@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -133,6 +134,48 @@ void check_block_size(const dynamics::BodyDef& body, const std::string& stl) {
 // diagonal (a hull reduced to a vertex budget lies inside; a decomposition's pieces hug the mesh).
 constexpr double kPieceReach = 0.05;
 
+// The pieces must reach every extreme point of the mesh (a vertex of its convex hull), to `reach`:
+// the rock rests on some of them, and a missing piece under its base lets it sink and tip at t = 0.
+void check_pieces_cover(const geometry::ClosedMesh& mesh, const std::vector<geometry::ClosedMesh>& pieces, double reach,
+                        const std::string& path) {
+  struct Plane {
+    Vec3 normal;
+    double offset;
+  };
+  std::vector<std::vector<Plane>> planes;
+  for (const auto& piece : pieces) {
+    auto& p = planes.emplace_back();
+    for (const auto& t : piece.triangles) {
+      const Vec3 a = piece.vertices[t[0]];
+      const Vec3 n = (piece.vertices[t[1]] - a).cross(piece.vertices[t[2]] - a).normalized();
+      p.push_back({n, n.dot(a)});
+    }
+  }
+  geometry::TriangleSoup hull;
+  try {
+    hull = geometry::convex_hull(mesh.vertices);
+  } catch (const std::invalid_argument&) {
+    return;  // a flat mesh: make_closed_mesh has refused it already
+  }
+  for (const auto& t : hull) {
+    for (const Vec3& v : {t.a, t.b, t.c}) {
+      double nearest = std::numeric_limits<double>::infinity();
+      for (const auto& piece : planes) {
+        double outside = -std::numeric_limits<double>::infinity();  // a lower bound of the distance
+        for (const auto& plane : piece) outside = std::max(outside, plane.normal.dot(v) - plane.offset);
+        nearest = std::min(nearest, outside);
+      }
+      if (nearest > reach) {
+        char where[128];
+        std::snprintf(where, sizeof where, "(%.4g, %.4g, %.4g) lies %.3g m outside every contact piece", v.x(), v.y(),
+                      v.z(), nearest);
+        throw InputError(path, 0, std::string("the contact pieces do not cover the mesh: its extreme point ") + where +
+                                      " (more than 5 % of its size): a piece is missing, or belongs to another rock");
+      }
+    }
+  }
+}
+
 // A compound body: mass properties from the closed mesh at `path` (any shape), contact from the
 // convex pieces listed in the block's `contact`, in the same coordinates.
 void build_compound_body(dynamics::BodyDef& body, const geometry::TriangleSoup& soup, const fs::path& path,
@@ -164,6 +207,7 @@ void build_compound_body(dynamics::BodyDef& body, const geometry::TriangleSoup& 
     scene.files.push_back(piece_path.lexically_normal().string());
     pieces.push_back(std::move(piece));
   }
+  check_pieces_cover(mesh, pieces, reach, path.string());
   geometry::CompoundBody compound = geometry::build_compound(mesh, pieces, scene.density, geometry::MeshOptions{});
   body.shape = std::move(compound.shape);
   body.pieces = std::move(compound.pieces);

@@ -1,9 +1,12 @@
 #include "rigid/scenario/scene.hpp"
 
 #include "resting_contacts.hpp"
+#include "rigid/core/error.hpp"
+#include "rigid/scenario/run_bounds.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <stdexcept>
 
@@ -76,17 +79,28 @@ double tilt(const Quat& initial, const Quat& current) {
   return std::acos(std::clamp(axis.z(), -1.0, 1.0));
 }
 
-Scene equilibrate(const Scene& scene, const dynamics::StepSettings& step, double max_time,
-                  double local_damping) {
+Settled settle(const Scene& scene, const dynamics::StepSettings& step, double max_time, double local_damping) {
   dynamics::StepSettings s = step;
   s.local_damping = local_damping;
+  check_run_bounds(scene, s, max_time);
   dynamics::World world(scene.bodies, scene.law, s);
   const double dt = world.dt();
+  // below this height a free block has passed every fixed block: nothing can catch it
+  double lowest_fixed = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    if (!scene.bodies[i].fixed) continue;
+    for (const Vec3& v : world.world_vertices(int(i))) lowest_fixed = std::min(lowest_fixed, v.z());
+  }
+  std::optional<std::size_t> fallen;
   double rest_since = -1;
   // settle until at rest for a while, checked with tight thresholds (unit: m/s, rad/s)
   const double rest_speed = 1e-6, rest_angular_speed = 1e-6;
-  for (double t = 0; t < max_time; t += dt) {
+  for (double t = 0; t < max_time && !fallen; t += dt) {
     world.step(dt, Vec3::Zero(), Vec3::Zero());
+    for (std::size_t i = 0; i < scene.bodies.size() && !fallen; ++i) {
+      const auto& body = scene.bodies[i];
+      if (!body.fixed && world.states()[i].position.z() < lowest_fixed - body.shape.bounding_radius) fallen = i;
+    }
     if (at_rest(world, rest_speed, rest_angular_speed)) {
       if (rest_since < 0) rest_since = t;
       if (t - rest_since > 0.2) break;
@@ -94,15 +108,35 @@ Scene equilibrate(const Scene& scene, const dynamics::StepSettings& step, double
       rest_since = -1;
     }
   }
-  Scene out = scene;
-  for (std::size_t i = 0; i < out.bodies.size(); ++i) {
-    if (out.bodies[i].fixed) continue;
-    out.bodies[i].position = world.states()[i].position;
-    out.bodies[i].orientation = world.states()[i].orientation;
-    out.bodies[i].velocity.setZero();
-    out.bodies[i].angular_velocity.setZero();
+  Settled out{scene, std::nullopt};
+  for (std::size_t i = 0; i < out.scene.bodies.size(); ++i) {
+    auto& body = out.scene.bodies[i];
+    if (body.fixed) continue;
+    const auto& state = world.states()[i];
+    const bool carried = world.contact_force(int(i)).z() >= 0.1 * body.shape.mass * s.gravity;
+    if (!out.loose && (fallen == i || !carried)) {
+      out.loose = LooseBlock{body.name, body.position.z() - state.position.z(),
+                             tilt(body.orientation, state.orientation), fallen == i};
+    }
+    body.position = state.position;
+    body.orientation = state.orientation;
+    body.velocity.setZero();
+    body.angular_velocity.setZero();
   }
   return out;
+}
+
+Scene equilibrate(const Scene& scene, const dynamics::StepSettings& step, double max_time, double local_damping) {
+  Settled settled = settle(scene, step, max_time, local_damping);
+  if (settled.loose) throw InputError("", 0, scene.source + ": " + describe(*settled.loose));
+  return std::move(settled.scene);
+}
+
+std::string describe(const LooseBlock& loose) {
+  char buf[160];
+  std::snprintf(buf, sizeof buf, "it fell %.3g m%s and turned %.0f deg", loose.drop,
+                loose.below_fixed ? " (below every fixed block)" : "", loose.turn * 180 / kPi);
+  return "block '" + loose.name + "' rests on nothing after settling: " + buf;
 }
 
 }  // namespace rigid::scenario

@@ -138,9 +138,37 @@ Vec3 centroid_position(const dynamics::BodyDef& body);
 /// Runs one shaking case from the scene's initial state.
 RunOutcome run(const Scene& scene, const GroundDrive& ground, const RunSettings& settings);
 
+/// A free block that settling left with nothing under it.
+struct LooseBlock {
+  std::string name;
+  double drop = 0;           ///< how far its centre of mass fell (unit: m)
+  double turn = 0;           ///< how far it turned (unit: rad)
+  bool below_fixed = false;  ///< it fell below the lowest point of every fixed block
+};
+
+/// What settling produced: the scene with the settled poses and zero velocities, and the first
+/// free block that ended resting on nothing, if any.
+struct Settled {
+  Scene scene;
+  std::optional<LooseBlock> loose;
+};
+
 /// Settles the scene with no ground motion and Itasca local damping until every free block is at
-/// rest (or max_time passes); returns the scene with the settled poses and zero velocities.
+/// rest (or max_time passes). A free block whose centre falls below every fixed block by more
+/// than its size can never be caught (settling stops there), and one whose weight no contact
+/// carries at the end (under a tenth of it) rests on nothing: either is `loose`. The run bounds
+/// (check_run_bounds over max_time) apply: throws rigid::InputError for a settling that would
+/// take more than kMaxStepsPerRun steps.
+Settled settle(const Scene& scene, const dynamics::StepSettings& step, double max_time = 20.0,
+               double local_damping = 0.8);
+
+/// settle's scene; throws rigid::InputError (no file; the message names the block, how far it
+/// fell and turned) when a free block ends resting on nothing.
 Scene equilibrate(const Scene& scene, const dynamics::StepSettings& step, double max_time = 20.0,
                   double local_damping = 0.8);
+
+/// The one-line account of a loose block: "block 'NAME' rests on nothing after settling: it fell
+/// D m (below every fixed block) and turned A deg".
+std::string describe(const LooseBlock& loose);
 
 }  // namespace rigid::scenario
