@@ -1,0 +1,179 @@
+#!/usr/bin/env python3
+"""CTest `robustness_cube`: what reads and writes a campaign cube after the campaign (fragility,
+hazard, plot, export) must neither lose nor corrupt it, nor answer from a damaged or incomplete
+one; the campaign's own inputs (job, record list, variants) refused like scenes are. The harness
+is robustness_test.py's (10 s of CPU and 2 GB per case; exit 2 with one `error:` line).
+
+The oracles are independent of the code under test: the cube's bytes before and after (SHA-256
+of the file), h5py's view of it, the CSV that `rigid export cells` writes to standard output,
+and, for the checksums, a cube edited with h5py (a value changed, an attribute deleted).
+
+usage: cube_robustness_test.py RIGID SOURCE_DIR
+"""
+import fcntl
+import hashlib
+import os
+import re
+import resource
+import shutil
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import robustness_test as rt  # noqa: E402  (the harness: run, check, write)
+
+try:
+    import h5py
+    import numpy as np
+except ImportError:
+    print("skipped: needs python3-h5py and python3-numpy")
+    sys.exit(77)
+
+RIGID, SOURCE = rt.RIGID, rt.SOURCE
+DEMO = rt.DEMO
+TRIALS = 30  # two concurrent stores per trial
+ERROR = "error"
+
+# A tiny campaign: one block, three records, six scales, two rotations (36 cells, ~2 s).
+JOB = """[campaign]
+seed = 3
+scales = [0.05, 0.1, 0.15, 0.2, 0.3, 0.6]
+rotations = 2
+[[object]]
+scene = "block.toml"
+[[record]]
+motion = "stochastic_s1-X.AT2"
+start = 2.0
+end = 8.0
+[[record]]
+motion = "stochastic_s2-X.AT2"
+start = 2.0
+end = 8.0
+[[record]]
+motion = "mp_pulse_1s-X.AT2"
+[run]
+free_time_s = 1.0
+"""
+
+
+def sha(path):
+    with open(path, "rb") as f:
+        return hashlib.sha256(f.read()).hexdigest()
+
+
+def rigid(args, cwd, **kw):
+    return subprocess.run([RIGID] + args, cwd=cwd, capture_output=True, text=True, errors="replace", **kw)
+
+
+def exported(cube, cwd):
+    """The cells table of `cube` on standard output: the independent view of its contents."""
+    p = rigid(["export", "cells", cube, "--csv"], cwd)
+    return p.returncode, p.stdout
+
+
+def leftovers(d, stem):
+    """Files beside the cube that a command left behind (temporaries, locks)."""
+    return sorted(n for n in os.listdir(d) if n.startswith(stem) and n != stem) + \
+        sorted(n for n in os.listdir(d) if n.startswith("." + stem))
+
+
+def make_fixture(d):
+    for name in ("block.stl", "pedestal.stl", "block_a02.model", "block_a02.state.toml"):
+        shutil.copy(os.path.join(rt.BLOCK_DIR, name), d)
+    for name in ("stochastic_s1-X.AT2", "stochastic_s2-X.AT2", "mp_pulse_1s-X.AT2", "stochastic_s1-Y.AT2"):
+        shutil.copy(os.path.join(DEMO, name), d)
+    rt.write(d, "block.toml", 'model = "block_a02.model"\nstate = "block_a02.state.toml"\n')
+    rt.write(d, "job.toml", JOB)
+    p = rigid(["campaign", "job.toml", "--out", "ref.h5", "--progress", "none"], d)
+    if p.returncode != 0:
+        raise SystemExit("the fixture campaign failed: " + p.stderr)
+    rt.write(d, "curve.csv", "pga_g,annual_rate\n0.01,0.1\n0.05,0.02\n0.1,0.005\n0.3,0.0005\n1.0,0.00002\n")
+    rt.write(d, "flat.csv", "pga_g,annual_rate\n0.01,1e-30\n0.02,1e-30\n")
+    os.mkfifo(os.path.join(d, "fifo.csv"))
+
+
+class Cases:
+    def __init__(self, d):
+        self.d = d
+        self.failed = []
+        self.count = 0
+
+    def fresh(self, name):
+        """A private copy of the fixture cube."""
+        path = os.path.join(self.d, name)
+        shutil.copy(os.path.join(self.d, "ref.h5"), path)
+        return path
+
+    def ok(self, name, args):
+        self.count += 1
+        status, err, cpu, wall = rt.run(args, self.d)
+        self.expect(name, status == 0, f"exit {status}: {err.strip()[:300]}")
+        self.count -= 1
+
+    def error(self, name, args, fragments):
+        """Exit 2 and one `rigid: error:` line (`rigid fragility: error:` from the Python commands)
+        naming every fragment, within the harness's limits."""
+        self.count += 1
+        status, err, cpu, wall = rt.run(args, self.d)
+        lines = err.splitlines()
+        problems = []
+        if cpu > rt.TIME_LIMIT_S or wall > rt.WALL_LIMIT_S:
+            problems.append("took %.1f s CPU, %.1f s wall" % (cpu, wall))
+        if status != 2:
+            problems.append("exit %d, not 2" % status)
+        if len(lines) != 1 or not re.match(r"rigid( [a-z]+)?: error: ", lines[0]):
+            problems.append("stderr is not one 'rigid: error:' line: " + " | ".join(lines[:4])[:400])
+        problems += ["no '%s' in the message" % f for f in fragments if f not in err]
+        print("%-4s %-48s %5.2f s CPU  exit %3d  %s" % ("FAIL" if problems else "ok", name, cpu, status,
+                                                       (lines[0] if lines else "")[:150]))
+        for p in problems:
+            print("       " + p)
+        if problems:
+            self.failed.append(name)
+
+    def expect(self, name, condition, detail=""):
+        self.count += 1
+        print("%-4s %-48s %s" % ("ok" if condition else "FAIL", name, detail if not condition else ""))
+        if not condition:
+            self.failed.append(name)
+
+
+# --- the cases ------------------------------------------------------------------------------------
+
+def export_out_names(c):
+    """--out of 17-23 characters: the file asked for, with the table of standard output."""
+    d = c.d
+    _, reference = exported("ref.h5", d)
+    wrong = []
+    for n in range(17, 24):
+        name = ("0123456789abcdefghijklmnopqrstuvwxyz"[: n - 4]) + ".csv"
+        p = rigid(["export", "cells", "ref.h5", "--csv", "--out", name], d)
+        path = os.path.join(d, name)
+        if p.returncode != 0 or not os.path.exists(path) or rt.read(path) != reference:
+            wrong.append(f"{name}: exit {p.returncode}, exists {os.path.exists(path)}")
+    c.expect("export cells --out of 17-23 characters", not wrong, "; ".join(wrong))
+
+
+def main():
+    if not os.access(RIGID, os.X_OK):
+        print("no executable " + RIGID)
+        return 1
+    start = time.monotonic()
+    with tempfile.TemporaryDirectory(prefix="rigid_cube_robustness_") as d:
+        make_fixture(d)
+        c = Cases(d)
+        only = os.environ.get("RIGID_CUBE_CASES", "").split()
+        for group in (export_out_names,):
+            if not only or group.__name__ in only:
+                group(c)
+    print("%d cases, %d failed, %.1f s" % (c.count, len(c.failed), time.monotonic() - start))
+    for name in c.failed:
+        print("FAILED: " + name)
+    return 1 if c.failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
