@@ -160,9 +160,7 @@ std::vector<std::int32_t> iota32(std::size_t n) {
 }
 
 void write_root_attributes(Writer& w, const Cube& c) {
-  // a cube without variants keeps version 1, so readers from before the variant axis open it
-  w.attribute("/", "schema_version", std::int32_t{c.variants.count > 0 ? kCubeSchemaVersionWithVariants
-                                                                       : kCubeSchemaVersionWithoutVariants});
+  w.attribute("/", "schema_version", std::int32_t{kCubeSchemaVersion});
   w.attribute("/", "software_version", c.software_version);
   w.attribute("/", "job_text", c.job_text);
   w.attribute("/", "job_hash", c.job_hash);
@@ -171,6 +169,8 @@ void write_root_attributes(Writer& w, const Cube& c) {
   w.attribute("/", "units", std::string("SI unless the name says otherwise"));
   w.attribute("/", "job_inputs_sha256", c.job_inputs);
   w.attribute("/", "inputs_sha256", c.inputs_sha256);
+  w.attribute("/", "axes_sha256", axes_sha256(c));
+  w.attribute("/", "axes_sha256_covers", std::string(kAxesChecksumCovers));
 }
 
 // A campaign "as recorded" has the one scale 0: no target PGA, every record at factor 1; its
