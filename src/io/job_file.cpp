@@ -111,6 +111,19 @@ std::string resolve_spec(const std::string& spec, const fs::path& base) {
   return out;
 }
 
+// An object's name is the name of its HDF5 group in the cube: "." and ".." are no group, '/'
+// separates groups, and a NUL or other control character cuts or garbles the name in every file
+// and table that shows it.
+std::string object_name_problem(const std::string& name) {
+  if (name.empty() || name == "." || name == "..") return "object name must not be empty, \".\" or \"..\"";
+  for (const char c : name) {
+    const auto u = static_cast<unsigned char>(c);
+    if (c == '/' || u < 0x20 || u == 0x7f)
+      return "object name must contain no '/' and no control character (NUL, tab, newline, ...)";
+  }
+  return "";
+}
+
 // Refuses a job too large to plan (the plan and results live in memory) before anything is allocated.
 void check_cell_count(const scenario::Job& job, long campaign_line) {
   const double cells = double(job.objects.size()) * double(job.records.size()) * double(job.scales_g.size()) *
@@ -231,8 +244,8 @@ scenario::Job load_job(const std::string& path) {
       if (!fs::exists(o.state)) throw InputError(path, line_of(node), "state file not found: " + o.state);
     }
     o.name = optional_string(*t, "name", fs::path(scene).stem().string(), path);
-    if (o.name.empty() || o.name.find('/') != std::string::npos) {
-      throw InputError(path, line_of(node), "object name must be non-empty and contain no '/'");
+    if (const std::string problem = object_name_problem(o.name); !problem.empty()) {
+      throw InputError(path, line_of(t->contains("name") ? *t->get("name") : node), problem);
     }
     if (!object_names.insert(o.name).second) throw InputError(path, line_of(node), "duplicate object name '" + o.name + "'");
     job.objects.push_back(o);

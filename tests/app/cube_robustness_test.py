@@ -157,6 +157,55 @@ def export_out_names(c):
     c.expect("export cells --out of 17-23 characters", not wrong, "; ".join(wrong))
 
 
+def write_stl(path, place):
+    """The unit cube's 12 facets (robustness_test's, outward) with each vertex moved by `place`."""
+    verts = [place(*v) for v in rt.CUBE_V]
+    out = ["solid s"]
+    for f in rt.CUBE_F:
+        out.append(" facet normal 0 0 0\n  outer loop")
+        out += ["   vertex %.17g %.17g %.17g" % verts[i - 1] for i in f]
+        out.append("  endloop\n endfacet")
+    rt.write(os.path.dirname(path), os.path.basename(path), "\n".join(out + ["endsolid s"]) + "\n")
+
+
+def job_inputs(c):
+    d = c.d
+    base = JOB.split("[[record]]")[0]
+    records = '[[record]]\nmotion = "stochastic_s1-X.AT2"\n[run]\nfree_time_s = 1.0\n'
+    for label, name_line in (('"."', 'name = "."\n'), ("with NUL", 'name = "a\\u0000b"\n'),
+                             ("with a newline", 'name = "a\\nb"\n'), ("with '/'", 'name = "a/b"\n')):
+        job = base.replace('scene = "block.toml"\n', 'scene = "block.toml"\n' + name_line) + records
+        path = rt.write(d, "name.toml", job)
+        c.error(f"job object name {label}", ["campaign", path, "--dry-run"], ["name.toml:7:", "object name"])
+    # variants must pass the scene checks, refused at the sweep's line
+    sweep = base + records + "[sweep]\ncount = 2\n"
+    # a block leaning over its base (a sheared prism, its centre of mass 0.05 m inside the base's
+    # edge): an offset of 0.08 m keeps the centre inside the block but beyond the support
+    write_stl(os.path.join(d, "leaning.stl"), lambda x, y, z: (0.2 * x + 0.1 * z, 0.2 * y, z))
+    write_stl(os.path.join(d, "base.stl"), lambda x, y, z: (-0.3 + 0.8 * x, -0.2 + 0.6 * y, -0.3 + 0.3 * z))
+    rt.write(d, "leaning.model", "block base.stl\n1 0 0 0\nblock leaning.stl\n0 0 0 0\n")
+    rt.write(d, "leaning.toml", 'model = "leaning.model"\n')
+    path = rt.write(d, "leaning_job.toml", (sweep + "com_offset_x_m = [0.08, 0.09]\n").replace("block.toml",
+                                                                                                "leaning.toml"))
+    c.error("variant: centre of mass beyond the support", ["campaign", path, "--out", "leaning.h5", "--dry-run"],
+            ["leaning_job.toml:11:", "support polygon"])
+    path = rt.write(d, "upright_job.toml", (sweep + "com_offset_x_m = [0.0, 0.01]\n").replace("block.toml",
+                                                                                               "leaning.toml"))
+    c.ok("variant: centre of mass within the support", ["campaign", path, "--out", "upright.h5", "--dry-run"])
+    for label, line, fragment in (("size_scale 1e-6", "size_scale = [1e-6, 2e-6]\n", "radius"),
+                                  ("size_scale 1e6", "size_scale = [1e6, 2e6]\n", "radius"),
+                                  ("density 7e8", "density_kg_m3 = [7e8, 8e8]\n", "density")):
+        path = rt.write(d, "variant.toml", sweep + line)
+        c.error(f"variant {label}", ["campaign", path, "--out", "variant.h5", "--dry-run"],
+                ["variant.toml:11:", fragment])
+    # a record listed twice in a record list
+    rt.write(d, "twice.tsv", "earthquake\tyear\tmagnitude\tfile\tstart\tend\n"
+                             "a\t2000\t6\tstochastic_s1-X.AT2\t0\t5\nb\t2001\t6\tstochastic_s2-X.AT2\t0\t5\n"
+                             "a\t2000\t6\tstochastic_s1-X.AT2\t0\t5\n")
+    path = rt.write(d, "list.toml", 'records = "twice.tsv"\n' + base + '[run]\nfree_time_s = 1.0\n')
+    c.error("a record listed twice", ["campaign", path, "--dry-run"], ["twice.tsv:4:", "line 2"])
+
+
 def main():
     if not os.access(RIGID, os.X_OK):
         print("no executable " + RIGID)
@@ -166,7 +215,7 @@ def main():
         make_fixture(d)
         c = Cases(d)
         only = os.environ.get("RIGID_CUBE_CASES", "").split()
-        for group in (export_out_names,):
+        for group in (export_out_names, job_inputs):
             if not only or group.__name__ in only:
                 group(c)
     print("%d cases, %d failed, %.1f s" % (c.count, len(c.failed), time.monotonic() - start))
