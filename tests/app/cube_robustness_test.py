@@ -206,6 +206,17 @@ def job_inputs(c):
     c.error("a record listed twice", ["campaign", path, "--dry-run"], ["twice.tsv:4:", "line 2"])
 
 
+def run_command(c):
+    d = c.d
+    motion = ["--motion", "stochastic_s1-X.AT2", "--target-pga", "0.2"]
+    c.error("run --model rocking2d --dt", ["run", "block.toml", "--model", "rocking2d", "--dt", "1e-3"] + motion,
+            ["--dt", "rocking2d"])
+    p = rigid(["run", "block.toml", "--motion", "stochastic_s1-X.AT2", "--target-pga", "1e200"], d)
+    c.expect("a non-finite run prints no outcome", p.returncode != 0 and "survived" not in p.stdout
+             and "OVERTURNED" not in p.stdout and "non-finite" in p.stderr,
+             f"exit {p.returncode}: {p.stdout.strip()[:100]} | {p.stderr.strip()[:100]}")
+
+
 def main():
     if not os.access(RIGID, os.X_OK):
         print("no executable " + RIGID)
@@ -215,7 +226,7 @@ def main():
         make_fixture(d)
         c = Cases(d)
         only = os.environ.get("RIGID_CUBE_CASES", "").split()
-        for group in (export_out_names, job_inputs):
+        for group in (export_out_names, job_inputs, run_command):
             if not only or group.__name__ in only:
                 group(c)
     print("%d cases, %d failed, %.1f s" % (c.count, len(c.failed), time.monotonic() - start))
