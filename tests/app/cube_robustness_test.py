@@ -157,6 +157,177 @@ def export_out_names(c):
     c.expect("export cells --out of 17-23 characters", not wrong, "; ".join(wrong))
 
 
+def outputs_over_inputs(c):
+    """An output that is the cube (however spelled, or a hard link) is refused, the cube intact."""
+    d = c.d
+    cube = c.fresh("self.h5")
+    os.link(cube, os.path.join(d, "self_link.h5"))
+    before = sha(cube)
+    c.error("fragility --nrml CUBE", ["fragility", "self.h5", "--no-store", "--nrml", "self.h5"], ["--nrml", "self.h5"])
+    c.error("fragility --csv ./CUBE", ["fragility", "self.h5", "--no-store", "--csv", "./self.h5"], ["--csv"])
+    c.error("fragility --csv HARD_LINK", ["fragility", "self.h5", "--no-store", "--csv", "self_link.h5"], ["--csv"])
+    c.error("export cells --out CUBE", ["export", "cells", "self.h5", "--csv", "--out", os.path.join(d, "self.h5")],
+            ["self.h5", "input"])
+    os.link(os.path.join(d, "curve.csv"), os.path.join(d, "curve_link.png"))
+    c.error("hazard --plot a hard link of the curve", ["hazard", "self.h5", "--curve", "curve.csv", "--age", "1000",
+                                                       "--plot", "curve_link.png"], ["--plot", "input"])
+    c.error("plot table --out CUBE", ["plot", "table", "self.h5", "--out", "self_link.h5"], ["self_link.h5", "input"])
+    c.expect("the cube is unchanged", sha(cube) == before)
+
+
+def damaged_cubes(c):
+    """A value changed with h5py where no checksum looked before, or a checksum deleted: every
+    reader refuses; a resume too."""
+    def damaged(name, edit):
+        path = c.fresh(name)
+        with h5py.File(path, "r+") as f:
+            edit(f)
+        return name
+
+    def flip_outcome(f):
+        o = f["objects/block/outcome"]
+        v = o[()]
+        v.flat[0] = 2 if v.flat[0] == 1 else 1
+        o[...] = v
+
+    def double_scale(f):
+        s = f["axes/scale_g"]
+        v = s[()]
+        v[-1] *= 2
+        s[...] = v
+
+    def halve_pgv_pga(f):
+        s = f["records/pgv_pga_s"]
+        v = s[()]
+        v[0] *= 0.5
+        s[...] = v
+
+    def drop_checksum(f):
+        del f["objects/block"].attrs["datasets_sha256"]
+        flip_outcome(f)
+
+    def drop_axes_checksum(f):
+        del f.attrs["axes_sha256"]
+        double_scale(f)
+
+    hazard = ["--curve", "curve.csv", "--age", "1000"]
+    for name, edit, fragment in (("outcome.h5", flip_outcome, "checksum"), ("scale.h5", double_scale, "checksum"),
+                                 ("pgvpga.h5", halve_pgv_pga, "checksum"), ("nosum.h5", drop_checksum, "datasets_sha256"),
+                                 ("noaxes.h5", drop_axes_checksum, "axes_sha256")):
+        cube = damaged(name, edit)
+        before = sha(os.path.join(c.d, cube))
+        c.error(f"fragility of a cube with {name[:-3]} damaged", ["fragility", cube, "--no-store"], [cube, fragment])
+        c.error(f"hazard of a cube with {name[:-3]} damaged", ["hazard", cube] + hazard, [cube, fragment])
+        c.error(f"plot of a cube with {name[:-3]} damaged", ["plot", "maps", cube, "--out", "maps_" + name], [cube, fragment])
+        c.error(f"export of a cube with {name[:-3]} damaged", ["export", "cells", cube, "--csv"], [cube, fragment])
+        c.error(f"resume over a cube with {name[:-3]} damaged",
+                ["campaign", "job.toml", "--out", cube, "--progress", "none"], [cube])
+        c.expect(f"the {name[:-3]} cube is left as it was", sha(os.path.join(c.d, cube)) == before)
+    # a derived dataset that disagrees with its cells
+    cube = damaged("derived.h5", lambda f: f["objects/block/probability"].__setitem__((0, 0), 0.123))
+    c.error("plot of a cube with a derived value changed", ["plot", "maps", cube, "--out", "maps_derived"],
+            [cube, "probability"])
+
+
+def incomplete_cubes(c):
+    """A campaign stopped mid-way (SIGTERM) and one running (its lock held): the fits say so,
+    --require-complete refuses, a store into a running campaign's cube is refused."""
+    d = c.d
+    job = JOB.replace("rotations = 2", "rotations = 8")
+    rt.write(d, "long.toml", job)
+    p = subprocess.Popen([RIGID, "campaign", "long.toml", "--out", "stopped.h5", "--progress", "none",
+                          "--checkpoint-interval", "0.2", "--grace", "0"], cwd=d,
+                         stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    journal = os.path.join(d, "stopped.h5.journal")
+    for _ in range(3000):  # until ~20 of the 144 cells are in the journal
+        if os.path.exists(journal) and os.path.getsize(journal) > 76 + 20 * 292:
+            break
+        time.sleep(0.01)
+    p.send_signal(signal.SIGTERM)
+    p.wait()
+    with h5py.File(os.path.join(d, "stopped.h5"), "r") as f:
+        not_run = int((f["objects/block/outcome"][()] == 0).sum())
+    c.expect("the stopped campaign left cells not run", not_run > 0, f"{not_run} not run")
+    p = rigid(["fragility", "stopped.h5", "--no-store", "--bootstrap", "20"], d)
+    c.expect("fragility of a stopped campaign's cube warns", "incomplete" in p.stderr and "not run" in p.stderr,
+             f"exit {p.returncode}: {p.stderr.strip()[:300]}")
+    c.error("fragility --require-complete of a stopped campaign", ["fragility", "stopped.h5", "--require-complete",
+                                                                   "--no-store"], ["stopped.h5", "not run"])
+    c.error("hazard --require-complete of a stopped campaign", ["hazard", "stopped.h5", "--curve", "curve.csv",
+                                                                "--age", "100", "--require-complete"], ["not run"])
+    # a running campaign: its lock held (as the campaign holds it: flock on CUBE.lock)
+    cube = c.fresh("running.h5")
+    fd = os.open(cube + ".lock", os.O_RDWR | os.O_CREAT, 0o644)
+    fcntl.flock(fd, fcntl.LOCK_EX)
+    try:
+        before = sha(cube)
+        c.error("fragility store into a running campaign's cube", ["fragility", "running.h5", "--bootstrap", "20"],
+                ["running.h5.lock"])
+        c.expect("the running campaign's cube is unchanged", sha(cube) == before)
+        p = rigid(["fragility", "running.h5", "--no-store", "--bootstrap", "20"], d)
+        c.expect("fragility --no-store of a running campaign's cube warns",
+                 p.returncode == 0 and "writing it now" in p.stderr, f"exit {p.returncode}: {p.stderr.strip()[:300]}")
+        c.error("--require-complete of a running campaign's cube", ["fragility", "running.h5", "--no-store",
+                                                                    "--require-complete"], ["writing it now"])
+    finally:
+        os.close(fd)
+
+
+def full_disk_store(c):
+    """A store that cannot write its copy (RLIMIT_FSIZE, a full disk's EFBIG): exit 2, the cube
+    as it was, no temporary left."""
+    d = c.d
+    cube = c.fresh("full.h5")
+    before = sha(cube)
+    limit = os.path.getsize(cube) // 2
+
+    def small_files():
+        signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+        resource.setrlimit(resource.RLIMIT_FSIZE, (limit, limit))
+    p = subprocess.run([RIGID, "fragility", "full.h5", "--bootstrap", "20"], cwd=d, capture_output=True, text=True,
+                       preexec_fn=small_files)
+    left = leftovers(d, "full.h5")
+    c.expect("store on a full disk: exit 2, one line", p.returncode == 2 and len(p.stderr.splitlines()) == 1,
+             f"exit {p.returncode}: {p.stderr.strip()[:300]}")
+    c.expect("store on a full disk: cube intact, nothing left", sha(cube) == before and not left, ", ".join(left))
+
+
+def command_lines(c):
+    hz = ["hazard", "ref.h5", "--curve", "curve.csv", "--age", "1000"]
+    c.error("fragility --seed -1", ["fragility", "ref.h5", "--no-store", "--seed", "-1"], ["--seed"])
+    c.error("hazard --plot x.h5", hz + ["--plot", "x.h5"], ["--plot", "x.h5"])
+    c.error("hazard --curve /dev/zero", ["hazard", "ref.h5", "--curve", "/dev/zero", "--age", "1000"],
+            ["/dev/zero", "regular"])
+    c.error("hazard --curve FIFO", ["hazard", "ref.h5", "--curve", "fifo.csv", "--age", "1000"], ["fifo.csv", "regular"])
+
+
+def planted_cube(d):
+    """A cube of outcomes drawn from a planted probit model (tests/python/test_plot.py's writer,
+    with the checksums of the current schema): a fit that has a vector estimate."""
+    sys.path.insert(0, os.path.join(SOURCE, "tests", "python"))
+    import test_plot as tp
+    rng = np.random.default_rng(20261126)
+    pgv = np.exp(rng.uniform(np.log(0.035), np.log(0.5), tp.R))
+    outcome = tp.planted_outcomes(rng, pgv, tp.MU0, tp.MU1, tp.SIGMA, extras=False)
+    tp.write_cube(os.path.join(d, "planted.h5"), pgv, [("rock", outcome, {"alpha_rad": tp.ALPHA, "p_rad_s": tp.P})])
+    return "planted.h5"
+
+
+def hazard_prints(c):
+    """No "x 0" or "x inf" scalings, no 300-digit return period."""
+    d = c.d
+    cube = planted_cube(d)
+    for name, args in (("flat curve", ["hazard", cube, "--curve", "flat.csv", "--age", "1000"]),
+                       ("--age 1e308", ["hazard", cube, "--curve", "curve.csv", "--age", "1e308"]),
+                       ("--age 1e-300", ["hazard", cube, "--curve", "curve.csv", "--age", "1e-300"])):
+        p = rigid(args, d)
+        out = p.stdout
+        longest = max((len(w) for w in out.replace(",", "").split()), default=0)
+        c.expect(f"hazard on a {name}" if "curve" in name else f"hazard {name}",
+                 p.returncode == 0 and " x 0 " not in out + " " and "x inf" not in out and "x 0\n" not in out
+                 and longest < 30, f"exit {p.returncode}: {(p.stderr or out).strip()[-300:]}")
+
+
 def write_stl(path, place):
     """The unit cube's 12 facets (robustness_test's, outward) with each vertex moved by `place`."""
     verts = [place(*v) for v in rt.CUBE_V]
@@ -226,7 +397,8 @@ def main():
         make_fixture(d)
         c = Cases(d)
         only = os.environ.get("RIGID_CUBE_CASES", "").split()
-        for group in (export_out_names, job_inputs, run_command):
+        for group in (export_out_names, outputs_over_inputs, command_lines, hazard_prints, damaged_cubes,
+                      full_disk_store, incomplete_cubes, job_inputs, run_command):
             if not only or group.__name__ in only:
                 group(c)
     print("%d cases, %d failed, %.1f s" % (c.count, len(c.failed), time.monotonic() - start))
