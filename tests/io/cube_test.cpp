@@ -861,8 +861,15 @@ TEST_F(CubeFile, DamagedVariantCubesAreRejected) {
   });
   expect_input_error([&] { read_cube(p); }, p,
                      "reading dataset /objects/rock a/outcome: shape [2, 3, 4, 2], expected [3, 3, 4, 2]");
-  // no table
+  // no table: in schema 3 the table's presence says the cube has variants, and its checksum
+  // says the table was there
   damage([](hid_t f) { ASSERT_GE(H5Ldelete(f, "/variants", H5P_DEFAULT), 0); });
+  expect_input_error([&] { read_cube(p); }, p, "axes, records or variant table changed since written");
+  // a schema 2 cube (variants by its version) without its table
+  damage([](hid_t f) {
+    ASSERT_GE(H5Ldelete(f, "/variants", H5P_DEFAULT), 0);
+    replace_int32_attribute(f, "/", "schema_version", kCubeSchemaVersionWithVariants);
+  });
   expect_input_error([&] { read_cube(p); }, p, "without its variant table /variants");
   // a table whose count disagrees with its axis
   damage([](hid_t f) { replace_int32_attribute(f, "/variants", "count", 4); });
