@@ -228,13 +228,13 @@ scenario::Job load_job(const std::string& path) {
     o.scene = (base / scene).lexically_normal().string();
     // an optional object is a generated scene (e.g. a scan imported from data outside the
     // repository): left out with a note when absent; the note enters the job's text, so a resume
-    // after it appeared is refused instead of mixing two sets of objects
+    // after it appeared is refused instead of mixing two sets of objects. The text (and so the job's
+    // hash) names the scene as the job writes it: the same job reached by another path is the same job.
     const bool optional = optional_bool(*t, "optional", false, path);
     if (optional && !fs::exists(o.scene)) {
-      const std::string note = "[[object]] at line " + std::to_string(line_of(node)) + " left out: its scene " +
-                               o.scene + " does not exist (optional = true)";
-      job.notes.push_back(note);
-      job.text += "\n# " + note + "\n";
+      const std::string left_out = "[[object]] at line " + std::to_string(line_of(node)) + " left out: its scene ";
+      job.notes.push_back(left_out + o.scene + " does not exist (optional = true)");
+      job.text += "\n# " + left_out + "\"" + scene + "\" (relative to the job file) does not exist (optional = true)\n";
       continue;
     }
     if (!fs::exists(o.scene)) throw InputError(path, line_of(node), "scene file not found: " + o.scene);

@@ -143,6 +143,42 @@ class Cases:
 
 # --- the cases ------------------------------------------------------------------------------------
 
+def concurrent_stores(c):
+    """Two `rigid fragility` stores at once on one cube, TRIALS times: each exits 0 or refuses
+    (exit 2, the lock named); at least one stores; the cube's cells are those of the fixture and
+    its /fragility group is whole; nothing is left beside it."""
+    d = c.d
+    _, reference = exported("ref.h5", d)
+    bad = []
+    start = time.monotonic()
+    for trial in range(TRIALS):
+        cube = c.fresh("race.h5")
+        procs = [subprocess.Popen([RIGID, "fragility", "race.h5", "--bootstrap", "20"], cwd=d,
+                                  stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True) for _ in range(2)]
+        results = [(p.wait(), p.stderr.read()) for p in procs]
+        codes = [s for s, _ in results]
+        status, cells = exported("race.h5", d)
+        problems = []
+        for s, err in results:
+            if s not in (0, 2) or (s == 2 and ("lock" not in err or len(err.splitlines()) != 1)):
+                problems.append(f"exit {s}: {err.strip()[:200]}")
+        if 0 not in codes:
+            problems.append("neither stored")
+        if status != 0 or cells != reference:
+            problems.append("the cube's cells changed")
+        with h5py.File(cube, "r") as f:
+            if "fragility" not in f or "block" not in f["fragility"]:
+                problems.append("no whole /fragility group")
+        left = leftovers(d, "race.h5")
+        if left:
+            problems.append("left behind: " + ", ".join(left))
+        if problems:
+            bad.append(f"trial {trial}: " + "; ".join(problems))
+    c.expect(f"{TRIALS} x two concurrent fragility stores", not bad,
+             " | ".join(bad[:3]) + f" ({len(bad)} bad trials)")
+    print(f"     ({TRIALS} trials in {time.monotonic() - start:.1f} s)")
+
+
 def export_out_names(c):
     """--out of 17-23 characters: the file asked for, with the table of standard output."""
     d = c.d
@@ -388,6 +424,33 @@ def run_command(c):
              f"exit {p.returncode}: {p.stdout.strip()[:100]} | {p.stderr.strip()[:100]}")
 
 
+def rerun_and_path_spelling(c):
+    """A finished campaign run again keeps /fragility; the job named by another path resumes."""
+    d = c.d
+    cube = c.fresh("again.h5")
+    p = rigid(["fragility", "again.h5", "--bootstrap", "20"], d)
+    c.expect("the fits are stored", p.returncode == 0, p.stderr.strip()[:200])
+    p = rigid(["campaign", "job.toml", "--out", "again.h5", "--progress", "none"], d)
+    with h5py.File(cube, "r") as f:
+        kept = "fragility" in f and "block" in f["fragility"]
+    c.expect("a finished campaign run again keeps /fragility", p.returncode == 0 and kept,
+             f"exit {p.returncode}, kept {kept}: {p.stderr.strip()[:200]}")
+    # a job with an optional object that is absent (its note enters the job's text and hash)
+    rt.write(d, "optional.toml", JOB + '[[object]]\nscene = "scans/absent.toml"\noptional = true\n')
+    p = rigid(["campaign", "optional.toml", "--out", "spelled.h5", "--progress", "none"], d)
+    c.expect("the job with an absent optional object runs", p.returncode == 0, p.stderr.strip()[:300])
+    before = sha(os.path.join(d, "spelled.h5"))
+    p = rigid(["campaign", os.path.join(d, "optional.toml"), "--out", "spelled.h5", "--progress", "none"], d)
+    c.expect("the job by its absolute path resumes its cube", p.returncode == 0, p.stderr.strip()[:300])
+    sub = os.path.join(d, "sub")
+    os.makedirs(sub, exist_ok=True)
+    p = rigid(["campaign", "../optional.toml", "--out", "../spelled.h5", "--progress", "none"], sub)
+    c.expect("the job by a relative path from elsewhere resumes it", p.returncode == 0, p.stderr.strip()[:300])
+    with h5py.File(os.path.join(d, "spelled.h5"), "r") as f:
+        text = f.attrs["job_text"]
+    c.expect("the job's text names no path of the job file", d not in text and before != "", text[-200:])
+
+
 def main():
     if not os.access(RIGID, os.X_OK):
         print("no executable " + RIGID)
@@ -398,7 +461,8 @@ def main():
         c = Cases(d)
         only = os.environ.get("RIGID_CUBE_CASES", "").split()
         for group in (export_out_names, outputs_over_inputs, command_lines, hazard_prints, damaged_cubes,
-                      full_disk_store, incomplete_cubes, job_inputs, run_command):
+                      full_disk_store, incomplete_cubes, job_inputs, run_command, rerun_and_path_spelling,
+                      concurrent_stores):
             if not only or group.__name__ in only:
                 group(c)
     print("%d cases, %d failed, %.1f s" % (c.count, len(c.failed), time.monotonic() - start))
