@@ -1184,7 +1184,10 @@ def main(argv=None):
             raise InputError("--pgv-pga and --pgv-pga-dist: give one")
         return args.func(args)
     except (InputError, cube_files.OutputError) as e:
-        sys.stderr.write(f"rigid {args.command}: error: {e}\n")
+        # a cube that cannot be fitted may be one whose campaign has not run the cells yet: say so
+        incomplete = getattr(args, "incomplete", None)
+        more = f" ({incomplete})" if incomplete and incomplete not in str(e) else ""
+        sys.stderr.write(f"rigid {args.command}: error: {e}{more}\n")
         return 2
     except OSError as e:
         sys.stderr.write(f"rigid {args.command}: error: {e}\n")
