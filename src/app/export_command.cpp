@@ -1,5 +1,5 @@
 // `rigid export cells`: a cube's cells as a CSV table (io/cells_csv.hpp).
-#include <fstream>
+#include <cstdio>
 #include <iostream>
 #include <memory>
 
@@ -7,23 +7,24 @@
 #include "rigid/core/error.hpp"
 #include "rigid/io/cells_csv.hpp"
 #include "rigid/io/cube.hpp"
+#include "rigid/io/output_file.hpp"
 
 namespace rigid::app {
 namespace {
 
 void export_cells(const std::string& cube_path, const std::string& out_path) {
+  const bool to_stdout = out_path.empty() || out_path == "-";
+  if (!to_stdout) io::refuse_output_over_inputs(out_path, {cube_path});
   const io::Cube cube = io::read_cube(cube_path);  // checks the file before any output is made
-  if (out_path.empty() || out_path == "-") {
+  if (const std::string w = io::old_cube_warning(cube_path, cube); !w.empty())
+    std::fprintf(stderr, "rigid: warning: %s\n", w.c_str());
+  if (to_stdout) {
     io::write_cells_csv(std::cout, cube);
     std::cout.flush();
     if (!std::cout) throw InputError("(stdout)", 0, "cannot write the table");
     return;
   }
-  std::ofstream out(out_path, std::ios::binary);
-  if (!out) throw InputError(out_path, 0, "cannot create the table");
-  io::write_cells_csv(out, cube);
-  out.close();
-  if (!out) throw InputError(out_path, 0, "cannot write the table");
+  io::write_output_file(out_path, [&cube](std::ostream& out) { io::write_cells_csv(out, cube); });
 }
 
 }  // namespace
@@ -39,7 +40,8 @@ void register_export_command(CLI::App& app) {
   cells->add_option("cube", *cube, "Fragility cube (.h5) written by rigid campaign")->required();
   cells->add_flag("--csv", *csv, "CSV (RFC 4180 quoting), the only format so far")->required();
   cells->add_option("--out", *out, "Output file (default: standard output)");
-  cells->callback([cube, out] { export_cells(*cube, *out); });
+  // the callback owns every option's storage: CLI11 keeps only references to it
+  cells->callback([cube, out, csv] { export_cells(*cube, *out); });
 }
 
 }  // namespace rigid::app

@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <memory>
 #include <optional>
+#include <stdexcept>
+#include <utility>
 
 #include "commands.hpp"
 #include "motion_input.hpp"
@@ -119,7 +121,17 @@ void run(const RunOptions& o) {
   const std::optional<scenario::ModelKind> kind = scenario::parse_model_kind(o.model);
   if (!kind) throw InputError("", 0, "--model must be dem3d or rocking2d");
   const bool block2d = *kind == scenario::ModelKind::rocking2d;
-  if (block2d) scenario::rocking_block_of(scene);  // the scene is checked before any motion is read
+  if (block2d) {
+    // the 2D model integrates the rocking equation with its own fixed step (rocking::RockingOptions):
+    // a step option given for the 3D engine would be silently ignored
+    for (const auto& [option, given] : {std::pair{"--dt", o.dt != 0}, std::pair{"--safety", o.safety != 0},
+                                        std::pair{"--integrator", !o.integrator.empty()}}) {
+      if (given)
+        throw InputError("", 0, std::string(option) + " does not apply to --model rocking2d (its integrator takes "
+                                "fixed steps of its own); leave it out or use --model dem3d");
+    }
+    scenario::rocking_block_of(scene);  // the scene is checked before any motion is read
+  }
   motion::GroundMotion m;
   reject_lab_flags_without_file(o.motion.lab);
   if (o.motion.given()) m = load_motion(o.motion);
@@ -135,6 +147,8 @@ void run(const RunOptions& o) {
   const scenario::CaseOutcome outcome = scenario::simulate(model, scenario::Case{});
   if (outcome.error) std::rethrow_exception(outcome.error);
   const scenario::RunOutcome& r = outcome.run;
+  // before any report: a non-finite state is no outcome ("survived" would be a wrong answer)
+  if (!r.finite) throw std::runtime_error("the simulation produced a non-finite state");
   if (!o.trajectory.empty() && !block2d) recorder.write(o.trajectory);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
@@ -161,7 +175,6 @@ void run(const RunOptions& o) {
     std::printf("max tilt %.3f deg, max slip %.4g m\n", r.max_tilt * 180.0 / kPi, r.max_slip);
     if (!block2d) std::printf("%s\n", effects_line(r.effects).c_str());
   }
-  if (!r.finite) throw std::runtime_error("the simulation produced a non-finite state");
 }
 
 }  // namespace

@@ -173,6 +173,7 @@ std::vector<TaskResult> restore(const std::string& output, const scenario::Job& 
   const bool have_cube = fs::exists(output);
   if (have_cube) {
     const io::Cube old = io::read_cube(output);
+    if (const std::string w = io::old_cube_warning(output, old); !w.empty()) log_warning(w);
     if (std::optional<InputError> change = input_change(old, job, inputs)) {
       if (!force) throw *change;
       fs::remove(output);

@@ -10,7 +10,9 @@
 //                          job_hash, physics_json (strings), seed (uint64),
 //                          units = "SI unless the name says otherwise",
 //                          job_inputs_sha256 (sha256sum lines: settings, job file, record list),
-//                          inputs_sha256 (one SHA-256 over every input of every cell)
+//                          inputs_sha256 (one SHA-256 over every input of every cell),
+//                          axes_sha256, axes_sha256_covers (from schema_version 3: the checksum
+//                          of the axes, the records and the variant table, kAxesChecksumCovers)
 //   /axes/record           [R] string     dimension scale "record" (names, job order)
 //   /axes/scale_g          [S] float64 g  dimension scale "scale_g" (target GMRotI50 PGA)
 //   /axes/rotation         [A] int32      dimension scale "rotation" (0..A-1)
@@ -64,6 +66,14 @@
 //       outcome, rotation_deg, failure_time_s, max_tilt_deg, max_slip_m, wall_s, failure_reason,
 //       failure_message    [V,R,S,A]
 //       probability        [V,R,S]; fragility, fragility_count [V,S,B] (per variant, as above)
+//
+// Layout, schema_version 3 (what write_cube writes): either layout above, the variant axis present
+// when /variants is, with both checksums required: axes_sha256 at the root and datasets_sha256 in
+// every object group. A reader refuses a version 3 cube without them (a deleted checksum is not an
+// old cube); a cube of version 1 or 2 is read with a warning (old_cube_warning). The derived
+// datasets (probability, fragility, fragility_count) follow from the checksummed cells: readers
+// recompute them (the Python side refuses stored ones that disagree). A /fragility group written
+// by `rigid fragility` is kept by a rewrite whose cells and axes hash as before.
 //
 // Every dataset has a `description`; numbers outside the object groups `units` ("1" =
 // dimensionless, "none" = text, codes, indices). In an object group every variable has a CF
@@ -474,6 +484,43 @@ std::vector<ObjectCube> split_cells(const ObjectCube& stacked, std::size_t count
     });
   }
   return variants;
+}
+
+std::string axes_sha256(const Cube& c) {
+  std::string bytes;
+  const auto strings = [&](auto field) {
+    std::vector<std::string> v;
+    for (const RecordMeta& m : c.records) v.push_back(m.*field);
+    append_strings(bytes, v);
+  };
+  const auto numbers = [&](auto field) {
+    std::vector<double> v;
+    for (const RecordMeta& m : c.records) v.push_back(m.*field);
+    append_numbers(bytes, v);
+  };
+  strings(&RecordMeta::name);  // /axes/record
+  append_numbers(bytes, c.scales_g);
+  append_numbers(bytes, pgv_pga_edges(c));
+  for (auto field : {&RecordMeta::name, &RecordMeta::source, &RecordMeta::earthquake, &RecordMeta::alignment,
+                     &RecordMeta::inputs})
+    strings(field);
+  for (auto field : {&RecordMeta::start_s, &RecordMeta::end_s, &RecordMeta::gmroti_pga_g, &RecordMeta::gmroti_pgv_cm_s,
+                     &RecordMeta::pgv_pga_s, &RecordMeta::listed_pga_g, &RecordMeta::listed_pgv_cm_s})
+    numbers(field);
+  for (const VariantParameter& p : c.variants.parameters) {
+    if (p.labels.empty()) {
+      append_numbers(bytes, p.values);
+    } else {
+      append_strings(bytes, p.labels);
+    }
+  }
+  return sha256_hex(bytes);
+}
+
+std::string old_cube_warning(const std::string& path, const Cube& cube) {
+  if (cube.schema_version >= kCubeSchemaVersionChecksummed) return "";
+  return path + ": schema_version " + std::to_string(cube.schema_version) +
+         " cube, written before checksums covered its axes and records: those are read unchecked";
 }
 
 std::string cell_datasets_sha256(const ObjectCube& o, const std::vector<std::string>& failure_message) {

@@ -74,6 +74,20 @@ inline constexpr const char* kChecksumCovers =
 /// the stored messages: what datasets_sha256 records at write and read_cube checks.
 std::string cell_datasets_sha256(const ObjectCube& object, const std::vector<std::string>& failure_message);
 
+/// What the root attribute axes_sha256 covers, in order (its attribute axes_sha256_covers): the
+/// datasets outside the object groups that a result depends on.
+inline constexpr const char* kAxesChecksumCovers =
+    "SHA-256 over /axes/record /axes/scale_g /axes/pgv_pga_edges_s /records/name /records/source "
+    "/records/earthquake /records/alignment /records/inputs_sha256 /records/start_s /records/end_s "
+    "/records/gmroti_pga_g /records/gmroti_pgv_cm_s /records/pgv_pga_s /records/listed_pga_g "
+    "/records/listed_pgv_cm_s, then each /variants/<parameter> in the order of the attribute "
+    "parameters of /variants, in this order: numbers as stored (little-endian), each string as its "
+    "length (uint64 little-endian) and its UTF-8 bytes";
+
+/// SHA-256 (hex) of a cube's axes, records and variant table as write_cube stores them
+/// (kAxesChecksumCovers): what axes_sha256 records at write and read_cube checks.
+std::string axes_sha256(const Cube& cube);
+
 /// Why these PGV/PGA bin edges are unusable (fewer than 2, NaN, not increasing); empty if usable.
 std::string edges_problem(const std::vector<double>& edges_s);
 

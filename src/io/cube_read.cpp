@@ -199,8 +199,10 @@ void verify_checksum(const H5& h, const std::string& group, const ObjectCube& o,
 }
 
 /// The cell datasets of an object group, each of shape `dims` ([R,S,A]; [V,R,S,A] in a group of
-/// variants, the variants' cells end to end), checked against the group's checksum.
-ObjectCube read_cells(const H5& h, const Reader& rd, const std::string& g, const std::vector<hsize_t>& dims) {
+/// variants, the variants' cells end to end), checked against the group's checksum (required
+/// from schema_version 3: a deleted checksum is not an old cube).
+ObjectCube read_cells(const H5& h, const Reader& rd, const std::string& g, const std::vector<hsize_t>& dims,
+                      std::int64_t version) {
   ObjectCube o;
   o.outcome = rd.numbers<std::int8_t>(g + "/outcome", H5T_INTEGER, H5T_NATIVE_INT8, dims);
   o.rotation_deg = rd.doubles(g + "/rotation_deg", dims);
@@ -211,8 +213,29 @@ ObjectCube read_cells(const H5& h, const Reader& rd, const std::string& g, const
   o.failure_reason = rd.numbers<std::int32_t>(g + "/failure_reason", H5T_INTEGER, H5T_NATIVE_INT32, dims);
   // absent from cubes written before them: no messages, no checksum to verify
   if (rd.has_link(g + "/failure_message")) o.failure_message = rd.strings(g + "/failure_message", dims);
-  if (rd.has_attribute(g, "datasets_sha256")) verify_checksum(h, g, o, rd.string_attribute(g, "datasets_sha256"));
+  if (rd.has_attribute(g, "datasets_sha256")) {
+    verify_checksum(h, g, o, rd.string_attribute(g, "datasets_sha256"));
+  } else if (version >= kCubeSchemaVersionChecksummed) {
+    h.fail(g + ": no datasets_sha256 (every schema_version " + std::to_string(version) +
+           " cube has one): the cube was altered");
+  }
   return o;
+}
+
+/// From schema_version 3 the axes, records and variant table must hash to axes_sha256; /axes/record
+/// (the names h5py readers see) must repeat /records/name, which the hash is computed from.
+void verify_axes_checksum(const H5& h, const Reader& rd, const Cube& c) {
+  if (!rd.has_attribute("/", "axes_sha256"))
+    h.fail("no axes_sha256 (every schema_version 3 cube has one): the cube was altered");
+  std::vector<std::string> names;
+  for (const RecordMeta& m : c.records) names.push_back(m.name);
+  if (rd.strings("/axes/record", c.records.size()) != names)
+    h.fail("/axes/record differs from /records/name: the cube was altered");
+  const std::string stored = rd.string_attribute("/", "axes_sha256");
+  const std::string now = axes_sha256(c);
+  if (now != stored)
+    h.fail("axes, records or variant table changed since written (checksum mismatch); axes_sha256 is " +
+           stored.substr(0, 12) + "..., they hash to " + now.substr(0, 12) + "...");
 }
 
 /// The group's position in the job (attribute `index`), in range and not `seen` before.
@@ -225,8 +248,9 @@ std::size_t group_index(const H5& h, const Reader& rd, const std::string& g, std
 }
 
 /// An object group of a cube without variants (schema_version 1).
-ObjectCube read_object(const H5& h, const Reader& rd, const std::string& g, const std::vector<hsize_t>& rsa) {
-  ObjectCube o = read_cells(h, rd, g, rsa);
+ObjectCube read_object(const H5& h, const Reader& rd, const std::string& g, const std::vector<hsize_t>& rsa,
+                       std::int64_t version) {
+  ObjectCube o = read_cells(h, rd, g, rsa, version);
   o.scene = rd.string_attribute(g, "scene");
   if (rd.has_attribute(g, "inputs_sha256")) o.inputs = rd.string_attribute(g, "inputs_sha256");
   if (rd.has_attribute(g, "physics_json")) o.physics_json = rd.string_attribute(g, "physics_json");
@@ -325,7 +349,7 @@ void read_variant_values(const H5& h, const Reader& rd, const std::string& g, st
 
 /// A group holding every variant of one base object: V ObjectCubes in variant order.
 std::vector<ObjectCube> read_variant_object(const H5& h, const Reader& rd, const std::string& name,
-                                            const std::vector<hsize_t>& rsa, hsize_t V) {
+                                            const std::vector<hsize_t>& rsa, hsize_t V, std::int64_t version) {
   const std::string g = "/objects/" + name;
   const auto variants_here = rd.integer_attribute<std::int64_t>(g, "variants", H5T_NATIVE_INT64);
   if (variants_here < 0 || static_cast<hsize_t>(variants_here) != V)
@@ -333,7 +357,7 @@ std::vector<ObjectCube> read_variant_object(const H5& h, const Reader& rd, const
            std::to_string(V));
   std::vector<hsize_t> vrsa{V};
   vrsa.insert(vrsa.end(), rsa.begin(), rsa.end());
-  std::vector<ObjectCube> variants = split_cells(read_cells(h, rd, g, vrsa), V);
+  std::vector<ObjectCube> variants = split_cells(read_cells(h, rd, g, vrsa, version), V);
   const std::string scene = rd.string_attribute(g, "scene");
   for (hsize_t v = 0; v < V; ++v) {
     variants[v].name = name;
@@ -357,9 +381,9 @@ void read_objects(const H5& h, const Reader& rd, Cube& c) {
     const std::string g = "/objects/" + name;
     const std::size_t index = group_index(h, rd, g, seen);
     if (c.variants.count > 0) {
-      by_index[index] = read_variant_object(h, rd, name, rsa, static_cast<hsize_t>(c.variants.count));
+      by_index[index] = read_variant_object(h, rd, name, rsa, static_cast<hsize_t>(c.variants.count), c.schema_version);
     } else {
-      by_index[index].push_back(read_object(h, rd, g, rsa));
+      by_index[index].push_back(read_object(h, rd, g, rsa, c.schema_version));
       by_index[index].back().name = name;
     }
   }
@@ -377,6 +401,7 @@ Cube read_contents(const H5& h, hid_t file) {
            " is not one this Rigid reads (1 to " + std::to_string(kCubeSchemaVersion) + ")");
 
   Cube c;
+  c.schema_version = static_cast<int>(version);
   c.software_version = rd.string_attribute("/", "software_version");
   c.job_text = rd.string_attribute("/", "job_text");
   c.job_hash = rd.string_attribute("/", "job_hash");
@@ -425,7 +450,9 @@ Cube read_contents(const H5& h, hid_t file) {
   number("listed_pga_g", &RecordMeta::listed_pga_g);
   number("listed_pgv_cm_s", &RecordMeta::listed_pgv_cm_s);
 
-  if (version >= kCubeSchemaVersionWithVariants) c.variants = read_variant_table(h, rd);
+  if (version == kCubeSchemaVersionWithVariants || (version >= kCubeSchemaVersionChecksummed && rd.has_link("/variants")))
+    c.variants = read_variant_table(h, rd);
+  if (version >= kCubeSchemaVersionChecksummed) verify_axes_checksum(h, rd, c);
   read_objects(h, rd, c);
   if (std::string p = cube_problem(c); !p.empty()) h.fail("inconsistent cube: " + p);
   return c;

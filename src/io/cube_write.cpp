@@ -160,9 +160,7 @@ std::vector<std::int32_t> iota32(std::size_t n) {
 }
 
 void write_root_attributes(Writer& w, const Cube& c) {
-  // a cube without variants keeps version 1, so readers from before the variant axis open it
-  w.attribute("/", "schema_version", std::int32_t{c.variants.count > 0 ? kCubeSchemaVersionWithVariants
-                                                                       : kCubeSchemaVersionWithoutVariants});
+  w.attribute("/", "schema_version", std::int32_t{kCubeSchemaVersion});
   w.attribute("/", "software_version", c.software_version);
   w.attribute("/", "job_text", c.job_text);
   w.attribute("/", "job_hash", c.job_hash);
@@ -171,6 +169,8 @@ void write_root_attributes(Writer& w, const Cube& c) {
   w.attribute("/", "units", std::string("SI unless the name says otherwise"));
   w.attribute("/", "job_inputs_sha256", c.job_inputs);
   w.attribute("/", "inputs_sha256", c.inputs_sha256);
+  w.attribute("/", "axes_sha256", axes_sha256(c));
+  w.attribute("/", "axes_sha256_covers", std::string(kAxesChecksumCovers));
 }
 
 // A campaign "as recorded" has the one scale 0: no target PGA, every record at factor 1; its
@@ -574,6 +574,52 @@ void write_contents(const H5& h, hid_t file, const Cube& c) {
   }
 }
 
+// A string attribute, or "" when absent or unreadable.
+std::string string_attribute_or_empty(hid_t loc, const char* object, const char* name) {
+  if (H5Aexists_by_name(loc, object, name, H5P_DEFAULT) <= 0) return "";
+  const Hid a(H5Aopen_by_name(loc, object, name, H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
+  const Hid type(H5Aget_type(a), H5Tclose);
+  if (a < 0 || type < 0 || H5Tget_class(type) != H5T_STRING || H5Tis_variable_str(type) <= 0) return "";
+  const Hid mem(H5Tcopy(H5T_C_S1), H5Tclose);
+  H5Tset_size(mem, H5T_VARIABLE);
+  H5Tset_cset(mem, H5T_CSET_UTF8);
+  char* p = nullptr;
+  if (H5Aread(a, mem, &p) < 0) return "";
+  std::string v = p != nullptr ? p : "";
+  H5free_memory(p);
+  return v;
+}
+
+// The fits `rigid fragility` stored in the cube being replaced (its /fragility group) stay with
+// it while they still describe it: when the axes and every object's cells hash as before (a
+// finished campaign run again). Cells added by a resume make them stale, and they are dropped.
+void carry_stored_fits(const H5& h, hid_t file, const std::string& path, const Cube& c) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) return;
+#if H5_VERSION_GE(1, 12, 0)
+  if (H5Fis_accessible(path.c_str(), H5P_DEFAULT) <= 0) return;
+#else
+  if (H5Fis_hdf5(path.c_str()) <= 0) return;
+#endif
+  const Hid fapl = file_access(h);
+  const Hid old(H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl), H5Fclose);
+  if (old < 0 || H5Lexists(old, "/fragility", H5P_DEFAULT) <= 0) return;
+  if (string_attribute_or_empty(old, "/", "axes_sha256") != string_attribute_or_empty(file, "/", "axes_sha256")) return;
+  std::vector<std::string> groups;
+  if (c.variants.count > 0) {
+    for (std::size_t i = 0; i < c.objects.size(); i += static_cast<std::size_t>(c.variants.count))
+      groups.push_back("/objects/" + c.objects[i].name);
+  } else {
+    for (const ObjectCube& o : c.objects) groups.push_back("/objects/" + o.name);
+  }
+  for (const std::string& g : groups) {
+    if (H5Lexists(old, "/objects", H5P_DEFAULT) <= 0 || H5Lexists(old, g.c_str(), H5P_DEFAULT) <= 0) return;
+    const std::string before = string_attribute_or_empty(old, g.c_str(), "datasets_sha256");
+    if (before.empty() || before != string_attribute_or_empty(file, g.c_str(), "datasets_sha256")) return;
+  }
+  H5Ocopy(old, "/fragility", file, "/fragility", H5P_DEFAULT, H5P_DEFAULT);
+}
+
 // Writes bytes to a new file and fsyncs it; errors name the file and errno.
 void write_file(const H5& h, const std::string& p, const std::vector<unsigned char>& bytes) {
   const int fd = ::open(p.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
@@ -633,6 +679,7 @@ void write_cube(const std::string& path, const Cube& cube) {
     h.check(H5Pset_fclose_degree(fapl, H5F_CLOSE_SEMI), "setting the file close degree");
     Hid file = h.own(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, fcpl, fapl), H5Fclose, "creating the cube in memory");
     write_contents(h, file, cube);
+    carry_stored_fits(h, file, path, cube);
     h.check(H5Fflush(file, H5F_SCOPE_GLOBAL), "flushing the cube in memory");
     const ssize_t size = h.check(H5Fget_file_image(file, nullptr, 0), "sizing the cube's file image");
     image.resize(static_cast<std::size_t>(size));

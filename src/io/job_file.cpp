@@ -111,6 +111,19 @@ std::string resolve_spec(const std::string& spec, const fs::path& base) {
   return out;
 }
 
+// An object's name is the name of its HDF5 group in the cube: "." and ".." are no group, '/'
+// separates groups, and a NUL or other control character cuts or garbles the name in every file
+// and table that shows it.
+std::string object_name_problem(const std::string& name) {
+  if (name.empty() || name == "." || name == "..") return "object name must not be empty, \".\" or \"..\"";
+  for (const char c : name) {
+    const auto u = static_cast<unsigned char>(c);
+    if (c == '/' || u < 0x20 || u == 0x7f)
+      return "object name must contain no '/' and no control character (NUL, tab, newline, ...)";
+  }
+  return "";
+}
+
 // Refuses a job too large to plan (the plan and results live in memory) before anything is allocated.
 void check_cell_count(const scenario::Job& job, long campaign_line) {
   const double cells = double(job.objects.size()) * double(job.records.size()) * double(job.scales_g.size()) *
@@ -215,13 +228,13 @@ scenario::Job load_job(const std::string& path) {
     o.scene = (base / scene).lexically_normal().string();
     // an optional object is a generated scene (e.g. a scan imported from data outside the
     // repository): left out with a note when absent; the note enters the job's text, so a resume
-    // after it appeared is refused instead of mixing two sets of objects
+    // after it appeared is refused instead of mixing two sets of objects. The text (and so the job's
+    // hash) names the scene as the job writes it: the same job reached by another path is the same job.
     const bool optional = optional_bool(*t, "optional", false, path);
     if (optional && !fs::exists(o.scene)) {
-      const std::string note = "[[object]] at line " + std::to_string(line_of(node)) + " left out: its scene " +
-                               o.scene + " does not exist (optional = true)";
-      job.notes.push_back(note);
-      job.text += "\n# " + note + "\n";
+      const std::string left_out = "[[object]] at line " + std::to_string(line_of(node)) + " left out: its scene ";
+      job.notes.push_back(left_out + o.scene + " does not exist (optional = true)");
+      job.text += "\n# " + left_out + "\"" + scene + "\" (relative to the job file) does not exist (optional = true)\n";
       continue;
     }
     if (!fs::exists(o.scene)) throw InputError(path, line_of(node), "scene file not found: " + o.scene);
@@ -231,8 +244,8 @@ scenario::Job load_job(const std::string& path) {
       if (!fs::exists(o.state)) throw InputError(path, line_of(node), "state file not found: " + o.state);
     }
     o.name = optional_string(*t, "name", fs::path(scene).stem().string(), path);
-    if (o.name.empty() || o.name.find('/') != std::string::npos) {
-      throw InputError(path, line_of(node), "object name must be non-empty and contain no '/'");
+    if (const std::string problem = object_name_problem(o.name); !problem.empty()) {
+      throw InputError(path, line_of(t->contains("name") ? *t->get("name") : node), problem);
     }
     if (!object_names.insert(o.name).second) throw InputError(path, line_of(node), "duplicate object name '" + o.name + "'");
     job.objects.push_back(o);

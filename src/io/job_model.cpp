@@ -7,6 +7,8 @@
 #include "rigid/io/lab_recording.hpp"
 #include "rigid/io/scene_file.hpp"
 #include "rigid/motion/measures.hpp"
+#include "rigid/scenario/rocking_parameters.hpp"
+#include "rigid/scenario/run_bounds.hpp"
 
 namespace rigid::io {
 namespace {
@@ -20,11 +22,22 @@ motion::GroundMotion windowed_record(const scenario::JobRecord& r, const motion:
   }
 }
 
-// A variant the object cannot take (a centre of mass outside its block) is the job's error, at
-// the line of the [sweep] or [[variant]] that asked for it.
+// A variant the object cannot take is the job's error, at the line of the [sweep] or [[variant]]
+// that asked for it: a centre of mass outside its block or beyond its support polygon (the
+// block would tip at once), or values a scene file may not have (scene_value_problem), or
+// blocks that start inside each other.
 void apply_job_variant(const scenario::Job& job, const scenario::JobObject& o, scenario::Scene& s) {
   try {
+    const bool supported = scenario::rocking_parameters(s).has_value();
     scenario::apply_variant(job.variants, o.variant, s);
+    if (const std::string problem = scene_value_problem(s); !problem.empty()) throw std::invalid_argument(problem);
+    if (supported && !scenario::rocking_parameters(s))
+      throw std::invalid_argument("the centre of mass lies outside the support polygon: the block would tip at once");
+    try {
+      scenario::check_start_overlap(s);
+    } catch (const InputError& e) {
+      throw std::invalid_argument(e.problem());
+    }
   } catch (const std::invalid_argument& e) {
     const std::size_t at = job.variant_lines.size() == 1 ? 0 : std::size_t(o.variant);
     throw InputError(job.path, at < job.variant_lines.size() ? job.variant_lines[at] : 0,

@@ -10,6 +10,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <tuple>
 
 #include "rigid/core/error.hpp"
 #include "rigid/core/types.hpp"
@@ -92,6 +94,18 @@ std::string dir_of(const std::string& path) {
   return std::filesystem::path(path).parent_path().string();
 }
 
+// A record listed twice would be simulated twice and counted twice in every fit: refused at the
+// second row, naming the first.
+void reject_duplicate_rows(const RecordList& list, const std::string& name) {
+  std::map<std::tuple<std::string, double, double>, long> first_line;
+  for (const RecordEntry& e : list.records) {
+    const auto [at, inserted] = first_line.emplace(std::tuple{e.file, e.start, e.end}, e.line);
+    if (!inserted)
+      throw InputError(name, e.line, "duplicate record: " + e.file + " with the same time window as line " +
+                                         std::to_string(at->second));
+  }
+}
+
 }  // namespace
 
 RecordList parse_record_table(std::string_view text, const std::string& name) {
@@ -137,6 +151,7 @@ RecordList parse_record_table(std::string_view text, const std::string& name) {
     }
     list.records.push_back(std::move(e));
   }
+  reject_duplicate_rows(list, name);
   return list;
 }
 
@@ -180,6 +195,7 @@ RecordList parse_abf(std::string_view text, const std::string& name) {
   if (stage < 2 && !list.pga_scales_g.empty())
     throw InputError(name, 0, "batch file ends before its deprecated line 2");
   if (stage == 0) throw InputError(name, 0, "empty batch file");
+  reject_duplicate_rows(list, name);
   return list;
 }
 

@@ -557,4 +557,14 @@ void apply_state(const std::string& path, scenario::Scene& scene) {
   check_overlap(scene, path);
 }
 
+std::string scene_value_problem(const scenario::Scene& scene) {
+  try {
+    validate_law(scene, "", 0);
+    for (const dynamics::BodyDef& body : scene.bodies) check_block_size(body, "block '" + body.name + "'");
+  } catch (const InputError& e) {
+    return e.file().empty() ? e.problem() : e.file() + ": " + e.problem();
+  }
+  return "";
+}
+
 }  // namespace rigid::io

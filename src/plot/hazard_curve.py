@@ -18,7 +18,9 @@ For H = k0 a^-k the rate has the closed form k0 theta^-k exp(k^2 beta^2 / 2).
 """
 import csv
 import math
+import os
 import re
+import stat
 
 import numpy as np
 from scipy import integrate, optimize
@@ -69,15 +71,41 @@ def _number(text):
     return v
 
 
-def read_curve(path, site=None):
-    """The hazard curve of `path` (layouts in the module docstring)."""
+# Largest hazard curve file read (unit: bytes): the C++ readers' limit for text inputs
+# (src/io/input_file.hpp); a curve of every site of a national model is a few MB.
+MAX_CURVE_BYTES = 64 << 20
+
+
+def read_text_input(path, max_bytes=MAX_CURVE_BYTES):
+    """The text of a regular file of at most max_bytes, as the C++ side reads its inputs: a
+    FIFO, device or directory would block or grow memory without bound, so it is refused (the
+    file is opened without blocking and checked on its descriptor, then read bounded)."""
     try:
-        with open(path, newline="", encoding="utf-8") as f:
-            lines = f.read().splitlines()
+        fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK | os.O_CLOEXEC)
     except FileNotFoundError:
         raise CurveError(f"{path}: no such file")
-    except (OSError, UnicodeDecodeError) as e:
+    except OSError as e:
+        raise CurveError(f"{path}: cannot read ({e.strerror})")
+    with os.fdopen(fd, "rb") as f:
+        st = os.fstat(fd)
+        if stat.S_ISDIR(st.st_mode):
+            raise CurveError(f"{path}: is a directory, not a file")
+        if not stat.S_ISREG(st.st_mode):
+            raise CurveError(f"{path}: not a regular file (a FIFO, device or socket)")
+        if st.st_size > max_bytes:
+            raise CurveError(f"{path}: file larger than {max_bytes >> 20} MB")
+        data = f.read(max_bytes + 1)
+    if len(data) > max_bytes:
+        raise CurveError(f"{path}: file larger than {max_bytes >> 20} MB")
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as e:
         raise CurveError(f"{path}: cannot read ({e})")
+
+
+def read_curve(path, site=None):
+    """The hazard curve of `path` (layouts in the module docstring)."""
+    lines = read_text_input(path).splitlines()
     investigation_time, imt = None, None
     rows = []  # (line number, cells)
     for number, line in enumerate(lines, start=1):

@@ -24,6 +24,7 @@ import sys
 try:
     import h5py
     import numpy as np
+    import cube_checksums
 except ImportError as e:  # pragma: no cover
     sys.stderr.write(f"outcome_agreement: error: {e}; run with /usr/bin/python3\n")
     sys.exit(2)
@@ -34,6 +35,12 @@ NOT_RUN, SURVIVED, OVERTURNED, INFERRED, FAILED = 0, 1, 2, 3, 4
 def read(path):
     out = {}
     with h5py.File(path, "r") as f:
+        try:  # the outcomes compared are the ones the campaign wrote
+            version = cube_checksums.verify(f, path)
+        except cube_checksums.ChecksumError as e:
+            raise ValueError(str(e))
+        if warning := cube_checksums.old_cube_warning(path, version):
+            sys.stderr.write(f"outcome_agreement: warning: {warning}\n")
         for name, g in f["objects"].items():
             if isinstance(g, h5py.Group) and "outcome" in g:
                 out[name] = dict(outcome=g["outcome"][()].astype(int), wall=g["wall_s"][()])

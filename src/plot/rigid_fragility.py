@@ -24,6 +24,7 @@ and reports the survival probability's epistemic 5-95 % range over variants besi
 interval; --variant K uses one variant as if it were an object.
 """
 import argparse
+import contextlib
 import csv
 import json
 import math
@@ -35,6 +36,7 @@ try:
     import h5py
     import numpy as np
     from numpy.polynomial.hermite_e import hermegauss
+    import cube_files
     import fragility_fit as ff
     import hazard_curve as hc
     import nrml
@@ -676,12 +678,13 @@ def write_variant_groups(g, cube, fits, analyses):
 
 
 def store(path, cube, fits, args, analyses=None):
-    """Writes the /fragility group into a copy of the cube and renames it over the cube, so a
-    crash leaves the cube as it was; refuses if the cube changed meanwhile (a running campaign)."""
+    """Writes the /fragility group into a private copy of the cube (cube_files.private_temporary)
+    and renames it over the cube, so a crash or a full disk leaves the cube as it was and no
+    temporary behind. The caller holds the cube's lock; the cube must not have changed since it
+    was read (a writer that ignores the lock)."""
     before = os.stat(path)
-    tmp = path + ".fragility.tmp"
-    shutil.copyfile(path, tmp)
-    try:
+    with cube_files.private_temporary(path, mode=before.st_mode & 0o7777) as tmp:
+        shutil.copyfile(path, tmp)
         with h5py.File(tmp, "a") as f:
             if "fragility" in f:
                 del f["fragility"]
@@ -696,31 +699,51 @@ def store(path, cube, fits, args, analyses=None):
                     write_fit_group(g.create_group(fit.obj.name), fit)
             else:
                 write_variant_groups(g, cube, fits, analyses or [])
-        with open(tmp, "rb") as fh:
-            os.fsync(fh.fileno())
         now = os.stat(path)
         if (now.st_mtime_ns, now.st_size, now.st_ino) != (before.st_mtime_ns, before.st_size, before.st_ino):
             raise InputError(f"{path}: the cube changed while it was fitted (a campaign writing it?); not stored, "
                              f"run again once it is done")
-        os.replace(tmp, path)
-        dfd = os.open(os.path.dirname(os.path.abspath(path)), os.O_RDONLY)
-        try:
-            os.fsync(dfd)
-        finally:
-            os.close(dfd)
-    finally:
-        if os.path.exists(tmp):
-            os.remove(tmp)
+
+
+def check_completeness(cube, state, args):
+    """A cube whose campaign has not run every cell: refused with --require-complete, else its
+    warning kept for warn_incomplete (printed once the fit stands, so bad input stays one line)."""
+    problem = cube.incomplete(state)
+    if problem is not None and args.require_complete:
+        raise InputError(problem + " (--require-complete)")
+    args.incomplete = problem
+
+
+def warn_incomplete(args):
+    if getattr(args, "incomplete", None):
+        sys.stderr.write(f"rigid {args.command}: warning: {args.incomplete}; the fits use the cells run so far\n")
 
 
 def cmd_fragility(args):
+    outputs = [(o, p) for o, p in (("--csv", args.csv), ("--nrml", args.nrml)) if p]
+    for option, path in outputs:
+        cube_files.refuse_output_over_inputs(path, option, [args.cube])
+    if len(outputs) == 2 and (cube_files.same_file(args.csv, args.nrml) or
+                              os.path.abspath(args.csv) == os.path.abspath(args.nrml)):
+        raise InputError(f"--csv and --nrml: the same file {args.nrml}")
+    if not os.path.isfile(args.cube):
+        raise InputError(f"{args.cube}: no such file")
+    state = cube_files.campaign_state(args.cube)  # before our own lock, which would look like a campaign's
+    # a store holds the cube's lock from the read to the rename: no campaign or second store between
+    with contextlib.nullcontext() if args.no_store else cube_files.CubeLock(args.cube):
+        return fragility_locked(args, state)
+
+
+def fragility_locked(args, state):
     cube = Cube(args.cube)
+    check_completeness(cube, state, args)
     objs = cube.select(args.object, args.variant)
     analyses = []
     if cube.variants is None:
         fits = [ObjectFit(cube, o, args) for o in objs]
     else:
         fits, analyses = analyse_variants(cube, objs, args)
+    warn_incomplete(args)
     if args.json:
         json.dump(json_document(cube, fits, args, analyses), sys.stdout, indent=1, allow_nan=False)
         print()
@@ -730,10 +753,13 @@ def cmd_fragility(args):
         print_variant_tables(cube, fits, analyses, args)
     if args.csv:
         rows = csv_rows(fits) + [pooled_csv_row(a) for a in analyses if a.pooled is not None]
-        with open(args.csv, "w", newline="") as fh:
-            w = csv.DictWriter(fh, fieldnames=list(rows[0].keys()))
-            w.writeheader()
-            w.writerows(rows)
+
+        def write_csv(tmp):
+            with open(tmp, "w", newline="") as fh:
+                w = csv.DictWriter(fh, fieldnames=list(rows[0].keys()))
+                w.writeheader()
+                w.writerows(rows)
+        cube_files.write_output(args.csv, "--csv", [args.cube], write_csv)
     if args.nrml:
         skipped = []
         if cube.variants is None:
@@ -753,7 +779,7 @@ def cmd_fragility(args):
                                         "per object one lognormal function of GMRotI50 PGA (g) per variant (id _vK) "
                                         "at the chosen PGV/PGA, and the pooled one (id _pooled: moment-matched "
                                         "lognormal of the equally weighted mixture of the variants)"), functions)
-        nrml.write(args.nrml, tree)
+        cube_files.write_output(args.nrml, "--nrml", [args.cube], lambda tmp: nrml.write(tmp, tree))
     if not args.no_store:
         store(args.cube, cube, fits, args, analyses)
     if not args.json:
@@ -788,11 +814,15 @@ def cmd_hazard(args):
         raise InputError(f"--age {args.age}: must be a positive number of years")
     if not 0 < args.confidence < 1:
         raise InputError(f"--confidence {args.confidence}: must be between 0 and 1")
+    if args.plot:
+        check_plot_path(args)
     try:
         curve = hc.read_curve(args.curve, args.site)
     except hc.CurveError as e:
         raise InputError(str(e))
+    state = cube_files.campaign_state(args.cube)
     cube = Cube(args.cube)
+    check_completeness(cube, state, args)
     objs = cube.select([args.object] if args.object else None, args.variant)
     names = cube.base_names() if not args.object else [args.object]
     if len(names) > 1:
@@ -849,8 +879,21 @@ def cmd_hazard(args):
     return 0
 
 
+PLOT_FORMATS = ("png", "pdf", "svg", "eps", "ps", "jpg", "jpeg", "tif", "tiff", "webp")
+
+
+def check_plot_path(args):
+    """--plot: a figure format matplotlib writes, and neither the cube nor the curve."""
+    ext = os.path.splitext(args.plot)[1].lower().lstrip(".")
+    if ext not in PLOT_FORMATS:
+        raise InputError(f"--plot {args.plot}: the file name must end in one of "
+                         f"{', '.join('.' + f for f in PLOT_FORMATS)} (the figure's format)")
+    cube_files.refuse_output_over_inputs(args.plot, "--plot", [args.cube, args.curve])
+
+
 def emit_hazard(args, result, draw):
     """The hazard's report: JSON or the text, then the plot (`draw`) when asked for."""
+    warn_incomplete(args)
     if args.json:
         json.dump(json_clean(result), sys.stdout, indent=1, allow_nan=False)
         print()
@@ -978,7 +1021,7 @@ def print_hazard(r):
     no_interval = ("[no interval: an empirical threshold]" if r.get("fragility", [{}])[0].get("source") == THRESHOLD_SOURCE
                    else f"[no interval: {r['n_records']} record(s)]")
     print(f"  annual rate of toppling   {lam:.3e} per year  " + (f"[{pct} %: {a:.3e}, {b:.3e}]" if have_interval else no_interval)
-          + f"  (mean return period {1 / lam:,.0f} years)" if lam > 0 else "  annual rate of toppling 0")
+          + f"  (mean return period {fmt_years(1 / lam)} years)" if lam > 0 else "  annual rate of toppling 0")
     if r["share_of_rate_beyond_curve"] > 0.01:
         print(f"  note: {100 * r['share_of_rate_beyond_curve']:.1f} % of the rate comes from PGAs beyond the curve, "
               f"where it is extended by its end segments' power law")
@@ -992,13 +1035,34 @@ def print_hazard(r):
         print(f"  epistemic range over variants ({plo}-{phi} %, each variant's own fragility): P(survives) "
               f"{elo:.4f} to {ehi:.4f}")
     c = int(round(r["confidence"] * 100))
+    scalings = ruling_scalings(r["rate_factor_to_rule_out"], r["pga_factor_to_rule_out"])
     if r["ruled_out"]:
         print(f"  the rock's survival rules this hazard curve out at {c} % confidence (survival below "
-              f"{1 - r['confidence']:.2f}); it would be consistent with the curve's rates x {r['rate_factor_to_rule_out']:.3g} "
-              f"or its PGAs x {r['pga_factor_to_rule_out']:.3g}")
+              f"{1 - r['confidence']:.2f}); it would be consistent with {scalings}")
     else:
-        print(f"  consistent at {c} % confidence; the rock would rule the curve out with its rates x "
-              f"{r['rate_factor_to_rule_out']:.3g} or its PGAs x {r['pga_factor_to_rule_out']:.3g}")
+        print(f"  consistent at {c} % confidence; the rock would rule the curve out with {scalings}")
+
+
+def fmt_years(v):
+    """A number of years: grouped digits up to ten million, then three significant digits."""
+    return f"{v:,.0f}" if v < 1e7 else f"{v:.3g}"
+
+
+def ruling_scalings(rate_factor, pga_factor):
+    """The scalings of the curve at the edge of ruling it out, in words: a factor of 0 or infinity
+    is no scaling (a flat curve, a rate of 0, or a PGA factor beyond the searched e^-6 to e^6)."""
+    def usable(f):
+        return math.isfinite(f) and f > 0
+    parts = []
+    if usable(rate_factor):
+        parts.append(f"the curve's rates x {rate_factor:.3g}")
+    if usable(pga_factor):
+        parts.append(f"its PGAs x {pga_factor:.3g}")
+    elif usable(rate_factor):
+        parts.append(f"no scaling of its PGAs within x {math.exp(-6):.3g} to x {math.exp(6):.3g}")
+    if not parts:
+        return "no scaling of the curve's rates or PGAs (the rock's toppling rate under it is 0)"
+    return " or ".join(parts)
 
 
 def plot_hazard(path, curve, mixture, v, points, r, variant_mixtures=()):
@@ -1048,7 +1112,8 @@ def plot_hazard(path, curve, mixture, v, points, r, variant_mixtures=()):
     bottom.set_ylabel("d lambda / d ln PGA (per year)")
     bottom.grid(True, which="both", alpha=0.3)
     fig.tight_layout()
-    fig.savefig(path, dpi=120)
+    fmt = os.path.splitext(path)[1].lower().lstrip(".")
+    cube_files.write_output(path, "--plot", [], lambda tmp: fig.savefig(tmp, dpi=120, format=fmt))
     plt.close(fig)
 
 
@@ -1075,6 +1140,9 @@ def build_parser():
         sp.add_argument("--seed", type=int, default=1, help="seed of the bootstrap (default 1)")
         sp.add_argument("--level", type=float, default=0.9, help="interval level (default 0.9)")
         sp.add_argument("--json", action="store_true", help="JSON on standard output instead of the table")
+        sp.add_argument("--require-complete", action="store_true",
+                        help="refuse a cube whose campaign has not run every cell (stopped or still running); "
+                             "default: fit the cells run so far, with a warning")
         sp.add_argument("--variant", type=int, metavar="K",
                         help="a cube with variants: only variant K (0-based); default: every variant, and "
                              "their pooled fragility")
@@ -1104,6 +1172,8 @@ def main(argv=None):
     parser = build_parser()
     args = parser.parse_args(argv)
     try:
+        if not 0 <= args.seed < 2 ** 63:
+            raise InputError(f"--seed {args.seed}: must be a whole number from 0 to 2^63 - 1")
         if args.bootstrap < 20 or args.bootstrap > 100000:
             raise InputError(f"--bootstrap {args.bootstrap}: must be 20-100000")
         if not 0.5 <= args.level < 1:
@@ -1113,8 +1183,11 @@ def main(argv=None):
         if getattr(args, "pgv_pga_dist", None) and args.pgv_pga is not None:
             raise InputError("--pgv-pga and --pgv-pga-dist: give one")
         return args.func(args)
-    except InputError as e:
-        sys.stderr.write(f"rigid {args.command}: error: {e}\n")
+    except (InputError, cube_files.OutputError) as e:
+        # a cube that cannot be fitted may be one whose campaign has not run the cells yet: say so
+        incomplete = getattr(args, "incomplete", None)
+        more = f" ({incomplete})" if incomplete and incomplete not in str(e) else ""
+        sys.stderr.write(f"rigid {args.command}: error: {e}{more}\n")
         return 2
     except OSError as e:
         sys.stderr.write(f"rigid {args.command}: error: {e}\n")

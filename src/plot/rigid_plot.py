@@ -57,6 +57,8 @@ try:
     from matplotlib import lines as mlines
     from matplotlib import patheffects as pe
     from matplotlib import ticker as mticker
+    import cube_checksums
+    import cube_files
     import fragility_fit
     from fragility_fit import fit_mu, fit_probit, fit_sigma, norm_ppf, simulated_counts
 except ImportError as e:  # pragma: no cover
@@ -174,6 +176,14 @@ class Cube:
         self.label = os.path.splitext(os.path.basename(path))[0]
         with f:
             try:
+                version = cube_checksums.verify(f, path)
+            except cube_checksums.ChecksumError as e:
+                raise InputError(str(e))
+            except KeyError as e:
+                raise InputError(f"{path}: not a Rigid fragility cube (missing {e})")
+            if warning := cube_checksums.old_cube_warning(path, version):
+                sys.stderr.write(f"rigid: warning: {warning}\n")
+            try:
                 self.records = _strings(f["axes/record"])
                 self.scales = f["axes/scale_g"][()].astype(float)
                 self.edges = f["axes/pgv_pga_edges_s"][()].astype(float)
@@ -213,11 +223,16 @@ class Cube:
         def read(key):
             return g[key][()] if variant is None else g[key][variant]
         outcome = read("outcome").astype(np.int8)
-        prob = read("probability") if "probability" in g else probability_from_outcome(outcome)
-        if "fragility" in g and "fragility_count" in g:
-            frag, cnt = read("fragility"), read("fragility_count")
-        else:
-            frag, cnt = fragility_from_probability(prob, self.pgv_pga, self.edges)
+        # the derived datasets are recomputed from the checksummed cells, and stored ones that
+        # disagree are refused: no result rests on a number no checksum covers
+        prob = probability_from_outcome(outcome)
+        frag, cnt = fragility_from_probability(prob, self.pgv_pga, self.edges)
+        for key, mine in (("probability", prob), ("fragility", frag), ("fragility_count", cnt)):
+            if key in g:
+                stored = np.asarray(read(key), float)
+                if stored.shape != mine.shape or not np.allclose(stored, mine, rtol=1e-12, atol=0, equal_nan=True):
+                    raise InputError(f"{self.path}: /objects/{name}/{key} does not follow from its cells "
+                                     f"(the file was altered)")
         return ObjectData(name, attrs, outcome, np.asarray(prob, float), np.asarray(frag, float),
                           np.asarray(cnt, int), variant)
 
@@ -254,6 +269,21 @@ class Cube:
 
     def bin_of_records(self):
         return np.array([pgv_pga_bin(self.edges, v) for v in self.pgv_pga], dtype=int)
+
+    def incomplete(self, state):
+        """Why fits of this cube are provisional (cells not run; `state` of
+        cube_files.campaign_state, taken before any lock of ours), or None when it is complete."""
+        total = sum(o.outcome.size for o in self.objects)
+        not_run = sum(int((o.outcome == NOT_RUN).sum()) for o in self.objects)
+        parts = []
+        if not_run:
+            parts.append(f"{not_run} of {total} cells ({100 * not_run / total:.0f} %) not run")
+        if state == "running":
+            parts.append(f"a campaign (or a store) is writing it now ({self.path}.lock is held)")
+        elif state == "stopped" and not_run:
+            parts.append(f"its campaign stopped before the end ({self.path}.journal is there; run the campaign "
+                         f"again to finish it)")
+        return f"{self.path}: incomplete cube: " + "; ".join(parts) if parts else None
 
 
 def pgv_pga_bin(edges, v):
@@ -610,7 +640,7 @@ def plot_map(cube, obj, fit, norm_, info, path, counts):
     ax.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, -0.12), ncol=4, fontsize=9,
               frameon=False, title=fit_text, title_fontsize=9)
     fig.tight_layout()
-    fig.savefig(path, dpi=DPI)
+    cube_files.save_figure(fig, path, "--out", INPUTS, dpi=DPI)
     plt.close(fig)
 
 
@@ -678,7 +708,7 @@ def plot_records(cube, obj, fit, norm_, path):
     cb.set_ticks(ticks)
     cb.set_ticklabels([f"{t:.3g}" for t in ticks])
     cb.ax.yaxis.set_minor_locator(mticker.NullLocator())
-    fig.savefig(path, dpi=DPI)
+    cube_files.save_figure(fig, path, "--out", INPUTS, dpi=DPI)
     plt.close(fig)
 
 
@@ -732,7 +762,7 @@ def plot_variant_band(cube, name, curves, pooled, pgv_pga_s, path):
     ax.set_title(f"{name}: fragility of {len(curves)} variants at PGV/PGA {pgv_pga_s:.3g} s\n"
                  f"{FIT_LABEL}; cube {os.path.basename(cube.path)}", fontsize=10)
     fig.tight_layout()
-    fig.savefig(path, dpi=DPI)
+    cube_files.save_figure(fig, path, "--out", INPUTS, dpi=DPI)
     plt.close(fig)
 
 
@@ -806,7 +836,10 @@ def _json_clean(v):
 
 
 def cmd_maps(args):
+    state = cube_files.campaign_state(args.cube)
     cube = Cube(args.cube)
+    if problem := cube.incomplete(state):
+        sys.stderr.write(f"rigid plot: warning: {problem}; the maps show the cells run so far\n")
     objs = cube.select(args.object, args.variant)
     os.makedirs(args.out, exist_ok=True)
     summary = {"cube": os.path.abspath(cube.path), "label": FIT_LABEL,
@@ -842,7 +875,7 @@ def cmd_maps(args):
             print(f"  warning: {info['warning']}")
         print(f"  wrote {base}_map.png, {base}_records.png")
     jpath = os.path.join(args.out, "fit.json")
-    with open(jpath, "w") as fh:
+    with cube_files.output_text(jpath, "--out", INPUTS) as fh:
         json.dump(_json_clean(summary), fh, indent=2, allow_nan=False)
         fh.write("\n")
     print(f"wrote {jpath}")
@@ -930,7 +963,7 @@ def plot_diff(view_a, view_b, name, fa, ca_, fb, cb_, d, stats, la, lb, fits, pa
     fig.legend(handles=leg, loc="lower center", ncol=len(leg), fontsize=9, frameon=False,
                title=FIT_LABEL if len(leg) > 1 else None, title_fontsize=9)
     fig.suptitle(f"{name}: {la} vs {lb}, binned fragility (each cell: mean over the bin's records)", fontsize=12)
-    fig.savefig(path, dpi=DPI)
+    cube_files.save_figure(fig, path, "--out", INPUTS, dpi=DPI)
     plt.close(fig)
 
 
@@ -980,7 +1013,7 @@ def cmd_diff(args):
     if skipped:
         print(f"not in {cb.path}: {', '.join(skipped)}")
     csv_path = os.path.join(args.out, "mismatch.csv")
-    with open(csv_path, "w", newline="") as fh:
+    with cube_files.output_text(csv_path, "--out", INPUTS, newline="") as fh:
         w = csv.writer(fh)
         w.writerow(["object", "alpha_rad", "n_cells", f"mean_{la}_minus_{lb}", "sd", f"mean_{lb}_minus_{la}",
                     "mean_abs_diff", "study_2D_minus_3D_mean", "study_2D_minus_3D_sd"])
@@ -990,7 +1023,7 @@ def cmd_diff(args):
                         _fmt(r["mean_abs"], 6), "" if r["study_2d_minus_3d"] is None else r["study_2d_minus_3d"][0],
                         "" if r["study_2d_minus_3d"] is None else r["study_2d_minus_3d"][1]])
     md_path = os.path.join(args.out, "mismatch.md")
-    with open(md_path, "w") as fh:
+    with cube_files.output_text(md_path, "--out", INPUTS) as fh:
         fh.write(f"# Binned fragility mismatch: {la} \u2212 {lb}\n\n")
         fh.write(f"- A ({la}): `{ca.path}`\n- B ({lb}): `{cb.path}`\n")
         fh.write(f"- Sign: **{la} \u2212 {lb}** per cell (positive: {la} more fragile); the column "
@@ -1104,10 +1137,10 @@ def cmd_table(args):
     out = args.out
     d = os.path.dirname(os.path.abspath(out))
     os.makedirs(d, exist_ok=True)
-    with open(out, "w") as fh:
+    with cube_files.output_text(out, "--out", INPUTS) as fh:
         fh.write("\n".join(lines) + "\n")
     csv_path = os.path.splitext(out)[0] + ".csv"
-    with open(csv_path, "w", newline="") as fh:
+    with cube_files.output_text(csv_path, "--out", INPUTS, newline="") as fh:
         w = csv.writer(fh)
         w.writerow(["cube", "object", "record", "scale_g", "survived", "overturned", "inferred", "not_run",
                     "failed", "known", "overturn_fraction"])
@@ -1182,11 +1215,20 @@ def build_parser():
     return p
 
 
+# The cubes a command reads: no output may be written over one of them.
+INPUTS = []
+
+
 def main(argv=None):
     args = build_parser().parse_args(argv)
+    INPUTS[:] = [p for key in ("cube", "cube_a", "cube_b") for p in [getattr(args, key, None)] if p]
+    INPUTS.extend(getattr(args, "cubes", None) or [])
     try:
         return args.func(args)
-    except InputError as e:
+    except (InputError, cube_files.OutputError) as e:
+        sys.stderr.write(f"rigid plot: error: {e}\n")
+        return 2
+    except OSError as e:
         sys.stderr.write(f"rigid plot: error: {e}\n")
         return 2
 

@@ -584,11 +584,11 @@ TEST_F(CubeFile, DamagedOrNewerCubesAreRejected) {
   ASSERT_GE(f, 0);
   const hid_t a = H5Aopen(f, "schema_version", H5P_DEFAULT);
   const int future = kCubeSchemaVersion + 1;
-  ASSERT_EQ(future, 3);  // 2, the variant layout, is read
+  ASSERT_EQ(future, 4);  // 3, the checksummed layout, is read
   ASSERT_GE(H5Awrite(a, H5T_NATIVE_INT, &future), 0);
   H5Aclose(a);
   H5Fclose(f);
-  expect_input_error([&] { read_cube(p); }, p, "schema_version 3 is not one this Rigid reads (1 to 2)");
+  expect_input_error([&] { read_cube(p); }, p, "schema_version 4 is not one this Rigid reads (1 to 3)");
 }
 
 TEST_F(CubeFile, DimensionScalesAreAttached) {
@@ -709,7 +709,7 @@ TEST_F(CubeFile, VariantLayoutAsTheSpecificationSaysThroughTheHdf5CApi) {
   write_cube(p, c);
   const hid_t f = H5Fopen(p.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
   ASSERT_GE(f, 0);
-  EXPECT_EQ(number_attribute<std::int32_t>(f, "/", "schema_version", H5T_NATIVE_INT32), 2);
+  EXPECT_EQ(number_attribute<std::int32_t>(f, "/", "schema_version", H5T_NATIVE_INT32), kCubeSchemaVersion);
   // the table
   EXPECT_EQ(string_attribute(f, "/variants", "method"), "lhs");
   EXPECT_EQ(number_attribute<std::uint64_t>(f, "/variants", "seed", H5T_NATIVE_UINT64), 0x8000000000000001ULL);
@@ -807,7 +807,7 @@ TEST_F(CubeFile, ACubeWithoutVariantsKeepsTheFirstLayout) {
   write_cube(p, synthetic());
   const hid_t f = H5Fopen(p.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
   ASSERT_GE(f, 0);
-  EXPECT_EQ(number_attribute<std::int32_t>(f, "/", "schema_version", H5T_NATIVE_INT32), 1);
+  EXPECT_EQ(number_attribute<std::int32_t>(f, "/", "schema_version", H5T_NATIVE_INT32), kCubeSchemaVersion);
   EXPECT_EQ(H5Lexists(f, "/variants", H5P_DEFAULT), 0);
   EXPECT_EQ(H5Lexists(f, "/objects/rock a/variant", H5P_DEFAULT), 0);
   EXPECT_EQ(H5Aexists_by_name(f, "/objects/rock a", "variants", H5P_DEFAULT), 0);
@@ -861,8 +861,15 @@ TEST_F(CubeFile, DamagedVariantCubesAreRejected) {
   });
   expect_input_error([&] { read_cube(p); }, p,
                      "reading dataset /objects/rock a/outcome: shape [2, 3, 4, 2], expected [3, 3, 4, 2]");
-  // no table
+  // no table: in schema 3 the table's presence says the cube has variants, and its checksum
+  // says the table was there
   damage([](hid_t f) { ASSERT_GE(H5Ldelete(f, "/variants", H5P_DEFAULT), 0); });
+  expect_input_error([&] { read_cube(p); }, p, "axes, records or variant table changed since written");
+  // a schema 2 cube (variants by its version) without its table
+  damage([](hid_t f) {
+    ASSERT_GE(H5Ldelete(f, "/variants", H5P_DEFAULT), 0);
+    replace_int32_attribute(f, "/", "schema_version", kCubeSchemaVersionWithVariants);
+  });
   expect_input_error([&] { read_cube(p); }, p, "without its variant table /variants");
   // a table whose count disagrees with its axis
   damage([](hid_t f) { replace_int32_attribute(f, "/variants", "count", 4); });
@@ -912,6 +919,23 @@ void overwrite_cell(const std::string& file, const char* dataset, std::int8_t va
   H5Fclose(f);
 }
 
+/// Overwrites the first value of a one-dimensional float64 dataset in place.
+void overwrite_first_number(const std::string& file, const char* dataset, double value) {
+  const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  ASSERT_GE(f, 0);
+  const hid_t d = H5Dopen2(f, dataset, H5P_DEFAULT);
+  ASSERT_GE(d, 0);
+  const hid_t space = H5Dget_space(d);
+  const hsize_t first[1] = {0}, one[1] = {1};
+  ASSERT_GE(H5Sselect_hyperslab(space, H5S_SELECT_SET, first, nullptr, one, nullptr), 0);
+  const hid_t mem = H5Screate_simple(1, one, nullptr);
+  ASSERT_GE(H5Dwrite(d, H5T_NATIVE_DOUBLE, mem, space, H5P_DEFAULT, &value), 0);
+  H5Sclose(mem);
+  H5Sclose(space);
+  H5Dclose(d);
+  H5Fclose(f);
+}
+
 TEST_F(CubeFile, AChangedOutcomeFailsTheChecksum) {
   const std::string p = path("cube.h5");
   const Cube c = synthetic();
@@ -935,10 +959,43 @@ TEST_F(CubeFile, CubesFromBeforeMessagesAndChecksumsStillRead) {
     ASSERT_GE(H5Ldelete(f, (std::string(g) + "/failure_message").c_str(), H5P_DEFAULT), 0);
     ASSERT_GE(H5Adelete_by_name(f, g, "datasets_sha256", H5P_DEFAULT), 0);
   }
+  // what a cube of schema 1 had: no axes checksum either
+  ASSERT_GE(H5Adelete_by_name(f, "/", "axes_sha256", H5P_DEFAULT), 0);
+  replace_int32_attribute(f, "/", "schema_version", kCubeSchemaVersionWithoutVariants);
   H5Fclose(f);
   const Cube back = read_cube(p);
   for (const ObjectCube& o : back.objects) EXPECT_TRUE(o.failure_message.empty()) << o.name;
   EXPECT_EQ(back.objects[0].outcome, synthetic().objects[0].outcome);
+  EXPECT_NE(old_cube_warning(p, back).find("schema_version 1 cube, written before checksums"), std::string::npos);
+  write_cube(p, back);  // a rewrite (a resume) makes it a cube of the current schema
+  EXPECT_EQ(old_cube_warning(p, read_cube(p)), "");
+}
+
+TEST_F(CubeFile, ADeletedChecksumIsNoOldCube) {
+  const std::string p = path("cube.h5");
+  write_cube(p, synthetic());
+  hid_t f = H5Fopen(p.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  ASSERT_GE(f, 0);
+  ASSERT_GE(H5Adelete_by_name(f, "/objects/rock_b", "datasets_sha256", H5P_DEFAULT), 0);
+  H5Fclose(f);
+  expect_input_error([&] { read_cube(p); }, p, "/objects/rock_b: no datasets_sha256");
+
+  write_cube(p, synthetic());
+  f = H5Fopen(p.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  ASSERT_GE(f, 0);
+  ASSERT_GE(H5Adelete_by_name(f, "/", "axes_sha256", H5P_DEFAULT), 0);
+  H5Fclose(f);
+  expect_input_error([&] { read_cube(p); }, p, "no axes_sha256");
+}
+
+TEST_F(CubeFile, AChangedScaleOrRecordFailsTheAxesChecksum) {
+  const std::string p = path("cube.h5");
+  const Cube c = synthetic();
+  for (const char* dataset : {"/axes/scale_g", "/records/pgv_pga_s"}) {
+    write_cube(p, c);
+    overwrite_first_number(p, dataset, 1.2345);
+    expect_input_error([&] { read_cube(p); }, p, "axes, records or variant table changed since written");
+  }
 }
 
 TEST_F(CubeFile, AKillAtAnyInstantLeavesAValidFile) {

@@ -60,10 +60,10 @@ class CubeFile(unittest.TestCase):
         a = self.f.attrs
         self.assertEqual(set(a), {"schema_version", "software_version", "job_text", "job_hash",
                                   "physics_json", "seed", "units", "job_inputs_sha256",
-                                  "inputs_sha256"})  # in particular no time stamp
+                                  "inputs_sha256", "axes_sha256", "axes_sha256_covers"})  # in particular no time stamp
         self.assertEqual(a["inputs_sha256"], "c" * 64)
         self.assertTrue(a["job_inputs_sha256"].endswith("  jobs/demo run.toml\n"))
-        self.assertEqual(int(a["schema_version"]), 1)
+        self.assertEqual(int(a["schema_version"]), 3)
         self.assertEqual(a["software_version"], "0.1.0 (abc1234)")
         self.assertTrue(a["job_text"].startswith("# job\nname = \"demo run\""))
         self.assertEqual(len(a["job_hash"]), 64)

@@ -28,6 +28,8 @@ except ImportError as e:  # pragma: no cover
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 SCRIPT = os.path.normpath(os.path.join(HERE, "..", "..", "src", "plot", "rigid_plot.py"))
+sys.path.insert(0, os.path.dirname(SCRIPT))
+import cube_checksums  # noqa: E402  (synthetic cubes carry the checksums of the current schema)
 
 EDGES = [0.0, 0.06, 0.08, 0.10, 0.12, 0.15, 0.20, 0.25, 0.35, math.inf]
 SCALES = np.round(np.arange(1, 21) * 0.1, 10)       # 0.1 .. 2.0 g
@@ -111,6 +113,7 @@ def write_cube(path, pgv_pga, objects, root_attrs=None):
             g.create_dataset("probability", data=prob)
             g.create_dataset("fragility", data=frag)
             g.create_dataset("fragility_count", data=count)
+        cube_checksums.seal(f)
 
 
 def run_tool(*args, expect=0):
@@ -292,6 +295,7 @@ class RigidPlot(unittest.TestCase):
         shutil.copy(self.cube, other)
         with h5py.File(other, "r+") as f:
             f["axes/pgv_pga_edges_s"][1] = 0.05
+            cube_checksums.seal(f)  # a cube written with other edges, not a damaged one
         p = run_tool("diff", self.cube, other, "--out", os.path.join(self.tmp, "bad"), expect=2)
         self.assertIn("different PGV/PGA bin edges", p.stderr)
 

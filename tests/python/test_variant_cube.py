@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""A cube with variants (schema_version 2) as h5py and xarray see it: the /variants table, one
+"""A cube with variants (schema_version 3, formerly 2) as h5py and xarray see it: the /variants table, one
 group per base object with its cells led by the variant dimension, and xarray opening that group
 with both netCDF engines (named dimensions, the variant coordinate, per-variant values).
 
@@ -30,7 +30,7 @@ ENGINES = ("h5netcdf", "netcdf4")
 class VariantCube(unittest.TestCase):
     def test_variant_table(self):
         with h5py.File(CUBE, "r") as f:
-            self.assertEqual(int(f.attrs["schema_version"]), 2)
+            self.assertEqual(int(f.attrs["schema_version"]), 3)
             t = f["variants"]
             self.assertEqual(int(t.attrs["count"]), V)
             self.assertEqual(t.attrs["parameters"], "friction contact density_kg_m3")

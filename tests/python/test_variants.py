@@ -43,6 +43,7 @@ try:
     from scipy.special import ndtr
     import test_plot as tp  # the axes of the synthetic cubes and the cube-derived datasets
     import rigid_plot
+    import cube_checksums
     import fragility_fit as ff
 except ImportError as e:
     print(f"skipped: {e} (install python3-numpy python3-scipy python3-h5py python3-matplotlib)")
@@ -131,6 +132,7 @@ def write_variant_cube(path, objects, parameters, method="lhs", seed=7):
             g.create_dataset("physics_json", data=np.array(['{"friction": 0.6}'] * V, dtype=object), dtype=str_t)
             g.create_dataset("support_polygon_m", data=np.array(["0 0 1 0 1 1"] + [""] * (V - 1), dtype=object),
                              dtype=str_t)
+        cube_checksums.seal(f)
 
 
 def lognormal_outcome(rng, theta, beta, records=RECORDS):

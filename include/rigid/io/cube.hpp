@@ -113,15 +113,27 @@ struct Cube {
   std::uint64_t seed = 0;
   /// Edges of the PGV/PGA bins of the fragility surface (unit: s), 10 edges = 9 bins.
   std::vector<double> pgv_pga_edges_s;
+  /// The schema_version read_cube found in the file (0: not read from a file); write_cube always
+  /// writes kCubeSchemaVersion.
+  int schema_version = 0;
 };
 
 /// Versions of the file layout (root attribute `schema_version`; the layouts are described at the
-/// top of src/io/cube.cpp): write_cube writes 1 for a cube without variants (unchanged since
-/// before the variant axis, so older readers still open it) and 2 for one with variants.
-/// read_cube reads both and rejects newer versions.
+/// top of src/io/cube.cpp): 1, a cube without variants; 2, one with variants; 3, either (the
+/// variant axis present when /variants is) with checksums that every reader verifies over
+/// everything a result depends on: the axes, the records and the variant table (root attribute
+/// axes_sha256) and each object's cells (datasets_sha256). write_cube writes 3; read_cube reads
+/// 1 to 3 (a cube of version 1 or 2 without a checksum is one written before it existed:
+/// old_cube_warning) and rejects newer versions.
 inline constexpr int kCubeSchemaVersionWithoutVariants = 1;
 inline constexpr int kCubeSchemaVersionWithVariants = 2;
-inline constexpr int kCubeSchemaVersion = kCubeSchemaVersionWithVariants;  ///< the newest read
+inline constexpr int kCubeSchemaVersionChecksummed = 3;
+inline constexpr int kCubeSchemaVersion = kCubeSchemaVersionChecksummed;  ///< written, and the newest read
+
+/// What a reader should say of a cube read_cube returned: "" for a cube of the current schema
+/// (every checksum present and verified), else a warning that its axes and records (and, before
+/// the cell checksums existed, its cells) could not be checked.
+std::string old_cube_warning(const std::string& path, const Cube& cube);
 
 /// How tables name an object: its name, followed by " [vK]" for variant K in a cube with variants
 /// (e.g. "rock [v3]"), so rows of one base object's variants stay apart.

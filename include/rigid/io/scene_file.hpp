@@ -22,6 +22,12 @@ scenario::Scene parse_model_text(const std::string& text, const std::string& bas
 /// study's values for density and the penalty parameters (physics.md §11), one per line.
 std::string default_physics_table();
 
+/// What a scene changed after loading (a campaign variant's size_scale, density, physics) must
+/// still satisfy of the checks load_scene makes: a density of 1 to 1e5 kg/m^3, a positive normal
+/// and shear stiffness, a friction and damping >= 0, every block's radius 1 mm to 1 km. Returns
+/// the first problem, empty when there is none.
+std::string scene_value_problem(const scenario::Scene& scene);
+
 /// Writes the poses of all blocks (a saved equilibrium state) as TOML, full precision.
 void save_state(const std::string& path, const scenario::Scene& scene);
 
