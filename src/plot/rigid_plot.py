@@ -854,7 +854,7 @@ def cmd_maps(args):
         if f is not None and fit is not None:
             print(fit_summary(obj, info, f, norm_))
         else:
-            print(f"{obj.label}: n = {info['n_cells']} cells, no fit: {info.get('reason')}")
+            print(f"{obj.label}: {info['n_cells']} cells, no fit: {info.get('reason')}")
         if "warning" in info:
             print(f"  warning: {info['warning']}")
         print(f"  wrote {', '.join(info['files'])}")

@@ -93,9 +93,9 @@ def test_scientific_notation():
 
 
 def planted_cube(path, rng, mu0, two_record_bin=True):
-    """80 records: PGV/PGA log-uniform over 0.1-0.34 s, and (two_record_bin) 2 records at 0.07 s
+    """40 records: PGV/PGA log-uniform over 0.1-0.34 s, and (two_record_bin) 2 records at 0.07 s
     (bin 0.06-0.08 s); alpha an awkward 0.123456789 rad for the title test."""
-    pgv = list(np.exp(rng.uniform(math.log(0.1), math.log(0.34), 78))) + ([0.07, 0.07] if two_record_bin else [0.2, 0.2])
+    pgv = list(np.exp(rng.uniform(math.log(0.1), math.log(0.34), 38))) + ([0.07, 0.07] if two_record_bin else [0.2, 0.2])
     pgv = np.array(pgv)
     tp.write_cube(path, pgv, [("rock", tp.planted_outcomes(rng, pgv, mu0, tp.MU1, tp.SIGMA, extras=False),
                                {"alpha_rad": 0.123456789, "p_rad_s": 2.2})])
