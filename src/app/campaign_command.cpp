@@ -55,12 +55,15 @@ void register_campaign_command(CLI::App& app) {
                   "auto (simulate only the effects the scenes and motions call for) or all (every effect, the "
                   "reference): overrides the job's [run] effects (recorded in the cube)")
       ->check(CLI::IsMember({"auto", "all"}));
-  cmd->add_option("--progress", command->progress, "auto (bar on a terminal, log lines otherwise), bar, log or none")
+  cmd->add_option("--progress", command->progress, "auto (a live line when a person watches: stderr is a terminal, or mpirun's is; log lines otherwise), bar, log or none")
       ->capture_default_str()
       ->check(CLI::IsMember({"auto", "bar", "log", "none"}));
   cmd->add_option("--log-interval", command->log_interval, "Seconds between progress log lines when not on a terminal (s)")
       ->capture_default_str()
       ->check(positive_number());
+  cmd->add_flag("--verbose", o->verbose,
+                "Also log the dispatch internals at the end (messages sent to worker ranks, checkpoint counts and "
+                "costs, the longest hold of the dispatch lock)");
   cmd->add_option("--checkpoint-interval", o->checkpoint_interval, "Seconds between checkpoints (a journal fsync; the whole cube is rewritten only when that takes at most 5 % of the time); default: the job's (30 s)")
       ->check(positive_number());
   cmd->add_option("--grace", o->grace, "Seconds in-flight tasks get after a stop signal; default: the job's (30 s)")

@@ -1,5 +1,6 @@
 #include "campaign_report.hpp"
 
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -7,6 +8,7 @@
 #include <numeric>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 
 #include "rigid/campaign/log.hpp"
@@ -29,22 +31,41 @@ std::string format_duration(double s) {
   return buf;
 }
 
+// One report: cells settled out of all cells (a denominator fixed for the whole run; a cell the
+// stop rule infers counts as settled), the simulation rate since this run started and the time
+// left at that rate for the cells still to simulate.
 void print_progress(const campaign::ProgressReport& p, bool bar) {
   const double rate = p.elapsed_s > 0 ? double(p.done - p.done_at_start) / p.elapsed_s : 0.0;
-  const double eta = rate > 0 ? double(p.remaining) / rate : NAN;
-  const long shown_total = p.done + p.remaining;
+  const double eta = p.remaining == 0 ? 0.0 : rate > 0 ? double(p.remaining) / rate : NAN;
+  const double share = p.total > 0 ? double(p.settled) / double(p.total) : 1.0;
   if (bar) {
     const int width = 30;
-    const int filled = shown_total > 0 ? int(width * double(p.done) / double(shown_total)) : width;
-    std::fprintf(stderr, "\r[%s%s] %ld/%ld tasks  %.1f sim/s  ETA %s  failures %ld   ",
-                 std::string(filled, '#').c_str(), std::string(width - filled, '.').c_str(), p.done, shown_total, rate,
-                 format_duration(eta).c_str(), p.failures);
+    const int filled = std::clamp(int(width * share), 0, width);
+    std::fprintf(stderr, "\r[%s%s] %ld/%ld cells (%.0f %%)  %.2f sim/s  ETA %s  failures %ld   ",
+                 std::string(std::size_t(filled), '#').c_str(), std::string(std::size_t(width - filled), '.').c_str(),
+                 p.settled, p.total, 100 * share, rate, format_duration(eta).c_str(), p.failures);
     if (p.final) std::fprintf(stderr, "\n");
   } else {
-    campaign::log_status("{}/{} tasks done ({} of the {} cells left to simulate), {:.2f} sim/s, ETA {}, failures {}", p.done,
-                         shown_total, p.remaining, p.total, rate, format_duration(eta), p.failures);
+    campaign::log_status("{}/{} cells settled ({:.0f} %; inferred cells count as settled), {} left to simulate, "
+                         "{:.2f} sim/s, ETA {}, failures {}",
+                         p.settled, p.total, 100 * share, p.remaining, rate, format_duration(eta), p.failures);
   }
   std::fflush(stderr);
+}
+
+// Whether a person watches stderr: a terminal, or, for a rank that mpirun started, the terminal of
+// mpirun itself (Open MPI relays the ranks' stderr through a pipe, which is never a terminal, while
+// the user sees mpirun's). On another node the parent is Open MPI's daemon, whose stderr is no
+// terminal: plain log lines there.
+bool person_watches_stderr() {
+  if (isatty(STDERR_FILENO)) return true;
+  if (std::getenv("OMPI_COMM_WORLD_SIZE") == nullptr) return false;
+  const std::string parent_stderr = "/proc/" + std::to_string(getppid()) + "/fd/2";
+  const int fd = open(parent_stderr.c_str(), O_WRONLY | O_NOCTTY | O_CLOEXEC);
+  if (fd < 0) return false;
+  const bool terminal = isatty(fd) != 0;
+  close(fd);
+  return terminal;
 }
 
 // Tasks and core-hours of each object (and variant): what each row of the cube will cost. Many
@@ -73,7 +94,7 @@ void print_object_costs(const scenario::Job& job, long tasks_per_object, const s
 
 void attach_progress(campaign::CampaignOptions& options, const std::string& mode, double log_interval) {
   if (mode == "none") return;
-  const bool bar = mode == "bar" || (mode == "auto" && isatty(STDERR_FILENO));
+  const bool bar = mode == "bar" || (mode == "auto" && person_watches_stderr());
   options.progress_interval = bar ? 0.25 : log_interval;
   options.on_progress = [bar](const campaign::ProgressReport& p) { print_progress(p, bar); };
 }

@@ -401,6 +401,8 @@ struct Master {
     ProgressReport p;
     p.done = plan->done();
     p.remaining = plan->remaining();
+    // a fixed denominator: every cell is settled at the end, inferred ones as the rule infers them
+    p.settled = plan->size() - p.remaining - plan->in_flight();
     p.failures = plan->failures();
     p.done_at_start = done_at_start;
     p.total = plan->size();
@@ -488,7 +490,7 @@ struct Master {
       }
       result.cube = make_cube(context, *plan);
     }
-    if (ranks > 1) {
+    if (ranks > 1 && options.verbose) {  // dispatch internals: for whoever tunes the dispatch
       log_status("{} tasks sent to {} worker ranks in {} messages ({:.0f} tasks/s over {:.2f} s)", remote_tasks, ranks - 1,
                  remote_messages, double(remote_tasks) / seconds_since(started), seconds_since(started));
       std::lock_guard<std::mutex> lock(writer_mutex);

@@ -6,7 +6,7 @@
 namespace rigid::campaign {
 
 scenario::Case case_of(const scenario::Job& job, const Cell& cell) {
-  return {cell.object, cell.record, job.scales_g[std::size_t(cell.scale)], cell_rotation_deg(job, cell)};
+  return {cell.object, cell.record, job.drive_scale_g(std::size_t(cell.scale)), cell_rotation_deg(job, cell)};
 }
 
 TaskResult run_task(const scenario::Job& job, const scenario::Model& model, std::int64_t task, bool noop) {

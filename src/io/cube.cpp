@@ -17,7 +17,8 @@
 //   /axes/scale_g          [S] float64 g  dimension scale "scale_g" (target GMRotI50 PGA)
 //   /axes/rotation         [A] int32      dimension scale "rotation" (0..A-1)
 //   /axes/pgv_pga_bin      [B] int32      dimension scale "pgv_pga_bin" (0..B-1)
-//   /axes/pgv_pga_edges_s  [E] float64 s  bin i holds edges[i] <= PGV/PGA < edges[i+1]
+//   /axes/pgv_pga_edges_s  [E] float64 s  dimension scale "pgv_pga_edges_s" (its own dimension);
+//                                         bin i holds edges[i] <= PGV/PGA < edges[i+1]
 //                                         (the last bin also holds PGV/PGA == edges[E-1])
 //   /records/{name, source, earthquake}                               [R] string
 //   /records/{start_s, end_s, gmroti_pga_g, gmroti_pgv_cm_s, pgv_pga_s,

@@ -201,8 +201,10 @@ void write_axes_and_records(Writer& w, const Cube& c) {
                    "PGV/PGA bin index; bin i holds pgv_pga_edges_s[i] <= PGV/PGA < pgv_pga_edges_s[i+1] "
                    "(the last bin also holds its upper edge)");
   w.make_scale(bin, "/axes/pgv_pga_bin", "pgv_pga_bin");
-  w.doubles("/axes/pgv_pga_edges_s", edges, {B + 1}, "s",
-            "edges of the PGV/PGA bins of the fragility surface");
+  // its own dimension (E = B + 1 values), of which it is the coordinate: netCDF-4 readers see no
+  // dimension without a scale
+  Hid edge = w.doubles("/axes/pgv_pga_edges_s", edges, {B + 1}, "s", "edges of the PGV/PGA bins of the fragility surface");
+  w.make_scale(edge, "/axes/pgv_pga_edges_s", "pgv_pga_edges_s");
 
   w.group("/records");
   // its own dimension scale: netCDF-4 cannot see one in the sibling group /axes

@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <optional>
+#include <regex>
 #include <set>
 #include <sstream>
 
@@ -43,14 +45,69 @@ double number(const toml::node& n, const std::string& src, const std::string& wh
 // Most cells one job may have: a cell's plan entry, result and journal record cost some
 // hundred bytes, so 1e7 cells is about a gigabyte (and years of simulation).
 constexpr double kMaxCells = 1e7;
+constexpr long kMaxScales = 100000;
 
-std::vector<double> parse_scales(const toml::node& n, const std::string& src) {
+// A decimal number as digits x 10^-places ("0.25" -> 25, 2; "1e-1" -> 1, 1), when it is one
+// that a double holds exactly as an integer (at most 15 significant digits, 0-22 places).
+struct Decimal {
+  long long digits = 0;
+  int places = 0;
+};
+
+std::optional<Decimal> decimal_of(const std::string& text) {
+  static const std::regex form(R"(\s*\+?([0-9]*)(?:\.([0-9]*))?(?:[eE]([+-]?[0-9]{1,3}))?\s*)");
+  std::smatch m;
+  if (!std::regex_match(text, m, form) || (m[1].length() == 0 && m[2].length() == 0)) return std::nullopt;
+  std::string digits = m[1].str() + m[2].str();
+  int places = int(m[2].length()) - (m[3].matched ? std::stoi(m[3].str()) : 0);
+  for (; places < 0; ++places) digits += '0';
+  digits.erase(0, std::min(digits.find_first_not_of('0'), digits.size()));
+  if (digits.size() > 15 || places > 22) return std::nullopt;
+  return Decimal{digits.empty() ? 0 : std::stoll(digits), places};
+}
+
+// "start:stop:step" (g), stop included when it falls on the grid. Each scale is the double nearest
+// the decimal start + i * step, as if the user had written it out ("0.1:1.0:0.1" gives 0.3, not the
+// float sum 0.30000000000000004), so a reader selects it by the number the job states.
+std::optional<std::vector<double>> decimal_range(const std::string& text) {
+  std::vector<std::optional<Decimal>> part;
+  std::size_t from = 0;
+  for (int k = 0; k < 3; ++k) {
+    const std::size_t to = k < 2 ? text.find(':', from) : text.size();
+    if (to == std::string::npos) return std::nullopt;
+    part.push_back(decimal_of(text.substr(from, to - from)));
+    from = to + 1;
+  }
+  if (!part[0] || !part[1] || !part[2]) return std::nullopt;
+  const int places = std::max({part[0]->places, part[1]->places, part[2]->places});
+  long long scaled[3];
+  for (int k = 0; k < 3; ++k) {
+    long long v = part[std::size_t(k)]->digits;
+    for (int p = part[std::size_t(k)]->places; p < places; ++p) {
+      if (v > (1LL << 53) / 10) return std::nullopt;
+      v *= 10;
+    }
+    scaled[k] = v;
+  }
+  const auto [start, stop, step] = scaled;
+  if (step <= 0 || stop < start) return std::nullopt;  // the caller names the problem
+  const long long count = (stop - start) / step + 1;
+  if (count > kMaxScales) return std::vector<double>(std::size_t(kMaxScales) + 1, 0.0);  // "too many"
+  double power = 1;  // 10^places is exact in a double up to 10^22
+  for (int p = 0; p < places; ++p) power *= 10;
+  std::vector<double> out;
+  // both operands exact, so the one rounding of the division gives the nearest double
+  for (long long i = 0; i < count; ++i) out.push_back(double(start + i * step) / power);
+  return out;
+}
+
+/// The stated scales (g); a range also fills `drive` with its float sums (Job::drive_scales_g).
+std::vector<double> parse_scales(const toml::node& n, const std::string& src, std::vector<double>& drive) {
   std::vector<double> out;
   if (n.value<std::string>() && *n.value<std::string>() == "as recorded") return {scenario::kAsRecordedScale};
   if (const auto* arr = n.as_array()) {
     for (const auto& v : *arr) out.push_back(number(v, src, "each scale (g)"));
   } else if (const auto s = n.value<std::string>()) {
-    // start:stop:step in g, stop included when it falls on the grid
     double a, b, c;
     char extra;
     if (std::sscanf(s->c_str(), "%lf:%lf:%lf%c", &a, &b, &c, &extra) != 3) {
@@ -59,9 +116,11 @@ std::vector<double> parse_scales(const toml::node& n, const std::string& src) {
     if (!(c > 0) || !(b >= a) || !std::isfinite(a) || !std::isfinite(b)) {
       throw InputError(src, line_of(n), "scales \"start:stop:step\" needs step > 0 and stop >= start");
     }
-    const long count = std::lround(std::floor((b - a) / c + 1e-9)) + 1;
-    if (count > 100000) throw InputError(src, line_of(n), "too many scales");
-    for (long i = 0; i < count; ++i) out.push_back(a + double(i) * c);
+    const std::optional<std::vector<double>> exact = decimal_range(*s);
+    const long count = exact ? long(exact->size()) : std::lround(std::floor((b - a) / c + 1e-9)) + 1;
+    if (count > kMaxScales) throw InputError(src, line_of(n), "too many scales");
+    for (long i = 0; i < count; ++i) drive.push_back(a + double(i) * c);
+    out = exact ? *exact : drive;  // more digits than a decimal grid holds: the float sums
   } else {
     throw InputError(src, line_of(n), "scales must be a list, \"start:stop:step\" (g) or \"as recorded\"");
   }
@@ -183,7 +242,7 @@ scenario::Job load_job(const std::string& path) {
   }
   const toml::node* scales = c->get("scales");
   if (!scales) throw InputError(path, line_of(*c), "[campaign] needs scales (list or \"start:stop:step\", g, or \"as recorded\")");
-  job.scales_g = parse_scales(*scales, path);
+  job.scales_g = parse_scales(*scales, path, job.drive_scales_g);
   if (const auto* r = c->get("rotations")) {
     const auto v = r->value<std::int64_t>();
     if (!v || *v < 1 || *v > 1000) throw InputError(path, line_of(*r), "rotations must be an integer from 1 to 1000");

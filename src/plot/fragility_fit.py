@@ -26,6 +26,10 @@ from scipy import optimize, stats
 from scipy.special import log_ndtr, ndtr, ndtri
 
 NOT_RUN, SURVIVED, OVERTURNED, INFERRED, FAILED = 0, 1, 2, 3, 4
+
+# Told of each bootstrap resample and each finished fit when set (progress.FitProgress: the
+# command's progress line); this module itself writes nothing.
+PROGRESS = None
 _LOG_SQRT_2PI = 0.5 * math.log(2.0 * math.pi)
 
 
@@ -224,8 +228,31 @@ MIN_RECORDS_FOR_INTERVAL = 3
 NO_INTERVAL = (float("nan"), float("nan"))
 
 
+def few_records_note(n):
+    """The flag of a fit on fewer than MIN_RECORDS_FOR_INTERVAL records."""
+    return (f"only {n} record(s), fewer than {MIN_RECORDS_FOR_INTERVAL}: no bootstrap interval, and the fit says "
+            f"little beyond these records")
+
+
+def _resample_done(replicates):
+    if PROGRESS is not None:
+        PROGRESS.resample(replicates)
+
+
+def _fit_done():
+    if PROGRESS is not None:
+        PROGRESS.fit_done()
+
+
 def scalar_fragility(cells, records, rng, replicates, level=0.9):
     """theta, beta of `records` with percentile-bootstrap intervals (records resampled)."""
+    try:
+        return _scalar_fragility(cells, records, rng, replicates, level)
+    finally:
+        _fit_done()
+
+
+def _scalar_fragility(cells, records, rng, replicates, level):
     records = cells.records_with_cells(records)
     out = {"n_records": int(len(records)), "n_cells": int(cells.n[records].sum()),
            "n_overturned": int(cells.k[records].sum())}
@@ -242,10 +269,11 @@ def scalar_fragility(cells, records, rng, replicates, level=0.9):
     if len(records) < MIN_RECORDS_FOR_INTERVAL:
         out.update(theta_g=fit["theta_g"], beta=fit["beta"], log_likelihood=fit["log_likelihood"],
                    theta_interval_g=NO_INTERVAL, beta_interval=NO_INTERVAL, bootstrap_replicates=0, bootstrap_failed=0,
-                   interval_note=f"{len(records)} record(s): no bootstrap interval")
+                   interval_note=few_records_note(len(records)))
         return out
     thetas, betas, failed = [], [], 0
     for counts in bootstrap_counts(rng, len(records), replicates):
+        _resample_done(replicates)
         b = lognormal_fit(*scalar_rows(cells, records, counts), start=fit["start"])
         if b is None:
             failed += 1
@@ -282,6 +310,14 @@ def vector_fragility(cells, records, u_shift, x_shift, points_s, rng, replicates
     """The vector fit on `records`, and theta, beta at each PGV/PGA of `points_s` with bootstrap
     intervals (records resampled). `replicate_theta_g`/`replicate_beta` [replicate, point] keep the
     bootstrap's lognormals for what is computed from them (the hazard's interval)."""
+    try:
+        return _vector_fragility(cells, records, u_shift, x_shift, points_s, rng, replicates, level, mu_degree,
+                                 sigma_degree)
+    finally:
+        _fit_done()
+
+
+def _vector_fragility(cells, records, u_shift, x_shift, points_s, rng, replicates, level, mu_degree, sigma_degree):
     records = cells.records_with_cells(records)
     out = {"n_records": int(len(records)), "n_cells": int(cells.n[records].sum()),
            "n_overturned": int(cells.k[records].sum())}
@@ -299,12 +335,13 @@ def vector_fragility(cells, records, u_shift, x_shift, points_s, rng, replicates
     xs = np.log(np.asarray(points_s, float)) + x_shift
     if len(records) < MIN_RECORDS_FOR_INTERVAL:
         replicates = 0
-        out["interval_note"] = f"{len(records)} record(s): no bootstrap interval"
+        out["interval_note"] = few_records_note(len(records))
     theta = np.empty((replicates, len(xs)))
     beta = np.empty((replicates, len(xs)))
     failed = 0
     x_of_record = np.round(cells.pgv_pga_s[records], 12)
     for i, counts in enumerate(bootstrap_counts(rng, len(records), replicates)):
+        _resample_done(replicates)
         # a resample with fewer distinct PGV/PGA values than mu(x) has coefficients cannot say how
         # the fragility moves with PGV/PGA: no estimate, like a separated resample
         if len(np.unique(x_of_record[counts > 0])) <= max(md, sd):

@@ -20,13 +20,13 @@ def lognormal_moments(theta, beta):
     return mean, mean * math.sqrt(math.expm1(beta * beta))
 
 
-def fragility_model(model_id, description, functions):
+def fragility_model(model_id, description, functions, asset_category="buildings", loss_category="structural"):
     """The NRML document as an ElementTree. functions: dicts with id, theta_g, beta, min_iml,
     max_iml, no_damage_limit."""
     ET.register_namespace("", NAMESPACE)
     root = ET.Element(f"{{{NAMESPACE}}}nrml")
     model = ET.SubElement(root, f"{{{NAMESPACE}}}fragilityModel",
-                          {"id": model_id, "assetCategory": "buildings", "lossCategory": "structural"})
+                          {"id": model_id, "assetCategory": asset_category, "lossCategory": loss_category})
     ET.SubElement(model, f"{{{NAMESPACE}}}description").text = description
     ET.SubElement(model, f"{{{NAMESPACE}}}limitStates").text = LIMIT_STATE
     for fn in functions:

@@ -40,6 +40,7 @@ try:
     import fragility_fit as ff
     import hazard_curve as hc
     import nrml
+    import progress
     import sensitivity
     from rigid_plot import Cube, InputError, Normalisation, block_parameter, parse_per_object
 except ImportError as e:  # pragma: no cover
@@ -93,6 +94,8 @@ class ObjectFit:
         self.edges = cube.edges
         self.scale_range_g = (float(cube.scales[cube.scales > 0].min()), float(cube.scales.max()))
         if self.no_fit:
+            for _ in range(fits_per_object(cube)):  # the progress line's fits this object would have had
+                ff._fit_done()
             self.pgv_pga_s = args.pgv_pga if args.pgv_pga is not None else (points_s or [math.nan])[0]
             self.points_s = [self.pgv_pga_s] if points_s is None else list(points_s)
             self.bins = []
@@ -126,6 +129,23 @@ class ObjectFit:
 
     def chosen(self):
         return self.vector["points"][0] if "points" in self.vector else None
+
+
+def fits_per_object(cube):
+    """The fits ObjectFit makes of one object (variant): one per PGV/PGA bin, the vector fit, and
+    with variants the scalar fit over all records."""
+    return len(cube.edges) - 1 + 1 + (cube.variants is not None)
+
+
+def start_progress(cube, objs, command):
+    """The progress line of the fits to come (shown when they take more than a few seconds)."""
+    ff.PROGRESS = progress.FitProgress(len(objs) * fits_per_object(cube), f"rigid {command}")
+
+
+def end_progress():
+    if ff.PROGRESS is not None:
+        ff.PROGRESS.finish()
+        ff.PROGRESS = None
 
 
 # --------------------------------------------------------------------------------------------
@@ -294,7 +314,7 @@ def print_variant_tables(cube, fits, analyses, args):
             params = [fmt_param(values[k]) for _, _, values in cube.variants.parameters]
             alpha = f"{f.norm.alpha:.4f}" if f.norm.alpha else "-"
             if d["source"] == "vector fit":
-                theta = fmt_interval(d["theta_g"], *d["theta_interval_g"])
+                theta = fmt_interval(d["theta_g"], *d["theta_interval_g"], scale_range_g=f.scale_range_g)
                 beta = fmt_interval(d["beta"], *d["beta_interval"])
                 note = ""
             elif d["source"] == SCALAR_SOURCE:
@@ -307,13 +327,17 @@ def print_variant_tables(cube, fits, analyses, args):
             else:
                 theta, beta, note = "-", "-", d.get("reason", "")
             sc = f.scalar or {}
-            stheta = fmt_interval(sc.get("theta_g"), *sc.get("theta_interval_g", (0, 0)))
+            stheta = fmt_interval(sc.get("theta_g"), *sc.get("theta_interval_g", (0, 0)), scale_range_g=f.scale_range_g)
             sbeta = fmt_interval(sc.get("beta"), *sc.get("beta_interval", (0, 0)))
             rows.append([f"{name} [v{k}]"] + params + [alpha, theta, beta, stheta, sbeta, note])
         widths = [max(len(str(r[i])) for r in rows + [head]) for i in range(len(head))]
         print("  " + "  ".join(str(h).ljust(w) for h, w in zip(head, widths)).rstrip())
         for r in rows:
             print("  " + "  ".join(str(c).ljust(w) for c, w in zip(r, widths)).rstrip())
+        if any(str(c).endswith(BEYOND_MARK) for r in rows for c in r):
+            lo, hi = group[0].scale_range_g
+            print(f"  {BEYOND_MARK} the interval reaches beyond the campaign's scales ({lo:g}-{hi:g} g): the records do "
+                  f"not bound theta there")
     for a in analyses:
         print()
         if a.pooled is None:
@@ -353,12 +377,53 @@ def print_variant_tables(cube, fits, analyses, args):
                   f"(0 by construction) is left out of beta's statistics")
 
 
-def fmt_interval(v, lo, hi, digits=3):
+def fmt_probability(p, digits=4):
+    """A probability or rate: fixed-point while that keeps two significant digits, else scientific
+    (a survival probability of exp(-21) must not print as 0.0000)."""
+    if p is None or not math.isfinite(p):
+        return "-"
+    if p == 0:
+        return "0"
+    if abs(p) < 10.0 ** (2 - digits):
+        return f"{p:.{digits - 1}e}"
+    return f"{p:.{digits}f}"
+
+
+def fmt_factor(f, what):
+    """"rates x 0.5": a factor of the ruling-out test; the solver's search ends (0, infinity) in words."""
+    if f == 0:
+        return f"{what} x less than {math.exp(-6):.3g}"
+    if not math.isfinite(f):
+        return f"{what} x more than {math.exp(6):.3g}"
+    return f"{what} x {f:.3g}"
+
+
+# An interval end this far beyond the campaign's scales is not bounded by the records (the
+# bootstrap's fits run off to what the data cannot tell): flagged with BEYOND_MARK.
+BEYOND_MARK = "!"
+
+
+def interval_beyond(lo, hi, scale_range_g):
+    """True when [lo, hi] (g) reaches outside the campaign's scales: the interval hits the edge of
+    what the cells can tell (a resample without overturning below the lowest scale, or none above)."""
+    if scale_range_g is None or not (math.isfinite(lo) and math.isfinite(hi)):
+        return False
+    low, top = scale_range_g
+    return lo < low or hi > top
+
+
+def fmt_interval(v, lo, hi, digits=3, scale_range_g=None):
+    """v [lo, hi]; with scale_range_g (a PGA interval) flagged BEYOND_MARK when it reaches outside
+    the campaign's scales. Values below 10^-digits print in scientific notation, not as 0.000."""
+    def num(x):
+        return f"{x:.{digits - 1}e}" if x != 0 and abs(x) < 10.0 ** -digits else f"{x:.{digits}f}"
+
     if v is None or not math.isfinite(v):
         return "-"
     if not (math.isfinite(lo) and math.isfinite(hi)):
-        return f"{v:.{digits}f} [-]"
-    return f"{v:.{digits}f} [{lo:.{digits}f}, {hi:.{digits}f}]"
+        return f"{num(v)} [-]"
+    mark = BEYOND_MARK if interval_beyond(lo, hi, scale_range_g) else ""
+    return f"{num(v)} [{num(lo)}, {num(hi)}]{mark}"
 
 
 def bin_label(lo, hi):
@@ -376,22 +441,30 @@ def print_table(cube, fits, args):
               if n.alpha and n.p else f"object {f.obj.name}: {f.cells.inferred} inferred cells left out")
         print(f"  {'PGV/PGA bin (s)':<16} {'records':>7} {'cells':>6} {'overturned':>10}  {'theta (g) [90 %]':<24} "
               f"{'beta [90 %]':<22}")
+        flagged = False
         for r in f.bins:
             if r["n_records"] == 0:
                 continue
-            theta = fmt_interval(r.get("theta_g"), *r.get("theta_interval_g", (0, 0)))
+            theta = fmt_interval(r.get("theta_g"), *r.get("theta_interval_g", (0, 0)), scale_range_g=f.scale_range_g)
             beta = fmt_interval(r.get("beta"), *r.get("beta_interval", (0, 0)))
+            flagged |= theta.endswith(BEYOND_MARK)
             note = f"  ({r['reason']})" if "reason" in r else f"  ({r['interval_note']})" if "interval_note" in r else ""
             print(f"  {bin_label(r['lower_s'], r['upper_s']):<16} {r['n_records']:>7} {r['n_cells']:>6} "
                   f"{r['n_overturned']:>10}  {theta:<24} {beta:<22}{note}")
         c = f.chosen()
         v = f.vector
         if c is not None:
+            vtheta = fmt_interval(c['theta_g'], *c['theta_interval_g'], scale_range_g=f.scale_range_g)
+            flagged |= vtheta.endswith(BEYOND_MARK)
             print(f"  {'vector fit at':<16} {v['n_records']:>7} {v['n_cells']:>6} {v['n_overturned']:>10}  "
-                  f"{fmt_interval(c['theta_g'], *c['theta_interval_g']):<24} {fmt_interval(c['beta'], *c['beta_interval']):<22}"
+                  f"{vtheta:<24} {fmt_interval(c['beta'], *c['beta_interval']):<22}"
                   f"  (PGV/PGA {c['pgv_pga_s']:.3f} s)")
         else:
             print(f"  vector fit: {v.get('reason')}")
+        if flagged:
+            print(f"  {BEYOND_MARK} the interval reaches beyond the campaign's scales ({f.scale_range_g[0]:g}-"
+                  f"{f.scale_range_g[1]:g} g): the records do not bound theta there (more records, or scales "
+                  f"reaching further, would)")
         failed = sum(r.get("bootstrap_failed", 0) for r in f.bins) + v.get("bootstrap_failed", 0)
         if failed:
             total = sum(r.get("bootstrap_replicates", 0) for r in f.bins) + v.get("bootstrap_replicates", 0)
@@ -471,7 +544,21 @@ def no_damage_limit(theta_g, beta):
     return theta_g * math.exp(beta * ff.norm_ppf(1e-4))
 
 
-def variant_nrml_functions(fits, analyses):
+def max_iml(theta_g, beta, top_scale_g, probability):
+    """The NRML maxIML of a function: OpenQuake holds P at P(maxIML) for every PGA above it, so it is
+    carried to where the lognormal reaches `probability` (theta exp(beta Phi^-1(P))), or kept at the
+    campaign's top scale when that is higher; `probability` None keeps the top scale (the fit's
+    data range, clipping P above it)."""
+    if probability is None:
+        return top_scale_g
+    return max(top_scale_g, theta_g * math.exp(beta * ff.norm_ppf(probability)))
+
+
+def few_records(n_records, minimum):
+    return n_records < minimum
+
+
+def variant_nrml_functions(fits, analyses, max_probability=0.99):
     """With variants: one function per variant (its lognormal at the chosen PGV/PGA; a variant whose
     fragility is an empirical threshold has none, a step not being a logncdf) and the pooled one."""
     functions, skipped = [], []
@@ -482,7 +569,7 @@ def variant_nrml_functions(fits, analyses):
             continue
         lo, hi = f.scale_range_g
         functions.append({"id": f"{f.obj.name}_v{f.obj.variant}_pgv_pga_{f.pgv_pga_s:.4g}s", "theta_g": d["theta_g"],
-                          "beta": d["beta"], "min_iml": lo, "max_iml": hi,
+                          "beta": d["beta"], "min_iml": lo, "max_iml": max_iml(d["theta_g"], d["beta"], hi, max_probability),
                           "no_damage_limit": no_damage_limit(d["theta_g"], d["beta"])})
     for a in analyses:
         if a.pooled is None:
@@ -490,22 +577,36 @@ def variant_nrml_functions(fits, analyses):
         lo, hi = a.fits[0].scale_range_g
         t, b = a.pooled["lognormal_theta_g"], a.pooled["lognormal_beta"]
         functions.append({"id": f"{a.name}_pooled_pgv_pga_{a.pgv_pga_s:.4g}s", "theta_g": t, "beta": b,
-                          "min_iml": lo, "max_iml": hi, "no_damage_limit": no_damage_limit(t, b)})
+                          "min_iml": lo, "max_iml": max_iml(t, b, hi, max_probability),
+                          "no_damage_limit": no_damage_limit(t, b)})
     return functions, skipped
 
 
-def nrml_functions(fits):
-    functions = []
+def nrml_functions(fits, max_probability=0.99, min_records=0):
+    """One function per object and PGV/PGA bin with a fit; bins fitted on fewer than `min_records`
+    records left out (returned as (functions, left out labels))."""
+    functions, left_out = [], []
     for f in fits:
         lo, hi = f.scale_range_g
         for r in f.bins:
             if "theta_g" not in r:
                 continue
-            functions.append({"id": f"{f.obj.name}_pgv_pga_{bin_label(r['lower_s'], r['upper_s']).replace('>= ', 'above_')}s",
-                              "theta_g": r["theta_g"], "beta": r["beta"], "min_iml": lo, "max_iml": hi,
-                              # the PGA below which the fit gives P < 1e-4: no damage there
-                              "no_damage_limit": r["theta_g"] * math.exp(r["beta"] * ff.norm_ppf(1e-4))})
-    return functions
+            label = f"{f.obj.name}_pgv_pga_{bin_label(r['lower_s'], r['upper_s']).replace('>= ', 'above_')}s"
+            if r["n_records"] < min_records:
+                left_out.append(f"{label} ({r['n_records']} record(s))")
+                continue
+            functions.append({"id": label, "theta_g": r["theta_g"], "beta": r["beta"], "min_iml": lo,
+                              "max_iml": max_iml(r["theta_g"], r["beta"], hi, max_probability),
+                              "no_damage_limit": no_damage_limit(r["theta_g"], r["beta"])})
+    return functions, left_out
+
+
+def nrml_range_text(max_probability):
+    if max_probability is None:
+        return ("; maxIML is the campaign's top scale, above which OpenQuake holds each function's P at its value "
+                "there")
+    return (f"; maxIML is where each lognormal reaches P = {max_probability:g} (or the campaign's top scale when "
+            f"higher): the fit is extrapolated beyond the campaign's scales")
 
 
 def json_clean(v):
@@ -571,10 +672,16 @@ def write_fit_group(og, fit):
              ("n_records", column("n_records", dtype=np.int32, missing=0), "1", "records of the bin with simulated cells"),
              ("n_cells", column("n_cells", dtype=np.int32, missing=0), "1", "simulated cells fitted"),
              ("n_overturned", column("n_overturned", dtype=np.int32, missing=0), "1", "overturned among them")]
+    bins = dimension(og, "pgv_pga_bin", np.arange(len(fit.edges) - 1, dtype=np.int32), "1",
+                     "PGV/PGA bin index; bin i holds pgv_pga_edges_s[i] <= PGV/PGA < pgv_pga_edges_s[i+1]")
     for name, data, units, text in specs:
         ds = og.create_dataset(name, data=data)
         ds.attrs["units"] = units
         ds.attrs["description"] = text
+        if name == "pgv_pga_edges_s":
+            ds.make_scale(name)  # E = B + 1 edges: a dimension of its own, its own coordinate
+        else:
+            ds.dims[0].attach_scale(bins)
     v = fit.vector
     if "fit" in v:
         vg = og.create_group("vector")
@@ -589,17 +696,47 @@ def write_fit_group(og, fit):
         vg.attrs["beta_interval"] = np.asarray(c["beta_interval"], float)
 
 
-def write_string_dataset(group, name, values, text):
-    ds = group.create_dataset(name, data=np.array(values, dtype=object), dtype=h5py.string_dtype("utf-8"))
+# netCDF-4 readers (xarray's h5netcdf and netcdf4 engines) see a dimension only through a dimension
+# scale in the variable's group or an ancestor: every dataset of a /fragility group has one attached
+# to each of its dimensions, else xarray refuses the group without phony_dims.
+def dimension(group, name, values, units, text):
+    """A coordinate variable: a dataset `name` that is the dimension scale of the dimension `name`."""
+    if isinstance(values, list) and values and isinstance(values[0], str):
+        ds = group.create_dataset(name, data=np.array(values, dtype=object), dtype=h5py.string_dtype("utf-8"))
+    else:
+        ds = group.create_dataset(name, data=values)
+    if units is not None:
+        ds.attrs["units"] = units
     ds.attrs["description"] = text
+    ds.make_scale(name)
     return ds
 
 
-def write_number_dataset(group, name, values, units, text):
+def attach(ds, *scales):
+    """Attaches one dimension scale to each dimension of ds; a trailing dimension of 2 (an interval)
+    gets the group's `bound` scale (lower, upper), made on first use."""
+    group = ds.parent
+    for i in range(ds.ndim):
+        if i < len(scales):
+            ds.dims[i].attach_scale(scales[i])
+        elif ds.shape[i] == 2:
+            bound = group["bound"] if "bound" in group else dimension(group, "bound", ["lower", "upper"], None,
+                                                                      "the two ends of an interval")
+            ds.dims[i].attach_scale(bound)
+    return ds
+
+
+def write_string_dataset(group, name, values, text, scale=None):
+    ds = group.create_dataset(name, data=np.array(values, dtype=object), dtype=h5py.string_dtype("utf-8"))
+    ds.attrs["description"] = text
+    return attach(ds, scale) if scale is not None else ds
+
+
+def write_number_dataset(group, name, values, units, text, scale=None):
     ds = group.create_dataset(name, data=np.asarray(values, float))
     ds.attrs["units"] = units
     ds.attrs["description"] = text
-    return ds
+    return attach(ds, scale) if scale is not None else ds
 
 
 def write_variant_groups(g, cube, fits, analyses):
@@ -635,13 +772,13 @@ def write_variant_groups(g, cube, fits, analyses):
         sg.attrs["description"] = ("the lognormal standing for each variant in the pool and the sensitivity: the "
                                    "vector fit at pgv_pga_s, or the empirical threshold (beta 0) of separated outcomes")
         sg.attrs["pgv_pga_s"] = float(group[0].pgv_pga_s)
-        sg.create_dataset("variant", data=np.array([f.obj.variant for f in group], np.int32))
-        write_number_dataset(sg, "theta_g", [x["theta_g"] for x in d], "g", "median PGA (NaN: no fragility)")
-        write_number_dataset(sg, "beta", [x["beta"] for x in d], "1", "dispersion (0: a step)")
+        variant = dimension(sg, "variant", np.array([f.obj.variant for f in group], np.int32), "1", "variant index")
+        write_number_dataset(sg, "theta_g", [x["theta_g"] for x in d], "g", "median PGA (NaN: no fragility)", variant)
+        write_number_dataset(sg, "beta", [x["beta"] for x in d], "1", "dispersion (0: a step)", variant)
         for key, unit in (("theta_interval_g", "g"), ("beta_interval", "1")):
             write_number_dataset(sg, key, [x.get(key, (math.nan, math.nan)) for x in d], unit,
-                                 "bootstrap interval over records [variant, 2] (NaN: none)")
-        write_string_dataset(sg, "source", [x["source"] for x in d], "vector fit, empirical threshold or none")
+                                 "bootstrap interval over records [variant, 2] (NaN: none)", variant)
+        write_string_dataset(sg, "source", [x["source"] for x in d], "vector fit, empirical threshold or none", variant)
         a = analysis.get(name)
         if a is None:
             continue
@@ -657,24 +794,25 @@ def write_variant_groups(g, cube, fits, analyses):
             pg.attrs["percentiles"] = np.asarray(p["percentiles"], np.int32)
             pg.attrs["theta_percentiles_g"] = np.asarray(p["theta_percentiles_g"], float)
             pg.attrs["beta_percentiles"] = np.asarray(p["beta_percentiles"], float)
-            write_number_dataset(pg, "pga_g", p["pga_g"], "g", "PGA grid")
-            write_number_dataset(pg, "mixture_probability", p["mixture_probability"], "1", "pooled P(overturn)")
-            write_number_dataset(pg, "band_lower", p["band_lower"], "1", "5th percentile of P_v over variants")
-            write_number_dataset(pg, "band_upper", p["band_upper"], "1", "95th percentile of P_v over variants")
+            pga = dimension(pg, "pga_g", np.asarray(p["pga_g"], float), "g", "PGA grid")
+            write_number_dataset(pg, "mixture_probability", p["mixture_probability"], "1", "pooled P(overturn)", pga)
+            write_number_dataset(pg, "band_lower", p["band_lower"], "1", "5th percentile of P_v over variants", pga)
+            write_number_dataset(pg, "band_upper", p["band_upper"], "1", "95th percentile of P_v over variants", pga)
         rows = a.sensitivity
         if rows:
             tg = og.create_group("sensitivity")
             tg.attrs["description"] = SENSITIVITY_METHOD
-            write_string_dataset(tg, "parameter", [r["parameter"] for r in rows], "varied or derived parameter")
-            write_string_dataset(tg, "kind", [r["kind"] for r in rows], "varied, text (category order) or derived")
-            write_string_dataset(tg, "note", [r["note"] for r in rows], "why a statistic is missing")
+            parameter = dimension(tg, "parameter", [r["parameter"] for r in rows], None, "varied or derived parameter")
+            write_string_dataset(tg, "kind", [r["kind"] for r in rows], "varied, text (category order) or derived",
+                                 parameter)
+            write_string_dataset(tg, "note", [r["note"] for r in rows], "why a statistic is missing", parameter)
             for out in ("theta", "beta"):
-                tg.create_dataset(f"n_{out}", data=np.array([r[f"n_{out}"] for r in rows], np.int32))
+                attach(tg.create_dataset(f"n_{out}", data=np.array([r[f"n_{out}"] for r in rows], np.int32)), parameter)
                 for stat in ("rho", "prcc"):
                     write_number_dataset(tg, f"{stat}_{out}", [r[f"{stat}_{out}"] for r in rows], "1",
-                                         f"{stat} of the parameter with {out} across variants")
+                                         f"{stat} of the parameter with {out} across variants", parameter)
                     write_number_dataset(tg, f"{stat}_{out}_interval", [r[f"{stat}_{out}_interval"] for r in rows],
-                                         "1", "bootstrap interval over variants [parameter, 2]")
+                                         "1", "bootstrap interval over variants [parameter, 2]", parameter)
 
 
 def store(path, cube, fits, args, analyses=None):
@@ -719,7 +857,20 @@ def warn_incomplete(args):
         sys.stderr.write(f"rigid {args.command}: warning: {args.incomplete}; the fits use the cells run so far\n")
 
 
+def check_nrml_options(args):
+    if args.nrml_max_probability != 0 and not 0.5 <= args.nrml_max_probability < 1:
+        raise InputError(f"--nrml-max-probability {args.nrml_max_probability}: must be 0 (the campaign's top scale) "
+                         f"or in [0.5, 1)")
+    if args.nrml_min_records < 0:
+        raise InputError(f"--nrml-min-records {args.nrml_min_records}: must be 0 or more")
+    for option, value in (("--nrml-id", args.nrml_id), ("--nrml-asset-category", args.nrml_asset_category),
+                          ("--nrml-loss-category", args.nrml_loss_category)):
+        if value is not None and (not value.strip() or any(c in value for c in '<>&"')):
+            raise InputError(f"{option} {value!r}: must be a non-empty name without < > & \"")
+
+
 def cmd_fragility(args):
+    check_nrml_options(args)
     outputs = [(o, p) for o, p in (("--csv", args.csv), ("--nrml", args.nrml)) if p]
     for option, path in outputs:
         cube_files.refuse_output_over_inputs(path, option, [args.cube])
@@ -739,10 +890,14 @@ def fragility_locked(args, state):
     check_completeness(cube, state, args)
     objs = cube.select(args.object, args.variant)
     analyses = []
-    if cube.variants is None:
-        fits = [ObjectFit(cube, o, args) for o in objs]
-    else:
-        fits, analyses = analyse_variants(cube, objs, args)
+    start_progress(cube, objs, "fragility")
+    try:
+        if cube.variants is None:
+            fits = [ObjectFit(cube, o, args) for o in objs]
+        else:
+            fits, analyses = analyse_variants(cube, objs, args)
+    finally:
+        end_progress()
     warn_incomplete(args)
     if args.json:
         json.dump(json_document(cube, fits, args, analyses), sys.stdout, indent=1, allow_nan=False)
@@ -761,24 +916,30 @@ def fragility_locked(args, state):
                 w.writerows(rows)
         cube_files.write_output(args.csv, "--csv", [args.cube], write_csv)
     if args.nrml:
-        skipped = []
+        skipped, left_out = [], []
+        max_p = None if args.nrml_max_probability == 0 else args.nrml_max_probability
         if cube.variants is None:
-            functions = nrml_functions(fits)
+            functions, left_out = nrml_functions(fits, max_p, args.nrml_min_records)
         else:
-            functions, skipped = variant_nrml_functions(fits, analyses)
+            functions, skipped = variant_nrml_functions(fits, analyses, max_p)
         if skipped and not args.json:
             print(f"note: no NRML function for {', '.join(skipped)}: an empirical threshold (a step) or no "
                   f"fragility is not a lognormal")
+        if left_out and not args.json:
+            print(f"note: no NRML function for {', '.join(left_out)}: fewer than --nrml-min-records "
+                  f"{args.nrml_min_records} records")
         if not functions:
             raise InputError(f"{args.cube}: no PGV/PGA bin has a finite fit: no NRML written")
-        tree = nrml.fragility_model(os.path.splitext(os.path.basename(args.cube))[0],
+        tree = nrml.fragility_model(args.nrml_id or os.path.splitext(os.path.basename(args.cube))[0],
                                     f"Overturning fragility of precariously balanced rocks from the Rigid cube "
                                     f"{os.path.basename(args.cube)}: " + (
                                         "one lognormal function of GMRotI50 PGA (g) per object and PGV/PGA bin"
                                         if cube.variants is None else
                                         "per object one lognormal function of GMRotI50 PGA (g) per variant (id _vK) "
                                         "at the chosen PGV/PGA, and the pooled one (id _pooled: moment-matched "
-                                        "lognormal of the equally weighted mixture of the variants)"), functions)
+                                        "lognormal of the equally weighted mixture of the variants)") + nrml_range_text(max_p),
+                                    functions, asset_category=args.nrml_asset_category,
+                                    loss_category=args.nrml_loss_category)
         cube_files.write_output(args.nrml, "--nrml", [args.cube], lambda tmp: nrml.write(tmp, tree))
     if not args.no_store:
         store(args.cube, cube, fits, args, analyses)
@@ -834,7 +995,11 @@ def cmd_hazard(args):
     cells = ff.Cells(obj.outcome, cube.scales, cube.pgv_pga)
     points = pgv_pga_points(args, cube.pgv_pga[cells.records_with_cells()])
     args.pgv_pga = None
-    fit = ObjectFit(cube, obj, args, points_s=[s for _, s in points])
+    start_progress(cube, [obj], "hazard")
+    try:
+        fit = ObjectFit(cube, obj, args, points_s=[s for _, s in points])
+    finally:
+        end_progress()
     v = fit.vector
     if "points" not in v and fit.threshold is not None:
         # one variant whose outcomes are separated: its empirical threshold, a step, without bootstrap
@@ -860,13 +1025,14 @@ def cmd_hazard(args):
     rate_factor, pga_factor = hc.ruling_factors(curve, mixture, args.age, args.confidence)
     result = {"cube": args.cube, "object": obj.label, "curve": args.curve, "site": curve.site,
               "curve_pga_range_g": [float(curve.pga_g[0]), float(curve.pga_g[curve.top - 1])],
+              **curve_end(curve, mixture),
               "age_years": args.age, "pgv_pga": [{"weight": w, "pgv_pga_s": s} for w, s in points],
               "pgv_pga_weight_outside_records": outside,
               "fragility": [dict({"pgv_pga_s": p["pgv_pga_s"], "theta_g": p["theta_g"], "beta": p["beta"],
                                   "theta_interval_g": p["theta_interval_g"], "beta_interval": p["beta_interval"]},
                                  **({"source": p["source"]} if "source" in p else {}))
                             for p in v["points"]],
-              "n_records": v["n_records"],
+              "n_records": v["n_records"], "campaign_scale_range_g": list(fit.scale_range_g),
               "annual_toppling_rate": lam, "annual_toppling_rate_interval": [lam_lo, lam_hi],
               "share_of_rate_beyond_curve": extended,
               "survival_probability": surv,
@@ -889,6 +1055,14 @@ def check_plot_path(args):
         raise InputError(f"--plot {args.plot}: the file name must end in one of "
                          f"{', '.join('.' + f for f in PLOT_FORMATS)} (the figure's format)")
     cube_files.refuse_output_over_inputs(args.plot, "--plot", [args.cube, args.curve])
+
+
+def curve_end(curve, mixture):
+    """P(topple) of the fragility at the curve's last PGA with a positive rate, and whether the curve
+    ends there at rate 0 (nothing counted beyond) or is extended."""
+    top = float(curve.pga_g[curve.top - 1])
+    p = sum(w * float(hc.fragility_probability(top, t, b)) for w, t, b in mixture)
+    return {"fragility_probability_at_curve_end": p, "curve_ends_at_zero": bool(curve.top < len(curve.rate))}
 
 
 def emit_hazard(args, result, draw):
@@ -917,7 +1091,11 @@ def hazard_pooled(args, cube, curve, objs):
         raise InputError(f"{args.cube}: object {objs[0].name}: no simulated cell in any variant")
     points = pgv_pga_points(args, cube.pgv_pga[sorted(used)])
     args.pgv_pga = None
-    fits = [ObjectFit(cube, o, args, points_s=[s for _, s in points], require_fragility=False) for o in objs]
+    start_progress(cube, objs, "hazard")
+    try:
+        fits = [ObjectFit(cube, o, args, points_s=[s for _, s in points], require_fragility=False) for o in objs]
+    finally:
+        end_progress()
     per_variant = []  # (variant, source, [(weight, theta, beta)] over the PGV/PGA points)
     for f in fits:
         source = fragility_source(f)
@@ -970,6 +1148,7 @@ def hazard_pooled(args, cube, curve, objs):
                                              if all(f is not g for g, _, _ in per_variant)],
               "curve": args.curve, "site": curve.site,
               "curve_pga_range_g": [float(curve.pga_g[0]), float(curve.pga_g[curve.top - 1])],
+              **curve_end(curve, mixture),
               "age_years": args.age, "pgv_pga": [{"weight": w, "pgv_pga_s": s} for w, s in points],
               "pgv_pga_weight_outside_records": outside,
               "variant_fragility": [{"variant": f.obj.variant, "source": src,
@@ -1009,8 +1188,13 @@ def print_hazard(r):
               (f"; {thresholds} empirical threshold(s), steps" if thresholds else "") + ")")
     elif len(r["fragility"]) == 1:
         f = r["fragility"][0]
+        scales = r.get("campaign_scale_range_g")
+        theta = fmt_interval(f['theta_g'], *f['theta_interval_g'], scale_range_g=scales)
         print(f"  fragility at PGV/PGA {f['pgv_pga_s']:.3f} s ({f.get('source', 'vector fit')}): theta "
-              f"{fmt_interval(f['theta_g'], *f['theta_interval_g'])} g, beta {fmt_interval(f['beta'], *f['beta_interval'])}")
+              f"{theta} g, beta {fmt_interval(f['beta'], *f['beta_interval'])}")
+        if theta.endswith(BEYOND_MARK):
+            print(f"  {BEYOND_MARK} theta's interval reaches beyond the campaign's scales ({scales[0]:g}-{scales[1]:g} g): "
+                  f"the records do not bound it there")
     else:
         print(f"  fragility: the vector fit averaged over {len(r['fragility'])} PGV/PGA values of the given distribution")
     if r["pgv_pga_weight_outside_records"] > 0.01:
@@ -1022,47 +1206,55 @@ def print_hazard(r):
                    else f"[no interval: {r['n_records']} record(s)]")
     print(f"  annual rate of toppling   {lam:.3e} per year  " + (f"[{pct} %: {a:.3e}, {b:.3e}]" if have_interval else no_interval)
           + f"  (mean return period {fmt_years(1 / lam)} years)" if lam > 0 else "  annual rate of toppling 0")
-    if r["share_of_rate_beyond_curve"] > 0.01:
-        print(f"  note: {100 * r['share_of_rate_beyond_curve']:.1f} % of the rate comes from PGAs beyond the curve, "
-              f"where it is extended by its end segments' power law")
+    for line in hazard_warnings(r):
+        print(f"  warning: {line}")
     s, (slo, shi) = r["survival_probability"], r["survival_probability_interval"]
-    print(f"  P(survives {r['age_years']:g} years) = exp(-lambda T) = {s:.4f}  "
-          + (f"[{pct} %: {slo:.4f}, {shi:.4f}]" if have_interval else no_interval)
+    print(f"  P(survives {r['age_years']:g} years) = exp(-lambda T) = {fmt_probability(s)}  "
+          + (f"[{pct} %: {fmt_probability(slo)}, {fmt_probability(shi)}]" if have_interval else no_interval)
           + ("  (aleatory: bootstrap over records)" if r.get("pooled") else ""))
     if r.get("pooled"):
         elo, ehi = r["survival_probability_epistemic_range"]
         plo, phi = r["epistemic_percentiles"]
         print(f"  epistemic range over variants ({plo}-{phi} %, each variant's own fragility): P(survives) "
-              f"{elo:.4f} to {ehi:.4f}")
+              f"{fmt_probability(elo)} to {fmt_probability(ehi)}")
     c = int(round(r["confidence"] * 100))
-    scalings = ruling_scalings(r["rate_factor_to_rule_out"], r["pga_factor_to_rule_out"])
+    rates, pgas = fmt_factor(r["rate_factor_to_rule_out"], "rates"), fmt_factor(r["pga_factor_to_rule_out"], "PGAs")
     if r["ruled_out"]:
         print(f"  the rock's survival rules this hazard curve out at {c} % confidence (survival below "
-              f"{1 - r['confidence']:.2f}); it would be consistent with {scalings}")
+              f"{1 - r['confidence']:.2g}); it would be consistent with the curve's {rates} "
+              f"or its {pgas}")
+    elif not r["annual_toppling_rate"] > 0:
+        print(f"  consistent at {c} % confidence: the fragility gives rate 0 under this curve, so no factor on its "
+              f"rates rules it out; its {pgas} would")
     else:
-        print(f"  consistent at {c} % confidence; the rock would rule the curve out with {scalings}")
+        print(f"  consistent at {c} % confidence; the rock would rule the curve out with its {rates} or its {pgas}")
+
+
+# Below this P(topple) at the hazard curve's last PGA, the fragility reaches past the curve: the
+# rate then rests on what the curve is taken to be beyond its end, which no hazard model said.
+CURVE_END_PROBABILITY = 0.9
+
+
+def hazard_warnings(r):
+    """What the reader of a rate must know: a curve ending below the fragility's range, a share of
+    the rate from the curve's power-law extension."""
+    out = []
+    p_end, top = r.get("fragility_probability_at_curve_end"), r["curve_pga_range_g"][1]
+    if p_end is not None and p_end < CURVE_END_PROBABILITY:
+        beyond = ("PGAs above it are counted as never exceeded (the curve ends at rate 0)" if r.get("curve_ends_at_zero")
+                  else "the rate rests on the curve's power-law extension beyond it")
+        out.append(f"the hazard curve ends at {top:g} g, where P(topple | PGA) is only {fmt_probability(p_end, 3)}: "
+                   f"the fragility lies beyond the curve, and {beyond}; a curve reaching higher PGAs would tell")
+    share = r["share_of_rate_beyond_curve"]
+    if share > 0.01:
+        out.append(f"{100 * share:.1f} % of the rate comes from PGAs outside the curve's {r['curve_pga_range_g'][0]:g}-"
+                   f"{top:g} g, where it is extended by its end segments' power law (not data)")
+    return out
 
 
 def fmt_years(v):
     """A number of years: grouped digits up to ten million, then three significant digits."""
     return f"{v:,.0f}" if v < 1e7 else f"{v:.3g}"
-
-
-def ruling_scalings(rate_factor, pga_factor):
-    """The scalings of the curve at the edge of ruling it out, in words: a factor of 0 or infinity
-    is no scaling (a flat curve, a rate of 0, or a PGA factor beyond the searched e^-6 to e^6)."""
-    def usable(f):
-        return math.isfinite(f) and f > 0
-    parts = []
-    if usable(rate_factor):
-        parts.append(f"the curve's rates x {rate_factor:.3g}")
-    if usable(pga_factor):
-        parts.append(f"its PGAs x {pga_factor:.3g}")
-    elif usable(rate_factor):
-        parts.append(f"no scaling of its PGAs within x {math.exp(-6):.3g} to x {math.exp(6):.3g}")
-    if not parts:
-        return "no scaling of the curve's rates or PGAs (the rock's toppling rate under it is 0)"
-    return " or ".join(parts)
 
 
 def plot_hazard(path, curve, mixture, v, points, r, variant_mixtures=()):
@@ -1080,7 +1272,7 @@ def plot_hazard(path, curve, mixture, v, points, r, variant_mixtures=()):
     # the integrand per unit ln PGA: dlambda / dln a = P(a) |dH / dln a|
     dh = -np.gradient(h, np.log(a))
     dens = p * np.maximum(dh, 0)
-    fig, (top, bottom) = plt.subplots(2, 1, figsize=(7.5, 7.5), sharex=True, gridspec_kw={"height_ratios": [3, 2]})
+    fig, (top, bottom) = plt.subplots(2, 1, figsize=(7.5, 8.3), sharex=True, gridspec_kw={"height_ratios": [3, 2]})
     top.loglog(curve.pga_g[: curve.top], curve.rate[: curve.top], "o", color="tab:blue", ms=4, label="hazard curve (points)")
     top.loglog(a, h, "-", color="tab:blue", lw=1.2, label="H(PGA): annual rate of exceedance")
     top.set_ylabel("annual rate of exceedance")
@@ -1103,15 +1295,16 @@ def plot_hazard(path, curve, mixture, v, points, r, variant_mixtures=()):
     right.set_ylabel("P(topple | PGA)")
     lines = top.get_legend_handles_labels()
     lines2 = right.get_legend_handles_labels()
-    top.legend(lines[0] + lines2[0], lines[1] + lines2[1], loc="lower left", fontsize=8)
+    # below the panels, off the curves (inside, every corner holds the hazard curve or the fragility)
+    fig.legend(lines[0] + lines2[0], lines[1] + lines2[1], loc="lower center", ncol=2, fontsize=8, frameon=False)
     top.set_title(f"{r['object']}: toppling rate {r['annual_toppling_rate']:.2e}/yr, "
-                  f"P(survive {r['age_years']:g} yr) = {r['survival_probability']:.3f}", fontsize=10)
+                  f"P(survive {r['age_years']:g} yr) = {fmt_probability(r['survival_probability'], 3)}", fontsize=10)
     bottom.semilogx(a, dens, color="black")
     bottom.fill_between(a, 0, dens, color="gray", alpha=0.3)
     bottom.set_xlabel("PGA (g, GMRotI50)")
     bottom.set_ylabel("d lambda / d ln PGA (per year)")
     bottom.grid(True, which="both", alpha=0.3)
-    fig.tight_layout()
+    fig.tight_layout(rect=(0, 0.09, 1, 1))
     fmt = os.path.splitext(path)[1].lower().lstrip(".")
     cube_files.write_output(path, "--plot", [], lambda tmp: fig.savefig(tmp, dpi=120, format=fmt))
     plt.close(fig)
@@ -1152,6 +1345,19 @@ def build_parser():
     f.add_argument("--object", action="append", help="only this object (repeatable; every variant of it); default: all")
     f.add_argument("--csv", help="write one row per object and bin (and the vector fit) to this CSV")
     f.add_argument("--nrml", help="write an OpenQuake NRML 0.5 fragility model (one function per object and bin)")
+    f.add_argument("--nrml-id", help="id of the NRML fragilityModel (default: the cube's file name without .h5)")
+    f.add_argument("--nrml-asset-category", default="buildings",
+                   help="assetCategory of the NRML fragilityModel (default buildings, what the engine's exposure "
+                        "models use; OpenQuake matches it against the exposure)")
+    f.add_argument("--nrml-loss-category", default="structural",
+                   help="lossCategory of the NRML fragilityModel (default structural)")
+    f.add_argument("--nrml-max-probability", type=float, default=0.99, metavar="P",
+                   help="each function's maxIML is the PGA where its lognormal reaches P, or the campaign's top "
+                        "scale when higher (OpenQuake holds P at P(maxIML) above it); 0: the campaign's top scale "
+                        "(default 0.99)")
+    f.add_argument("--nrml-min-records", type=int, default=0, metavar="N",
+                   help="leave PGV/PGA bins fitted on fewer than N records out of the NRML (default 0: all; the "
+                        "table and CSV flag bins with fewer than 3)")
     f.add_argument("--no-store", action="store_true", help="do not store the fits in the cube's /fragility group")
     f.set_defaults(func=cmd_fragility)
 

@@ -67,6 +67,7 @@ except ImportError as e:  # pragma: no cover
     sys.exit(2)
 
 DPI = 120
+FIGURE_FORMATS = ("png", "pdf", "svg")
 NOT_RUN, SURVIVED, OVERTURNED, INFERRED, FAILED = 0, 1, 2, 3, 4
 FIT_LABEL = "this project's probit fit (not Purvance et al. 2008)"
 CONTOUR_LEVELS = (1, 50, 99)
@@ -619,6 +620,9 @@ def plot_map(cube, obj, fit, norm_, info, path, counts):
     cmap = plt.get_cmap("viridis")
     cnorm = mcolors.Normalize(0.0, 1.0)
     mesh, yedges, _ = draw_surface(ax, cube, obj.fragility, obj.count, cmap, cnorm, counts)
+    held = np.flatnonzero(np.bincount(cube.bin_of_records()[cube.bin_of_records() >= 0], minlength=len(yedges) - 1))
+    if held.size:  # the rows of bins without records, below and above the records' bins, left out
+        ax.set_ylim(yedges[held[0]], yedges[held[-1] + 1])
     add_bin_totals(ax, cube, yedges)
     cb = fig.colorbar(mesh, ax=ax, ticks=[0, 0.25, 0.5, 0.75, 1.0], pad=0.09)
     cb.set_label("P(overturn): mean over the records of the cell")
@@ -631,7 +635,7 @@ def plot_map(cube, obj, fit, norm_, info, path, counts):
                     f"\u03c3 = {sig_txt} (ln PGA)")
     else:
         fit_text = f"no fit: {info.get('reason', '')}"
-    alpha_txt = f", alpha = {norm_.alpha:g} rad" if norm_.alpha else ""
+    alpha_txt = f", alpha = {norm_.alpha:.3g} rad" if norm_.alpha else ""
     note = {"all": "cell numbers: records averaged",
             "deviations": "cell numbers: records averaged where fewer than the bin's (not run/failed)",
             "none": "each cell: mean over the bin's records"}[counts]
@@ -645,12 +649,13 @@ def plot_map(cube, obj, fit, norm_, info, path, counts):
 
 
 def plot_records(cube, obj, fit, norm_, path):
-    B = len(cube.edges) - 1
-    ncol = 3 if B >= 3 else B
-    nrow = int(math.ceil(B / ncol))
+    """One panel per PGV/PGA bin that holds records (bins without are left out, not drawn empty)."""
+    bins = cube.bin_of_records()
+    shown = [b for b in range(len(cube.edges) - 1) if np.any(bins == b)] or [0]
+    ncol = min(3, len(shown))
+    nrow = int(math.ceil(len(shown) / ncol))
     fig, axes = plt.subplots(nrow, ncol, figsize=(4.1 * ncol + 1.2, 2.9 * nrow + 1.3), dpi=DPI,
                              sharex=True, sharey=True, squeeze=False)
-    bins = cube.bin_of_records()
     finite = cube.pgv_pga[np.isfinite(cube.pgv_pga) & (cube.pgv_pga > 0)]
     lo, hi = (finite.min(), finite.max()) if finite.size else (0.05, 0.5)
     if hi <= lo:
@@ -660,11 +665,12 @@ def plot_records(cube, obj, fit, norm_, path):
         "plasma_trunc", plt.get_cmap("plasma")(np.linspace(0.0, 0.82, 256)))  # no pale yellow on white
     marker = "o" if len(cube.scales) <= 25 else None
     sgrid = np.linspace(max(cube.scales.min() * 0.5, 1e-3), cube.scales.max(), 200)
-    for b in range(nrow * ncol):
-        ax = axes[b // ncol][b % ncol]
-        if b >= B:
+    for i in range(nrow * ncol):
+        ax = axes[i // ncol][i % ncol]
+        if i >= len(shown):
             ax.set_visible(False)
             continue
+        b = shown[i]
         recs = [r for r in range(len(cube.records)) if bins[r] == b]
         ax.set_title(f"PGV/PGA {_fmt_edge(cube.edges[b])}\u2013{_fmt_edge(cube.edges[b + 1])} s "
                      f"({len(recs)} record{'s' if len(recs) != 1 else ''})", fontsize=9)
@@ -678,8 +684,8 @@ def plot_records(cube, obj, fit, norm_, path):
             ax.plot(cube.scales, obj.probability[r], color=cmap(cnorm(cube.pgv_pga[r])), lw=1.3,
                     marker=marker, ms=3.5, alpha=0.85, zorder=7,
                     label=f"{cube.records[r]} ({cube.pgv_pga[r]:.3g} s)")
-        if len(recs) <= 6:
-            ax.legend(loc="lower right", fontsize=7, frameon=True, framealpha=0.85, handlelength=1.5)
+        if len(recs) <= 6:  # where the curves leave the most room; 'best' weighs every data point
+            ax.legend(loc="best", fontsize=7, frameon=True, framealpha=0.85, handlelength=1.5)
         ax.plot(cube.scales, obj.fragility[:, b], color="black", lw=2.6, ls="--", zorder=5)
         if fit is not None:
             v = float(np.median(cube.pgv_pga[recs]))
@@ -694,7 +700,7 @@ def plot_records(cube, obj, fit, norm_, path):
     if fit is not None:
         handles.append(mlines.Line2D([], [], color="tab:green", lw=2.0,
                                      label=f"{FIT_LABEL}, at the bin's median PGV/PGA"))
-    alpha_txt = f" (alpha = {norm_.alpha:g} rad)" if norm_.alpha else ""
+    alpha_txt = f" (alpha = {norm_.alpha:.3g} rad)" if norm_.alpha else ""
     fig.suptitle(f"{obj.label}{alpha_txt}: P(overturn) per record vs PGA, one panel per PGV/PGA bin\n"
                  f"P = fraction of rotations overturned (inferred counted as overturned); "
                  f"cube {os.path.basename(cube.path)}", fontsize=11)
@@ -737,7 +743,7 @@ def variant_lognormal(cube, obj, args, pgv_pga_s):
 
 
 def plot_variant_band(cube, name, curves, pooled, pgv_pga_s, path):
-    fig, ax = plt.subplots(figsize=(8.5, 5.6), dpi=DPI)
+    fig, ax = plt.subplots(figsize=(11, 5.6), dpi=DPI)
     a = pooled["pga_g"]
     for k, (theta, beta, how) in curves:
         ax.plot(a, fragility_fit.lognormal_probability(a, theta, beta), color="0.55", lw=0.7,
@@ -758,7 +764,7 @@ def plot_variant_band(cube, name, curves, pooled, pgv_pga_s, path):
     ax.set_xlabel("PGA = target GMRotI50 PGA (g)")
     ax.set_ylabel("P(overturn)")
     ax.grid(True, which="both", color="0.9", lw=0.6)
-    ax.legend(loc="upper left", fontsize=9)
+    ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8, borderaxespad=0)  # off the curves
     ax.set_title(f"{name}: fragility of {len(curves)} variants at PGV/PGA {pgv_pga_s:.3g} s\n"
                  f"{FIT_LABEL}; cube {os.path.basename(cube.path)}", fontsize=10)
     fig.tight_layout()
@@ -785,10 +791,10 @@ def variant_maps(cube, variants, args, counts):
         grid = np.geomspace(min(t for t, _ in lognormals) * math.exp(-3 * spread),
                             max(t for t, _ in lognormals) * math.exp(3 * spread), 400)
         pooled = fragility_fit.pooled_fragility(lognormals, grid)
-        plot_variant_band(cube, name, curves, pooled, pgv_pga_s, base + "_variants.png")
+        plot_variant_band(cube, name, curves, pooled, pgv_pga_s, base + "_variants." + args.format)
         entry["pooled"] = {k: pooled[k] for k in ("n_variants", "median_g", "lognormal_theta_g", "lognormal_beta",
                                                   "lognormal_method", "theta_percentiles_g", "beta_percentiles")}
-        entry["files"].append(base + "_variants.png")
+        entry["files"].append(base + "_variants." + args.format)
         print(f"{name}: {len(curves)} of {len(variants)} variants with a fragility at PGV/PGA {pgv_pga_s:.3g} s; "
               f"pooled median {pooled['median_g']:.4g} g, theta 5/50/95 % over variants "
               f"{', '.join(f'{v:.3g}' for v in pooled['theta_percentiles_g'])} g")
@@ -803,9 +809,9 @@ def variant_maps(cube, variants, args, counts):
                             np.min([o.count for o in variants], axis=0))
     plot_map(cube, pooled_obj, None, Normalisation(None, "", None, ""),
              {"reason": f"each cell the mean over variants of its records' mean; the variants' fits are in "
-                       f"{os.path.basename(base)}_variants.png"},
-             base + "_pooled_map.png", counts)
-    entry["files"].append(base + "_pooled_map.png")
+                       f"{os.path.basename(base)}_variants.{args.format}"},
+             base + "_pooled_map." + args.format, counts)
+    entry["files"].append(base + "_pooled_map." + args.format)
     print(f"  wrote {', '.join(entry['files'])}")
     return entry
 
@@ -835,6 +841,21 @@ def _json_clean(v):
     return v
 
 
+def fit_summary(obj, info, f, norm_):
+    """The fit in words a reader can use: its median PGA and dispersion at the records' median
+    PGV/PGA, and the coefficients with what they multiply."""
+    x_mid = float(np.mean(info["x_range"]))
+    sig = float(fit_sigma(f, np.array([x_mid]))[0])
+    mu = f["mu_coefficients"]
+    theta = float(norm_.pga_g(float(np.polyval(mu[::-1], x_mid))))
+    u, x = norm_.describe()
+    terms = " + ".join([f"{mu[0]:.4g}"] + [f"({c:.4g}) x" + (f"^{k}" if k > 1 else "") for k, c in enumerate(mu) if k])
+    return (f"{obj.label}: {info['n_cells']} cells ({info['n_overturned']} overturned) of {info['n_records']} records; "
+            f"at mid PGV/PGA of the records: median PGA {theta:.3g} g, dispersion sigma {sig:.3g} (of ln PGA)\n"
+            f"  fit P = Phi((u - mu(x)) / sigma(x)), u = {u}, x = {x}: mu(x) = {terms}, "
+            f"ln sigma = {', '.join(f'{c:.4g}' for c in f['log_sigma_coefficients'])} (fit.json has them all)")
+
+
 def cmd_maps(args):
     state = cube_files.campaign_state(args.cube)
     cube = Cube(args.cube)
@@ -858,22 +879,18 @@ def cmd_maps(args):
         norm_ = normalisation_for(cube, obj, args)
         info, fit = fit_object(cube, obj, norm_, args.mu_degree, args.sigma_degree)
         base = os.path.join(args.out, file_stem(obj))
-        plot_map(cube, obj, fit, norm_, info, base + "_map.png", show)
-        plot_records(cube, obj, fit, norm_, base + "_records.png")
-        info["files"] = [base + "_map.png", base + "_records.png"]
+        info["files"] = [f"{base}_map.{args.format}", f"{base}_records.{args.format}"]
+        plot_map(cube, obj, fit, norm_, info, info["files"][0], show)
+        plot_records(cube, obj, fit, norm_, info["files"][1])
         summary["objects"].append(info)
         f = info.get("fit")
         if f is not None and fit is not None:
-            sig = fit_sigma(f, np.array([np.mean(info["x_range"])]))[0]
-            print(f"{obj.label}: n = {info['n_cells']} cells ({info['n_overturned']} overturned), "
-                  f"mu = {', '.join(f'{c:.4g}' for c in f['mu_coefficients'])}, "
-                  f"ln sigma = {', '.join(f'{c:.4g}' for c in f['log_sigma_coefficients'])} "
-                  f"(sigma {sig:.3g} at mid x), log-likelihood {f['log_likelihood']:.4g}")
+            print(fit_summary(obj, info, f, norm_))
         else:
-            print(f"{obj.label}: n = {info['n_cells']} cells, no fit: {info.get('reason')}")
+            print(f"{obj.label}: {info['n_cells']} cells, no fit: {info.get('reason')}")
         if "warning" in info:
             print(f"  warning: {info['warning']}")
-        print(f"  wrote {base}_map.png, {base}_records.png")
+        print(f"  wrote {', '.join(info['files'])}")
     jpath = os.path.join(args.out, "fit.json")
     with cube_files.output_text(jpath, "--out", INPUTS) as fh:
         json.dump(_json_clean(summary), fh, indent=2, allow_nan=False)
@@ -997,7 +1014,7 @@ def cmd_diff(args):
         for cube, o, nrm in ((ca, oa, norm_a), (cb, ob, normalisation_for(cb, ob, args))):
             info, fit = fit_object(cube, o, nrm, args.mu_degree, args.sigma_degree)
             fits.append((fit, nrm, info) if fit is not None else None)
-        png = os.path.join(args.out, file_stem(oa) + "_diff.png")
+        png = os.path.join(args.out, file_stem(oa) + "_diff." + args.format)
         plot_diff(va, vb, oa.label, fa, oa.count[ia], fb, ob.count[ib], d, (n, mean, sd), la, lb, fits, png, show)
         ref = None
         if norm_a.alpha is not None:
@@ -1150,8 +1167,15 @@ def cmd_table(args):
     return 0
 
 
+class OneLineParser(argparse.ArgumentParser):
+    """A bad command line is bad input like any other: one line naming the problem, exit 2."""
+
+    def error(self, message):
+        self.exit(2, f"{self.prog}: error: {message} (--help for the options)\n")
+
+
 def build_parser():
-    p = argparse.ArgumentParser(
+    p = OneLineParser(
         prog="rigid plot",
         description="Fragility maps, per-record curves, a probit fit (this project's, not Purvance's), "
                     "difference maps and scenario tables from Rigid fragility cubes (HDF5).",
@@ -1177,6 +1201,8 @@ def build_parser():
                         help="degree of the polynomial ln sigma(x) (default 0: constant sigma)")
         sp.add_argument("--counts", choices=("auto", "on", "off"), default="auto",
                         help="print the number of records in each map cell (auto: when there are <= 25 scales)")
+        sp.add_argument("--format", choices=FIGURE_FORMATS, default="png",
+                        help="figure file format: png (default; raster at 120 dpi), pdf or svg (vector, for a paper)")
 
     m = sub.add_parser("maps", help="per object: fragility map PNG with the fit's 1/50/99 %% contours, "
                                     "per-record curves PNG, fit.json")

@@ -103,6 +103,34 @@ TEST_F(JobFile, GoodJobLoadsWithTheStudysDefaults) {
   EXPECT_EQ(job.hash.size(), 16u);
 }
 
+// A range's scales are the doubles the decimals start + i * step parse to (the compiler's reading
+// of the literals is the oracle), so xarray's sel(scale=0.3) finds them; the simulations keep the
+// float sums start + i * step the campaigns ran with before.
+TEST_F(JobFile, RangeScalesAreTheStatedDecimalsAndDriveWithTheFloatSums) {
+  const auto with = [&](const std::string& range) {
+    std::string t = kGood;
+    t.replace(t.find("0.1:0.5:0.1"), 11, range);
+    return load_job(write(t));
+  };
+  const auto demo = with("0.1:1.0:0.1");
+  const std::vector<double> stated{0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0};
+  EXPECT_EQ(demo.scales_g, stated);
+  ASSERT_EQ(demo.drive_scales_g.size(), stated.size());
+  for (std::size_t i = 0; i < stated.size(); ++i) EXPECT_EQ(demo.drive_scale_g(i), 0.1 + double(i) * 0.1) << i;
+  EXPECT_NE(demo.drive_scale_g(2), 0.3);  // 0.30000000000000004: the sum differs, the coordinate does not
+  EXPECT_EQ(with("1e-1:3e-1:1e-1").scales_g, (std::vector<double>{0.1, 0.2, 0.3}));
+  EXPECT_EQ(with("0.25:1:0.25").scales_g, (std::vector<double>{0.25, 0.5, 0.75, 1.0}));
+  EXPECT_EQ(with("0.2:2.0:0.2").scales_g, (std::vector<double>{0.2, 0.4, 0.6, 0.8, 1.0, 1.2, 1.4, 1.6, 1.8, 2.0}));
+  EXPECT_EQ(with("0.05:0.2:0.05").scales_g, (std::vector<double>{0.05, 0.1, 0.15, 0.2}));
+  EXPECT_EQ(with("0.1:0.35:0.1").scales_g, (std::vector<double>{0.1, 0.2, 0.3}));  // stop off the grid
+  // a list is taken as written, and drives as written
+  std::string listed = kGood;
+  listed.replace(listed.find("\"0.1:0.5:0.1\""), 13, "[0.3, 0.7]");
+  const auto list = load_job(write(listed));
+  EXPECT_EQ(list.scales_g, (std::vector<double>{0.3, 0.7}));
+  EXPECT_EQ(list.drive_scale_g(0), 0.3);
+}
+
 TEST_F(JobFile, RecordAlignIsResampleOrAutoWithItsLine) {
   std::string t = kGood + std::string("align = \"resample\"\n");
   EXPECT_TRUE(load_job(write(t)).records.at(0).resample);

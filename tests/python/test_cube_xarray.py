@@ -1,7 +1,9 @@
 #!/usr/bin/python3
-"""The cube as analysis tools see it: xarray opens every object group with both netCDF engines
-(named dimensions, coordinate values, CF flags), and `rigid export cells --csv` round-trips
-through pandas with the cube's own values.
+"""The cube as analysis tools see it: xarray opens every group (objects, /fragility after `rigid
+fragility`, axes, records) with both netCDF engines without phony dimensions (named dimensions,
+coordinate values, CF flags); the demo job's scales select by the decimals the job states;
+`rigid export cells --csv` round-trips through pandas with the cube's own values; the campaign's
+progress lines count cells out of a fixed total, and dispatch internals come only with --verbose.
 
     /usr/bin/python3 tests/python/test_cube_xarray.py RIGID REPO
 
@@ -10,11 +12,13 @@ h5netcdf, netCDF4 or pandas is missing (Debian: python3-xarray python3-h5netcdf 
 python3-pandas).
 """
 import os
+import re
 import shutil
 import subprocess
 import sys
 import tempfile
 import unittest
+from decimal import Decimal
 
 try:
     import h5py
@@ -44,9 +48,15 @@ class AnalysisReadyCube(unittest.TestCase):
         cls.tmp = tempfile.mkdtemp(prefix="rigid_xarray_")
         cls.cube = os.path.join(cls.tmp, "ci.h5")
         job = os.path.join(REPO, "jobs", "ci_small.toml")
-        r = subprocess.run([RIGID, "campaign", job, "--out", cls.cube], capture_output=True, text=True)
+        r = subprocess.run([RIGID, "campaign", job, "--out", cls.cube, "--progress", "log", "--log-interval", "0.05"],
+                           capture_output=True, text=True)
         if r.returncode != 0:
             raise RuntimeError(f"rigid campaign failed ({r.returncode}): {r.stderr}")
+        cls.campaign_log = r.stderr
+        # the fitted fragilities in the cube (/fragility/NAME), as `rigid fragility` stores them
+        r = subprocess.run([RIGID, "fragility", cls.cube, "--bootstrap", "20"], capture_output=True, text=True)
+        if r.returncode != 0:
+            raise RuntimeError(f"rigid fragility failed ({r.returncode}): {r.stderr}")
         cls.f = h5py.File(cls.cube, "r")
         cls.objects = list(cls.f["objects"])
 
@@ -83,6 +93,79 @@ class AnalysisReadyCube(unittest.TestCase):
                     # label-based selection works in g
                     p = ds["probability"].sel(scale=scales[-1], record=records[0]).item()
                     self.assertTrue(same(p, g["probability"][0, -1]))
+
+    def test_every_group_opens_without_phony_dimensions(self):
+        # netCDF-4 names a dimension without a dimension scale "phony_dim_N" and xarray refuses
+        # the group unless asked for phony_dims; every group the cube has must open as is
+        groups = []
+        self.f.visititems(lambda name, obj: groups.append(name) if isinstance(obj, h5py.Group) else None)
+        self.assertIn("axes", groups)
+        self.assertTrue(any(g.startswith("fragility/") for g in groups), groups)
+        for engine in ENGINES:
+            for group in groups:
+                if not any(isinstance(v, h5py.Dataset) for v in self.f[group].values()):
+                    continue  # attributes and subgroups only
+                with self.subTest(engine=engine, group=group), \
+                        xr.open_dataset(self.cube, group=group, engine=engine) as ds:
+                    phony = [d for d in ds.dims if str(d).startswith("phony_dim")]
+                    self.assertEqual(phony, [], f"{group}: {dict(ds.sizes)}")
+                    self.assertTrue(ds.data_vars or ds.coords)
+        with xr.open_dataset(self.cube, group=f"fragility/{self.objects[0]}", engine="h5netcdf") as ds:
+            self.assertEqual(ds["theta_g"].dims, ("pgv_pga_bin",))
+            self.assertEqual(ds.sizes["pgv_pga_edges_s"], ds.sizes["pgv_pga_bin"] + 1)
+
+    def test_progress_counts_cells_out_of_a_fixed_total(self):
+        # "N/T cells settled": T is the campaign's cell count on every line (inferred cells are
+        # settled, not taken out of the total), N never decreases and ends at T
+        lines = re.findall(r"(\d+)/(\d+) cells settled \((\d+) %", self.campaign_log)
+        self.assertGreaterEqual(len(lines), 2, self.campaign_log)
+        cells = sum(self.f[f"objects/{n}/outcome"].size for n in self.objects)
+        self.assertEqual({int(t) for _, t, _ in lines}, {cells})
+        settled = [int(n) for n, _, _ in lines]
+        self.assertEqual(settled, sorted(settled))
+        self.assertEqual(settled[-1], cells)
+        self.assertIn("ETA", self.campaign_log)
+        self.assertNotIn("messages", self.campaign_log)
+
+    def test_demo_scales_select_by_the_decimals_the_job_states(self):
+        # jobs/demo.toml's scales "0.1:1.0:0.1", read here as decimals (the oracle: Python's
+        # Decimal, not the tool's parser); --noop runs no physics, the axes are the demo's own
+        job = os.path.join(REPO, "jobs", "demo.toml")
+        text = open(job).read()
+        start, stop, step = (Decimal(v) for v in re.search(r'^scales = "([^"]+)"', text, re.M).group(1).split(":"))
+        stated = [float(start + i * step) for i in range(int((stop - start) / step) + 1)]
+        self.assertEqual(len(stated), 10)
+        cube = os.path.join(self.tmp, "demo_noop.h5")
+        r = subprocess.run([RIGID, "campaign", job, "--out", cube, "--noop", "--progress", "none"],
+                           capture_output=True, text=True)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with h5py.File(cube, "r") as f:
+            objects = list(f["objects"])
+            self.assertEqual(list(f["axes/scale_g"][()]), stated)
+        for engine in ENGINES:
+            for name in objects:
+                with self.subTest(engine=engine, object=name), \
+                        xr.open_dataset(cube, group=f"objects/{name}", engine=engine) as ds:
+                    for v in stated:
+                        self.assertEqual(ds.outcome.sel(scale=v).sizes, {"record": 9, "rotation": 2}, v)
+                        self.assertEqual(float(ds.target_pga.sel(scale=v)), v * 9.80665)
+
+    def test_verbose_alone_logs_the_dispatch_internals(self):
+        if shutil.which("mpirun") is None:
+            self.skipTest("no mpirun")
+        job = os.path.join(REPO, "jobs", "ci_small.toml")
+        env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+        logs = {}
+        for extra in ([], ["--verbose"]):
+            out = os.path.join(self.tmp, f"noop{len(extra)}.h5")
+            r = subprocess.run(["mpirun", "--oversubscribe", "-np", "2", RIGID, "campaign", job, "--out", out, "--noop",
+                                "--progress", "none"] + extra, capture_output=True, text=True, env=env, timeout=120)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            logs[bool(extra)] = r.stderr
+        self.assertNotIn("messages", logs[False])
+        self.assertNotIn("journal syncs", logs[False])
+        self.assertIn("tasks sent to 1 worker ranks in", logs[True])
+        self.assertIn("journal syncs", logs[True])
 
     def test_rocking_parameters_travel_with_each_single_block_object(self):
         # rectangular blocks: the weakest of the 16 directions is across the width, where the

@@ -255,7 +255,10 @@ class RigidPlot(unittest.TestCase):
         for name in ("rock_plain", "rock_norm", "rock_separated"):
             for kind in ("map", "records"):
                 self.assertTrue(is_png(os.path.join(self.maps_dir, f"{name}_{kind}.png")), (name, kind))
-        self.assertIn("rock_plain: n = ", self.maps.stdout)
+        # the fit said as a median PGA and a dispersion, its coefficients with what they multiply
+        self.assertRegex(self.maps.stdout, r"rock_plain: \d+ cells \(\d+ overturned\) of 80 records; .*median PGA "
+                                           r"[\d.]+ g, dispersion sigma [\d.]+ \(of ln PGA\)\n  fit P = Phi")
+        self.assertIn("rock_separated: 6400 cells, no fit: ", self.maps.stdout)
 
     # -- diff -------------------------------------------------------------------------------
     def read_mismatch(self, out):

@@ -13,6 +13,7 @@ namespace rigid::campaign {
 /// Progress of a running campaign, as reported to CampaignOptions::on_progress.
 struct ProgressReport {
   long done = 0;           ///< tasks done (any outcome), including those restored
+  long settled = 0;        ///< cells needing no more work: simulated, or inferred by the stop rule
   long remaining = 0;      ///< tasks still to simulate (inferred cells not counted)
   long failures = 0;       ///< failed tasks
   long done_at_start = 0;  ///< tasks restored from the cube and journal
@@ -33,6 +34,7 @@ struct CampaignOptions {
   std::string effects;          ///< "auto" or "all": overrides the job's [run] effects when not empty
   double checkpoint_interval = 0;  ///< overrides the job's when > 0 (unit: s)
   double grace = -1;            ///< overrides the job's when >= 0 (unit: s)
+  bool verbose = false;         ///< also log dispatch internals (messages, checkpoint costs)
   /// Called on rank 0 about every progress_interval seconds and once at the end (may be empty).
   std::function<void(const ProgressReport&)> on_progress;
   double progress_interval = 10;  ///< unit: s

@@ -77,6 +77,13 @@ struct Job {
   bool as_recorded() const { return scales_g.size() == 1 && scales_g[0] == kAsRecordedScale; }
   /// The job's [lab] table: how its lab records ([[record]] lab = ...) are read and processed
   motion::LabFormat lab_format;
+  /// The target PGA each scale's simulations are driven with, when not scales_g itself (empty):
+  /// a "start:stop:step" range keeps its float sums start + i * step (0.30000000000000004), which
+  /// the campaigns before scales_g held the stated decimals ran with. One ulp more or less in the
+  /// drive changes the chaotic outcome of a few cells, so the sums keep those cubes reproducible.
+  std::vector<double> drive_scales_g;
+  /// The target PGA (g) the simulations of scale s are driven with.
+  double drive_scale_g(std::size_t s) const { return drive_scales_g.empty() ? scales_g[s] : drive_scales_g[s]; }
   int rotations = 2;              ///< random rotations per (record, scale)
   /// Fixed rotation angles instead of random ones ([campaign] rotation_angles_deg; unit: deg):
   /// one per rotation index, e.g. [0.0] drives every block with the x component along x, as the
