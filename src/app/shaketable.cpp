@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 
+#include "commands.hpp"
 #include "rigid/core/error.hpp"
 #include "rigid/core/types.hpp"
 #include "rigid/io/lab_recording.hpp"
@@ -96,6 +98,19 @@ calibration::OutcomeGrid outcome_grid(const io::Cube& cube, const std::vector<do
     }
   }
   return grid;
+}
+
+void run_designed_campaigns(
+    const std::function<std::optional<campaign::CampaignOptions>(const campaign::CampaignResult*)>& next,
+    const std::function<void(const campaign::CampaignResult&)>& finish) {
+  int status = 0;
+  {
+    const campaign::MpiSession session(campaign_argc(), campaign_argv());
+    const campaign::CampaignResult result = campaign::run_campaign_sequence(session, next);
+    if (session.rank() == 0 && result.status == 0) finish(result);
+    status = result.status;
+  }  // MPI ends with the session, before the exit status is set
+  if (status != 0) std::exit(status);
 }
 
 }  // namespace rigid::app::shaketable

@@ -2,11 +2,13 @@
 // What `rigid shaketable calibrate` and `predict` share: the physics a design varies, the
 // strong-motion windows of the recorded table motions, the designed campaigns and the outcome
 // grid read back from their cubes (docs/validation-shaketable.md).
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "rigid/calibration/outcome_model.hpp"
+#include "rigid/campaign/driver.hpp"
 #include "rigid/io/cube.hpp"
 #include "rigid/io/design_job.hpp"
 #include "rigid/io/lab_tests.hpp"
@@ -52,5 +54,12 @@ double static_toppling_g(const std::string& scene);
 /// (rotation index h). Throws InputError if a cell is not simulated or failed.
 calibration::OutcomeGrid outcome_grid(const io::Cube& cube, const std::vector<double>& headings_deg);
 
+
+/// Runs a command's designed campaigns in one MPI session (campaign::run_campaign_sequence), then
+/// `finish` on rank 0 once they all completed; ends the process with the campaigns' status
+/// (75 interrupted, 1 failed write) after MPI has ended.
+void run_designed_campaigns(
+    const std::function<std::optional<campaign::CampaignOptions>(const campaign::CampaignResult*)>& next,
+    const std::function<void(const campaign::CampaignResult&)>& finish);
 
 }  // namespace rigid::app::shaketable

@@ -323,25 +323,19 @@ void add_shaketable_calibrate(CLI::App& parent) {
   cmd->add_option("--pedestal-margin", o->pedestal_margin, "The table: overhang of the box under the rock (m)")->capture_default_str();
   cmd->add_option("--progress", o->progress, "auto, bar, log or none")->capture_default_str()->check(CLI::IsMember({"auto", "bar", "log", "none"}));
   cmd->callback([o] {
-    int status = 0;
-    {
-    const campaign::MpiSession session(campaign_argc(), campaign_argv());
     Calibration c;
-    const auto next = [&](const campaign::CampaignResult* previous) -> std::optional<campaign::CampaignOptions> {
-      if (c.stage == 0) return prepare(c, *o);
-      if (c.stage == 1) {
-        c.grid1 = shaketable::outcome_grid(*previous->cube, c.headings1);
-        return second_stage(c, *o);
-      }
-      c.grid2 = shaketable::outcome_grid(*previous->cube, c.headings2);
-      c.stage = 3;
-      return std::nullopt;
-    };
-    const campaign::CampaignResult result = campaign::run_campaign_sequence(session, next);
-    if (session.rank() == 0 && result.status == 0 && c.stage == 3) finish(c, *o);
-    status = result.status;
-    }  // MPI ends with the session, before the exit status is set
-    if (status != 0) std::exit(status);
+    shaketable::run_designed_campaigns(
+        [&](const campaign::CampaignResult* previous) -> std::optional<campaign::CampaignOptions> {
+          if (c.stage == 0) return prepare(c, *o);
+          if (c.stage == 1) {
+            c.grid1 = shaketable::outcome_grid(*previous->cube, c.headings1);
+            return second_stage(c, *o);
+          }
+          c.grid2 = shaketable::outcome_grid(*previous->cube, c.headings2);
+          c.stage = 3;
+          return std::nullopt;
+        },
+        [&](const campaign::CampaignResult&) { finish(c, *o); });
   });
 }
 

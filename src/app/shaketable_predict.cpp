@@ -16,6 +16,7 @@
 #include "rigid/campaign/driver.hpp"
 #include "rigid/core/error.hpp"
 #include "rigid/io/json.hpp"
+#include "rigid/io/output_file.hpp"
 #include "shaketable.hpp"
 #include "shaketable_report.hpp"
 
@@ -50,6 +51,7 @@ double number(const io::Json& j, const char* key, const std::string& file) {
 }
 
 campaign::CampaignOptions prepare(Prediction& p, const PredictOptions& o) {
+  io::refuse_output_over_inputs(o.out, {o.tests, o.scene});
   p.tests = io::read_lab_tests(o.tests);
   p.lab = shaketable::lab_input(o.lab_format);
   const fs::path scene = fs::absolute(o.scene).lexically_normal();
@@ -160,20 +162,7 @@ void finish(const Prediction& p, const PredictOptions& o, const io::Cube& cube) 
                   meta.pgv_pga_s, probability[std::size_t(t)], probability[std::size_t(t)] >= 0.5 ? 1 : 0);
     csv << line;
   }
-  const std::string tmp = o.out + ".tmp";
-  {
-    std::ofstream f(tmp, std::ios::trunc);
-    f << csv.str();
-    f.flush();
-    if (!f) {
-      std::error_code ec;
-      fs::remove(tmp, ec);
-      throw InputError(o.out, 0, "cannot write");
-    }
-  }
-  std::error_code ec;
-  fs::rename(tmp, o.out, ec);
-  if (ec) throw InputError(o.out, 0, "cannot write: " + ec.message());
+  io::write_output_file(o.out, [&](std::ostream& out) { out << csv.str(); });
   std::printf("wrote %s (%d tests; P(overturn) over %zu ensemble members%s)\n", o.out.c_str(), tests, p.members.size(),
               p.json.empty() ? "" : (" from " + p.json).c_str());
   // only now the outcomes, if the list has them
@@ -198,19 +187,13 @@ void add_shaketable_predict(CLI::App& parent) {
   cmd->add_option("--lab-format", o->lab_format, "TOML file whose [lab] table says how to read the recordings");
   cmd->add_option("--progress", o->progress, "auto, bar, log or none")->capture_default_str()->check(CLI::IsMember({"auto", "bar", "log", "none"}));
   cmd->callback([o] {
-    int status = 0;
-    {
-      const campaign::MpiSession session(campaign_argc(), campaign_argv());
-      Prediction p;
-      const auto next = [&](const campaign::CampaignResult*) -> std::optional<campaign::CampaignOptions> {
-        if (p.stage == 0) return prepare(p, *o);
-        return std::nullopt;
-      };
-      const campaign::CampaignResult result = campaign::run_campaign_sequence(session, next);
-      if (session.rank() == 0 && result.status == 0 && result.cube) finish(p, *o, *result.cube);
-      status = result.status;
-    }
-    if (status != 0) std::exit(status);
+    Prediction p;
+    shaketable::run_designed_campaigns(
+        [&](const campaign::CampaignResult*) -> std::optional<campaign::CampaignOptions> {
+          if (p.stage == 0) return prepare(p, *o);
+          return std::nullopt;
+        },
+        [&](const campaign::CampaignResult& result) { finish(p, *o, *result.cube); });
   });
 }
 

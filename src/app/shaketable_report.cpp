@@ -3,12 +3,12 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <set>
 
 #include "rigid/core/error.hpp"
 #include "rigid/io/json.hpp"
+#include "rigid/io/output_file.hpp"
 #include "rigid/io/scene_writer.hpp"
 
 namespace rigid::app::shaketable {
@@ -95,23 +95,6 @@ io::Json variants_table(const OutcomeGrid& grid, const std::vector<Physics>& phy
     rows.push_back(row);
   }
   return rows;
-}
-
-void write_json(const std::string& path, const io::Json& j) {
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::trunc);
-    out << j.dump(2) << "\n";
-    out.flush();
-    if (!out) {
-      std::error_code ec;
-      fs::remove(tmp, ec);
-      throw InputError(path, 0, "cannot write");
-    }
-  }
-  std::error_code ec;
-  fs::rename(tmp, path, ec);
-  if (ec) throw InputError(path, 0, "cannot write: " + ec.message());
 }
 
 }  // namespace
@@ -243,7 +226,7 @@ void write_calibration(const CalibrationReport& r) {
   j["stages"] = stages;
   j["wall_s"] = r.wall_s;
   const std::string json_path = r.out + ".calibration.json";
-  write_json(json_path, j);
+  io::write_output_file(json_path, [&](std::ostream& out) { out << j.dump(2) << "\n"; });
 
   std::printf("\ncalibrated: %s, heading %.1f deg [%.1f, %.1f] (spread %.0f deg, lapse %.2f)\n", chosen.label().c_str(),
               heading, heading + turn_lo, heading + turn_hi, best.spread_deg, best.lapse);

@@ -1,18 +1,14 @@
 #include "rigid/io/design_job.hpp"
 
-#include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <sstream>
 
 #include <toml++/toml.h>
 
 #include "input_file.hpp"
 #include "rigid/core/error.hpp"
+#include "rigid/io/output_file.hpp"
 
 namespace rigid::io {
-
-namespace fs = std::filesystem;
 
 void write_design_job(const std::string& path, const DesignJob& job) {
   toml::table root;
@@ -58,23 +54,7 @@ void write_design_job(const std::string& path, const DesignJob& job) {
   std::istringstream comment(job.comment);
   for (std::string line; std::getline(comment, line);) text << "# " << line << "\n";
   text << toml::toml_formatter(root, toml::toml_formatter::default_flags & ~toml::format_flags::indentation) << "\n";
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    out << text.str();
-    out.flush();
-    if (!out) {
-      std::error_code ec;
-      fs::remove(tmp, ec);
-      throw InputError(path, 0, "cannot write the job file");
-    }
-  }
-  std::error_code ec;
-  fs::rename(tmp, path, ec);
-  if (ec) {
-    fs::remove(tmp, ec);
-    throw InputError(path, 0, "cannot write the job file: " + ec.message());
-  }
+  write_output_file(path, [&](std::ostream& out) { out << text.str(); });
 }
 
 }  // namespace rigid::io

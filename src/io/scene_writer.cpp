@@ -2,13 +2,13 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 
 #include <toml++/toml.h>
 
 #include "input_file.hpp"
 #include "rigid/core/error.hpp"
+#include "rigid/io/output_file.hpp"
 #include "rigid/io/scene_file.hpp"
 
 namespace rigid::io {
@@ -21,26 +21,6 @@ std::string rebase(const std::string& path, const fs::path& from_dir, const fs::
   if (fs::path(path).is_absolute()) return path;
   const fs::path absolute = fs::absolute(from_dir / path).lexically_normal();
   return fs::absolute(absolute).lexically_relative(fs::absolute(to_dir)).generic_string();
-}
-
-void write_atomically(const std::string& path, const std::string& text) {
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    out << text;
-    out.flush();
-    if (!out) {
-      std::error_code ec;
-      fs::remove(tmp, ec);
-      throw InputError(path, 0, "cannot write the scene");
-    }
-  }
-  std::error_code ec;
-  fs::rename(tmp, path, ec);
-  if (ec) {
-    fs::remove(tmp, ec);
-    throw InputError(path, 0, "cannot write the scene: " + ec.message());
-  }
 }
 
 }  // namespace
@@ -107,7 +87,7 @@ void write_derived_scene(const std::string& source, const std::string& dest, con
   std::istringstream comment(changes.comment);
   for (std::string line; std::getline(comment, line);) text << "# " << line << "\n";
   text << toml::toml_formatter(root, toml::toml_formatter::default_flags & ~toml::format_flags::indentation) << "\n";
-  write_atomically(dest, text.str());
+  write_output_file(dest, [&](std::ostream& out) { out << text.str(); });
 }
 
 }  // namespace rigid::io

@@ -177,6 +177,10 @@ def main():
     bad("all_equal.csv", head + "1,a,,0.1,motions/Test001.txt.gz,1\n2,a,,0.1,motions/Test002.txt.gz,1\n",
         "cannot identify")
     bad("bad_outcome.csv", head + "1,a,,0.1,motions/Test001.txt.gz,yes\n", "not 0 or 1")
+    r = run("shaketable", "predict", os.path.join(tmp, "planted", "prism.toml"), "--tests", tests, "--out", tests)
+    lines = r.stderr.strip().splitlines()
+    check(r.returncode == 2 and len(lines) == 1 and "tests.csv" in lines[0] and os.path.getsize(tests) > 0,
+          "predict --out over its test list refused, the list intact: %s" % lines)
     # a scan that will not stand: the prism leaning beyond its base
     leaning = os.path.join(tmp, "leaning.obj")
     write_prism(leaning, tilt_x=0.6)
