@@ -43,14 +43,15 @@ def phi(z):
     return 0.5 * math.erfc(-z / math.sqrt(2.0))
 
 
-def bin_of(v):
-    for i in range(len(EDGES) - 1):
-        if EDGES[i] <= v < EDGES[i + 1]:
+def bin_of(v, edges=None):
+    edges = EDGES if edges is None else edges
+    for i in range(len(edges) - 1):
+        if edges[i] <= v < edges[i + 1]:
             return i
     return -1
 
 
-def derived(outcome, pgv_pga):
+def derived(outcome, pgv_pga, edges=None):
     """Independent re-implementation of the cube's probability and fragility."""
     over = ((outcome == 2) | (outcome == 3)).sum(axis=2)
     known = over + (outcome == 1).sum(axis=2)
@@ -61,7 +62,7 @@ def derived(outcome, pgv_pga):
     count = np.zeros((len(SCALES), B), dtype=np.int32)
     for s in range(len(SCALES)):
         for b in range(B):
-            vals = [prob[r, s] for r in range(len(pgv_pga)) if bin_of(pgv_pga[r]) == b and not np.isnan(prob[r, s])]
+            vals = [prob[r, s] for r in range(len(pgv_pga)) if bin_of(pgv_pga[r], edges) == b and not np.isnan(prob[r, s])]
             if vals:
                 frag[s, b] = sum(vals) / len(vals)
                 count[s, b] = len(vals)
@@ -296,9 +297,16 @@ class RigidPlot(unittest.TestCase):
     def test_diff_rejects_other_bins(self):
         other = os.path.join(self.tmp, "other_bins.h5")
         shutil.copy(self.cube, other)
+        edges = np.array(EDGES, float)
+        edges[1] = 0.05
         with h5py.File(other, "r+") as f:
             f["axes/pgv_pga_edges_s"][1] = 0.05
-            cube_checksums.seal(f)  # a cube written with other edges, not a damaged one
+            # a cube written with other edges, not a damaged one: its fragility follows them
+            for g in f["objects"].values():
+                _, frag, count = derived(g["outcome"][()], self.pgv_pga, edges)
+                g["fragility"][...] = frag
+                g["fragility_count"][...] = count
+            cube_checksums.seal(f)
         p = run_tool("diff", self.cube, other, "--out", os.path.join(self.tmp, "bad"), expect=2)
         self.assertIn("different PGV/PGA bin edges", p.stderr)
 
