@@ -13,7 +13,8 @@ void add_lab_options(CLI::App& cmd, LabFlags& o) {
   cmd.add_option("--lab", o.file,
                  "A lab (shake-table) recording instead of an AT2 set: delimited text, gzip or plain; "
                  "its format from --lab-format and the --lab-* flags (defaults: tab, 1 header line, time "
-                 "column 1, acceleration column 2 in g, band-pass 0.1-25 Hz)");
+                 "column 1, acceleration column 2 in g, displacement column 3 in V, the combined channel, "
+                 "band-pass 0.1-25 Hz)");
   cmd.add_option("--lab-format", o.format, "TOML file whose [lab] table gives the recording's format");
   cmd.add_option("--lab-delimiter", o.delimiter, "tab (default), comma or whitespace");
   cmd.add_option("--lab-header-lines", o.header_lines, "Lines before the data (default 1; the last names the columns)");
