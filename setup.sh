@@ -158,6 +158,6 @@ Done. Open:
   out/demo_plots/fragility.csv        fitted fragilities with intervals; fragility_nrml.xml for OpenQuake
   out/demo_plots/hazard_block_a03.png the alpha = 0.3 block under a synthetic hazard curve
   out/demo.h5                         the fragility cube (HDF5; docs/cube.md)
-Next: your own rock and records: README.md, "Quick start".
+Next: your own rock and records, as the README's quick start shows.
 EOF_OUTRO
 fi
