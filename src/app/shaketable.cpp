@@ -24,6 +24,24 @@ std::string Physics::label() const {
   return text;
 }
 
+std::vector<std::pair<std::string, std::variant<double, std::string>>> Physics::contact_law_table() const {
+  std::vector<std::pair<std::string, std::variant<double, std::string>>> t;
+  t.emplace_back("contact", contact);
+  if (contact == "penalty") {
+    t.emplace_back("normal_stiffness", normal_stiffness);
+    t.emplace_back("shear_stiffness", normal_stiffness);
+    t.emplace_back("damping", damping);
+  }
+  return t;
+}
+
+std::vector<std::pair<std::string, std::variant<double, std::string>>> Physics::physics_table() const {
+  auto t = contact_law_table();
+  t.emplace_back("friction", friction);
+  if (contact != "penalty") t.emplace_back("restitution", restitution);
+  return t;
+}
+
 std::vector<std::pair<std::string, std::variant<double, std::string>>> Physics::variant_table() const {
   std::vector<std::pair<std::string, std::variant<double, std::string>>> t;
   // every variant of a job sets the same parameters: each law ignores the other's

@@ -28,6 +28,11 @@ struct Physics {
   double friction = 0.6;     ///< unit: 1
   /// One line for tables: "flat_5mm penalty K=1e+06 D=2 mu=0.60".
   std::string label() const;
+  /// The scene's [physics] keys of the contact law: contact and, for the penalty model, its
+  /// stiffnesses (K_S = K_N) and damping.
+  std::vector<std::pair<std::string, std::variant<double, std::string>>> contact_law_table() const;
+  /// contact_law_table with friction and, for rigid contact, restitution: the whole law.
+  std::vector<std::pair<std::string, std::variant<double, std::string>>> physics_table() const;
   /// The job's [[variant]] table: the scene (base and contact model) and the law's other values.
   std::vector<std::pair<std::string, std::variant<double, std::string>>> variant_table() const;
 };

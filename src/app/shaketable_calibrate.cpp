@@ -130,12 +130,7 @@ std::string settled_scene(const std::string& scan, const std::string& base_scene
   fs::create_directories(work / name);
   const std::string scene = fs::absolute(work / name / (std::string(name) + ".toml")).lexically_normal().string();
   io::SceneChanges changes;
-  changes.physics.emplace_back("contact", p.contact);
-  if (p.contact == "penalty") {
-    changes.physics.emplace_back("normal_stiffness", p.normal_stiffness);
-    changes.physics.emplace_back("shear_stiffness", p.normal_stiffness);
-    changes.physics.emplace_back("damping", p.damping);
-  }
+  changes.physics = p.contact_law_table();
   changes.comment = std::string(name) + ": " + base_scene + " with the " + p.contact + " contact model, settled with it";
   io::write_derived_scene(base_scene, scene, changes);
   const scenario::Scene placed = io::load_scene(scene);

@@ -56,20 +56,6 @@ double turn_between(double a, double b) {
   return d == -180.0 ? 180.0 : d;
 }
 
-std::vector<std::pair<std::string, std::variant<double, std::string>>> physics_changes(const Physics& p) {
-  std::vector<std::pair<std::string, std::variant<double, std::string>>> t;
-  t.emplace_back("contact", p.contact);
-  t.emplace_back("friction", p.friction);
-  if (p.contact == "penalty") {
-    t.emplace_back("normal_stiffness", p.normal_stiffness);
-    t.emplace_back("shear_stiffness", p.normal_stiffness);
-    t.emplace_back("damping", p.damping);
-  } else {
-    t.emplace_back("restitution", p.restitution);
-  }
-  return t;
-}
-
 // Each variant of a stage on its own: its best heading, spread and lapse, scored in and out of
 // sample (the heading refitted without the held-out record).
 io::Json variants_table(const OutcomeGrid& grid, const std::vector<Physics>& physics, const std::vector<int>& y,
@@ -126,7 +112,7 @@ void write_calibration(const CalibrationReport& r) {
   const std::string name = out.filename().string();
   const std::string scene = r.out + ".toml";
   io::SceneChanges changes;
-  changes.physics = physics_changes(chosen);
+  changes.physics = chosen.physics_table();
   changes.turn_free_blocks_deg = -heading;
   changes.comment = name + ": " + r.scan + " calibrated on " + r.tests_csv + " by rigid shaketable calibrate (" +
                     chosen.label() + ", the table's axis along x: heading " + std::to_string(heading) +
@@ -144,7 +130,7 @@ void write_calibration(const CalibrationReport& r) {
       } else {
         const std::string file = name + ".calibration/member_v" + std::to_string(m.candidate.variant) + ".toml";
         io::SceneChanges c = changes;
-        c.physics = physics_changes(p);
+        c.physics = p.physics_table();
         c.comment = p.label() + ", turned as " + name + ".toml";
         io::write_derived_scene(p.base_scene, (out.parent_path() / file).string(), c);
         member_scene[m.candidate.variant] = file;
