@@ -4,10 +4,15 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
 
 #include "commands.hpp"
 #include "rigid/core/error.hpp"
 #include "rigid/core/types.hpp"
+#include "rigid/io/json.hpp"
 #include "rigid/io/lab_recording.hpp"
 #include "rigid/io/scene_file.hpp"
 #include "rigid/scenario/rocking_parameters.hpp"
@@ -52,6 +57,85 @@ std::vector<std::pair<std::string, std::variant<double, std::string>>> Physics::
   return t;
 }
 
+namespace {
+
+double member_number(const io::Json& j, const char* key, const std::string& file) {
+  if (!j.contains(key) || !j[key].is_number()) throw InputError(file, 0, std::string("ensemble member without a number '") + key + "'");
+  return j[key].get<double>();
+}
+
+}  // namespace
+
+Ensemble load_ensemble(const std::string& scene_file) {
+  namespace fs = std::filesystem;
+  Ensemble e;
+  const std::string scene = fs::absolute(scene_file).lexically_normal().string();
+  std::string json = scene_file;
+  if (json.size() > 5 && json.ends_with(".toml")) json = json.substr(0, json.size() - 5);
+  json += ".calibration.json";
+  if (!fs::exists(json)) {
+    e.scenes = {scene};
+    e.rotations_deg = {0.0};
+    e.members.push_back({0, {0}, 1.0, 0.0});
+    return e;
+  }
+  e.json = json;
+  io::Json j;
+  try {
+    std::ifstream in(json);
+    j = io::Json::parse(in);
+  } catch (const std::exception& ex) {
+    throw InputError(json, 0, std::string("not a calibration file: ") + ex.what());
+  }
+  if (!j.contains("ensemble") || !j["ensemble"].is_array() || j["ensemble"].empty())
+    throw InputError(json, 0, "has no ensemble");
+  std::map<std::string, int> variant_of;
+  std::set<double> rotation_set;
+  for (const auto& m : j["ensemble"]) {
+    if (!m.contains("scene") || !m["scene"].is_string() || !m.contains("rotations_deg") || !m["rotations_deg"].is_array() ||
+        m["rotations_deg"].empty())
+      throw InputError(json, 0, "ensemble member without scene or rotations_deg");
+    Ensemble::Member member;
+    member.weight = member_number(m, "weight", json);
+    member.lapse = member_number(m, "lapse", json);
+    if (!(member.weight > 0) || !(member.lapse >= 0 && member.lapse <= 1))
+      throw InputError(json, 0, "ensemble member with a weight <= 0 or a lapse outside [0, 1]");
+    const std::string file =
+        fs::absolute(fs::path(json).parent_path() / m["scene"].get<std::string>()).lexically_normal().string();
+    const auto [it, added] = variant_of.emplace(file, int(variant_of.size()));
+    if (added) e.scenes.push_back(file);
+    member.variant = it->second;
+    for (const auto& r : m["rotations_deg"]) {
+      if (!r.is_number()) throw InputError(json, 0, "rotations_deg must be numbers");
+      rotation_set.insert(r.get<double>());
+    }
+    e.members.push_back(member);
+  }
+  e.rotations_deg.assign(rotation_set.begin(), rotation_set.end());
+  std::size_t k = 0;
+  for (const auto& m : j["ensemble"]) {
+    for (const auto& r : m["rotations_deg"]) {
+      const auto at = std::find(e.rotations_deg.begin(), e.rotations_deg.end(), r.get<double>());
+      e.members[k].rotations.push_back(int(at - e.rotations_deg.begin()));
+    }
+    ++k;
+  }
+  return e;
+}
+
+double Ensemble::probability(const std::function<bool(int, int)>& overturned, bool with_lapse) const {
+  double total = 0, p = 0;
+  for (const Member& m : members) total += m.weight;
+  for (const Member& m : members) {
+    int over = 0;
+    for (int r : m.rotations) over += overturned(m.variant, r) ? 1 : 0;
+    const double share = double(over) / double(m.rotations.size());
+    const double lapse = with_lapse ? m.lapse : 0.0;
+    p += m.weight / total * (0.5 * lapse + (1 - lapse) * share);
+  }
+  return p;
+}
+
 LabInput lab_input(const std::string& format_file) {
   LabInput in;
   in.format_file = format_file;
@@ -61,30 +145,31 @@ LabInput lab_input(const std::string& format_file) {
   return in;
 }
 
+io::DesignJob::Record strong_motion_window(const motion::GroundMotion& m, const std::string& file, double level_g) {
+  const double level = level_g * kGravity;
+  long first = -1, last = -1;
+  for (std::size_t i = 0; i < m.x.size(); ++i) {
+    if (std::abs(m.x[i]) > level) {
+      if (first < 0) first = long(i);
+      last = long(i);
+    }
+  }
+  io::DesignJob::Record r;
+  r.lab = file;
+  if (first < 0) {
+    r.start = 0;
+    r.end = std::min(2.0, m.duration());
+  } else {
+    r.start = std::max(0.0, double(first) * m.dt - 1.0);
+    r.end = std::min(m.duration(), double(last) * m.dt + 1.0);
+  }
+  return r;
+}
+
 std::vector<io::DesignJob::Record> strong_motion_windows(const io::LabTestList& tests, const LabInput& lab,
                                                          double level_g) {
   std::vector<io::DesignJob::Record> out;
-  const double level = level_g * kGravity;
-  for (const io::LabTest& t : tests.tests) {
-    const motion::GroundMotion m = io::read_lab_motion(t.file, lab.format);
-    long first = -1, last = -1;
-    for (std::size_t i = 0; i < m.x.size(); ++i) {
-      if (std::abs(m.x[i]) > level) {
-        if (first < 0) first = long(i);
-        last = long(i);
-      }
-    }
-    io::DesignJob::Record r;
-    r.lab = t.file;
-    if (first < 0) {
-      r.start = 0;
-      r.end = std::min(2.0, m.duration());
-    } else {
-      r.start = std::max(0.0, double(first) * m.dt - 1.0);
-      r.end = std::min(m.duration(), double(last) * m.dt + 1.0);
-    }
-    out.push_back(r);
-  }
+  for (const io::LabTest& t : tests.tests) out.push_back(strong_motion_window(io::read_lab_motion(t.file, lab.format), t.file, level_g));
   return out;
 }
 

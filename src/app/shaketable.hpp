@@ -12,6 +12,7 @@
 #include "rigid/io/cube.hpp"
 #include "rigid/io/design_job.hpp"
 #include "rigid/io/lab_tests.hpp"
+#include "rigid/motion/ground_motion.hpp"
 #include "rigid/motion/lab_format.hpp"
 
 namespace rigid::app::shaketable {
@@ -37,6 +38,26 @@ struct Physics {
   std::vector<std::pair<std::string, std::variant<double, std::string>>> variant_table() const;
 };
 
+/// What a calibrated scene's predictions average over (SCENE.calibration.json beside it): each
+/// member is one physics variant (a scene) seen over a window of headings, with a weight and the
+/// lapse rate the fit found. Without that file: the scene alone at heading 0, weight 1, no lapse.
+struct Ensemble {
+  struct Member {
+    int variant = 0;              ///< index into scenes
+    std::vector<int> rotations;   ///< indices into rotations_deg
+    double weight = 1, lapse = 0;
+  };
+  std::string json;                 ///< the calibration file read ("" when none)
+  std::vector<std::string> scenes;  ///< absolute paths, one per variant (the scene itself without a file)
+  std::vector<double> rotations_deg;  ///< every member's headings, sorted, as turns of the motion
+  std::vector<Member> members;
+  /// The weighted mean over members of lapse/2 + (1 - lapse) x (share of the member's headings
+  /// that overturned); `overturned(variant, rotation)` says whether that cell overturned. The
+  /// lapse is the lab's, not the rock's: `with_lapse` false leaves it out (a fragility).
+  double probability(const std::function<bool(int, int)>& overturned, bool with_lapse = true) const;
+};
+Ensemble load_ensemble(const std::string& scene);
+
 /// The recordings' format: a TOML file's [lab] table, or the default (this lab's export).
 struct LabInput {
   std::string format_file;
@@ -49,6 +70,7 @@ LabInput lab_input(const std::string& format_file);
 /// A rock at rest on its base cannot start to rock or slide below its quasi-static toppling
 /// acceleration, so with level = half of it nothing is cut that could decide the outcome, and the
 /// run's free time after the window lets a rocking rock settle or fall.
+io::DesignJob::Record strong_motion_window(const motion::GroundMotion& motion, const std::string& file, double level_g);
 std::vector<io::DesignJob::Record> strong_motion_windows(const io::LabTestList& tests, const LabInput& lab,
                                                          double level_g);
 

@@ -29,90 +29,31 @@ struct PredictOptions {
   std::string scene, tests, out, lab_format, progress = "auto";
 };
 
-// One member of the ensemble: which variant of the job, which of its rotations, its weight.
-struct Member {
-  int variant = 0;
-  std::vector<int> rotations;
-  double weight = 1, lapse = 0;
-};
-
 struct Prediction {
   io::LabTestList tests;
   shaketable::LabInput lab;
-  std::vector<Member> members;
-  std::vector<double> rotations;
-  std::string json;
+  shaketable::Ensemble ensemble;
   int stage = 0;
 };
-
-double number(const io::Json& j, const char* key, const std::string& file) {
-  if (!j.contains(key) || !j[key].is_number()) throw InputError(file, 0, std::string("ensemble member without a number '") + key + "'");
-  return j[key].get<double>();
-}
 
 campaign::CampaignOptions prepare(Prediction& p, const PredictOptions& o) {
   io::refuse_output_over_inputs(o.out, {o.tests, o.scene});
   p.tests = io::read_lab_tests(o.tests);
   p.lab = shaketable::lab_input(o.lab_format);
-  const fs::path scene = fs::absolute(o.scene).lexically_normal();
+  p.ensemble = shaketable::load_ensemble(o.scene);
+  const shaketable::Ensemble& e = p.ensemble;
   io::DesignJob job;
   job.object_name = "rock";
-  job.scene = scene.string();
+  job.scene = fs::absolute(o.scene).lexically_normal().string();
   job.comment = "rigid shaketable predict " + o.scene + " --tests " + o.tests + "\n(written by the command; run again to resume)";
-  std::vector<std::string> scenes{scene.string()};
-  std::string json = o.scene;
-  if (json.size() > 5 && json.ends_with(".toml")) json = json.substr(0, json.size() - 5);
-  json += ".calibration.json";
-  std::set<double> rotation_set;
-  if (fs::exists(json)) {
-    p.json = json;
-    io::Json j;
-    try {
-      std::ifstream in(json);
-      j = io::Json::parse(in);
-    } catch (const std::exception& e) {
-      throw InputError(json, 0, std::string("not a calibration file: ") + e.what());
-    }
-    if (!j.contains("ensemble") || !j["ensemble"].is_array() || j["ensemble"].empty())
-      throw InputError(json, 0, "has no ensemble");
-    std::map<std::string, int> variant_of;
-    for (const auto& m : j["ensemble"]) {
-      if (!m.contains("scene") || !m["scene"].is_string() || !m.contains("rotations_deg") || !m["rotations_deg"].is_array())
-        throw InputError(json, 0, "ensemble member without scene or rotations_deg");
-      Member member;
-      member.weight = number(m, "weight", json);
-      member.lapse = number(m, "lapse", json);
-      const std::string file = (fs::path(json).parent_path() / m["scene"].get<std::string>()).lexically_normal().string();
-      const auto [it, added] = variant_of.emplace(file, int(variant_of.size()));
-      if (added) {
-        job.variants.push_back({{"scene", fs::absolute(file).string()}});
-        scenes.push_back(file);
-      }
-      member.variant = it->second;
-      for (const auto& r : m["rotations_deg"]) {
-        if (!r.is_number()) throw InputError(json, 0, "rotations_deg must be numbers");
-        rotation_set.insert(r.get<double>());
-      }
-      p.members.push_back(member);
-    }
-    int k = 0;
-    for (const auto& m : j["ensemble"]) {
-      for (const auto& r : m["rotations_deg"]) {
-        const double angle = r.get<double>();
-        p.members[std::size_t(k)].rotations.push_back(int(std::distance(rotation_set.begin(), rotation_set.find(angle))));
-      }
-      ++k;
-    }
-  } else {
-    rotation_set.insert(0.0);
-    p.members.push_back({0, {0}, 1.0, 0.0});
+  if (!e.json.empty()) {
+    for (const std::string& s : e.scenes) job.variants.push_back({{"scene", s}});
   }
-  p.rotations.assign(rotation_set.begin(), rotation_set.end());
-  double weakest = 1e300;
-  for (const std::string& s : scenes) weakest = std::min(weakest, shaketable::static_toppling_g(s));
+  double weakest = shaketable::static_toppling_g(job.scene);
+  for (const std::string& s : e.scenes) weakest = std::min(weakest, shaketable::static_toppling_g(s));
   job.records = shaketable::strong_motion_windows(p.tests, p.lab, 0.5 * weakest);
   job.lab_format_file = o.lab_format.empty() ? "" : fs::absolute(o.lab_format).string();
-  job.rotation_angles_deg = p.rotations;
+  job.rotation_angles_deg = e.rotations_deg;
   const std::string work = o.out + ".work";
   std::error_code ec;
   fs::create_directories(work, ec);
@@ -123,9 +64,8 @@ campaign::CampaignOptions prepare(Prediction& p, const PredictOptions& o) {
   io::write_design_job(options.job, job);
   attach_progress(options, o.progress, 10);
   std::printf("shaketable: %zu tests x %zu ensemble scenes x %zu headings = %zu runs%s\n", p.tests.tests.size(),
-              scenes.size() - (p.json.empty() ? 0 : 1), p.rotations.size(),
-              p.tests.tests.size() * (job.variants.empty() ? 1 : job.variants.size()) * p.rotations.size(),
-              p.json.empty() ? " (no calibration file beside the scene: one run per test)" : "");
+              e.scenes.size(), e.rotations_deg.size(), p.tests.tests.size() * e.scenes.size() * e.rotations_deg.size(),
+              e.json.empty() ? " (no calibration file beside the scene: one run per test)" : "");
   std::fflush(stdout);
   p.stage = 1;
   return options;
@@ -134,23 +74,16 @@ campaign::CampaignOptions prepare(Prediction& p, const PredictOptions& o) {
 void finish(const Prediction& p, const PredictOptions& o, const io::Cube& cube) {
   const int tests = int(cube.records.size());
   const int headings = cube.rotations;
-  std::vector<double> probability(std::size_t(tests), 0.0);
-  double total = 0;
-  for (const Member& m : p.members) total += m.weight;
-  for (const Member& m : p.members) {
-    const io::ObjectCube& object = cube.objects[std::size_t(m.variant)];
-    for (int t = 0; t < tests; ++t) {
-      int over = 0;
-      for (int h : m.rotations) {
-        const auto code = static_cast<io::CellOutcome>(object.outcome[std::size_t(t * headings + h)]);
-        if (code != io::CellOutcome::survived && code != io::CellOutcome::overturned)
-          throw InputError(o.out, 0, "test " + std::to_string(p.tests.tests[std::size_t(t)].test_no) + " was not simulated (" +
-                                         io::outcome_name(std::int8_t(code)) + ")");
-        over += code == io::CellOutcome::overturned ? 1 : 0;
-      }
-      const double share = double(over) / double(m.rotations.size());
-      probability[std::size_t(t)] += m.weight / total * (0.5 * m.lapse + (1 - m.lapse) * share);
-    }
+  std::vector<double> probability;
+  for (int t = 0; t < tests; ++t) {
+    probability.push_back(p.ensemble.probability([&](int variant, int rotation) {
+      const io::ObjectCube& object = cube.objects[std::size_t(variant)];
+      const auto code = static_cast<io::CellOutcome>(object.outcome[std::size_t(t * headings + rotation)]);
+      if (code != io::CellOutcome::survived && code != io::CellOutcome::overturned)
+        throw InputError(o.out, 0, "test " + std::to_string(p.tests.tests[std::size_t(t)].test_no) + " was not simulated (" +
+                                       io::outcome_name(std::int8_t(code)) + ")");
+      return code == io::CellOutcome::overturned;
+    }));
   }
   std::ostringstream csv;
   csv << "test_no,record,pga_g,pgv_over_pga_s,p_overturn,predicted\n";
@@ -163,8 +96,8 @@ void finish(const Prediction& p, const PredictOptions& o, const io::Cube& cube) 
     csv << line;
   }
   io::write_output_file(o.out, [&](std::ostream& out) { out << csv.str(); });
-  std::printf("wrote %s (%d tests; P(overturn) over %zu ensemble members%s)\n", o.out.c_str(), tests, p.members.size(),
-              p.json.empty() ? "" : (" from " + p.json).c_str());
+  std::printf("wrote %s (%d tests; P(overturn) over %zu ensemble members%s)\n", o.out.c_str(), tests,
+              p.ensemble.members.size(), p.ensemble.json.empty() ? "" : (" from " + p.ensemble.json).c_str());
   // only now the outcomes, if the list has them
   if (p.tests.has_outcomes) {
     std::vector<int> observed;
@@ -198,6 +131,7 @@ void add_shaketable_predict(CLI::App& parent) {
 }
 
 void add_shaketable_calibrate(CLI::App& parent);
+void add_shaketable_fragility(CLI::App& parent);
 
 void register_shaketable_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("shaketable", "A scanned rock against shake-table tests: calibrate its physics on "
@@ -205,6 +139,7 @@ void register_shaketable_command(CLI::App& app) {
   cmd->require_subcommand(1);
   add_shaketable_calibrate(*cmd);
   add_shaketable_predict(*cmd);
+  add_shaketable_fragility(*cmd);
 }
 
 }  // namespace rigid::app

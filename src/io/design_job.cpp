@@ -15,7 +15,7 @@ void write_design_job(const std::string& path, const DesignJob& job) {
   toml::array angles;
   for (double a : job.rotation_angles_deg) angles.push_back(a);
   root.insert("campaign", toml::table{{"seed", static_cast<std::int64_t>(job.seed)},
-                                      {"scales", "as recorded"},
+                                      {"scales", job.scales},
                                       {"rotation_angles_deg", angles},
                                       {"stop_after", 0}});
   toml::array objects;

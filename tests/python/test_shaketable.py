@@ -12,6 +12,9 @@ outcomes the model itself generated, so the truth is known.
 - Prediction never reads the outcome column: the same predictions with it removed or shuffled;
   they reproduce the planted outcomes (all but at most one test at the rock's threshold, where
   turning the rock rather than the motion changes the round-off).
+- Fragility: the lab's fit (outcomes at measured PGAs) and the calibrated model's (the same
+  motions scaled over a grid) agree, since the model made the lab's outcomes; the lab fit alone
+  recovers a planted probit (theta, beta) from Bernoulli outcomes drawn with it.
 - Bad test lists and scans: one line naming the file (and line), exit 2.
 
 usage: test_shaketable.py RIGID
@@ -78,6 +81,58 @@ def write_tests(path, rows, columns):
         w.writeheader()
         for r in rows:
             w.writerow(r)
+
+
+def check_fragility_thresholds(work, rows):
+    import h5py
+    import numpy as np
+    with h5py.File(os.path.join(work, "fragility.h5"), "r") as f:
+        scales = f["axes/scale_g"][()]
+        outcome = f["objects/rock/outcome"][()]  # [variant, record, scale, rotation]
+    with open(os.path.join(work, "members.json")) as fh:
+        members = json.load(fh)
+    with open(os.path.join(work, "motions.csv")) as fh:
+        motions = [m["record"] for m in csv.DictReader(fh)]
+    total = sum(m["weight"] for m in members)
+    step = scales[1] - scales[0]
+    for r, record in enumerate(motions):
+        p = sum(m["weight"] / total * np.mean(outcome[m["variant"], r][:, m["rotations"]] == 2, axis=1) for m in members)
+        first = next((s for s, q in zip(scales, p) if q >= 0.5), math.inf)
+        tests = sorted((float(x["pga_g"]), x["overturned"]) for x in rows if x["record"] == record)
+        over = [a for a, o in tests if o]
+        low = max([a for a, o in tests if not o and (not over or a < over[0])], default=0.0)
+        high = over[0] if over else math.inf
+        if not over:
+            continue
+        check(low - step < first <= high + step, "%s: the model first overturns at %.2f g, the lab between %.3f and %.3f g" % (record, first, low, high))
+
+
+def planted_lab_fit():
+    """The lab fit on outcomes drawn from a known probit: 20 planted labs of 25 motions x 8 tests
+    at PGAs spread around the median. The fit must find theta and beta, and its 90 % interval must
+    cover theta in about 90 % of the labs (at least 16 of 20)."""
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "src", "plot"))
+    import numpy as np
+    import fragility_fit as ff
+    import shaketable_fragility as sf
+    theta, beta = 0.4, 0.35
+    errors, betas, covered = [], [], 0
+    for lab in range(20):
+        rng = np.random.default_rng(lab)
+        rows = []
+        for m in range(25):
+            for a in theta * np.exp(rng.uniform(-2.5, 2.5, 8) * beta):
+                p = 0.5 * math.erfc(-math.log(a / theta) / beta / math.sqrt(2))
+                rows.append({"record": "m%d" % m, "pga_g": a, "overturned": int(rng.uniform() < p)})
+        cells = sf.lab_cells(rows, {"m%d" % m: m for m in range(25)})
+        r = ff.scalar_fragility(cells, np.arange(25), np.random.default_rng(1), 200, 0.9)
+        lo, hi = r["theta_interval_g"]
+        errors.append(abs(math.log(r["theta_g"] / theta)))
+        betas.append(r["beta"])
+        covered += lo <= theta <= hi
+    check(float(np.median(errors)) < 0.1 and 0.25 < float(np.median(betas)) < 0.45 and covered >= 16,
+          "lab fit recovers planted probits: median |ln theta/0.4| %.3f, median beta %.2f (0.35), 90 %% interval "
+          "covers theta in %d of 20" % (float(np.median(errors)), float(np.median(betas)), covered))
 
 
 def main():
@@ -157,6 +212,30 @@ def main():
         agree = sum(int(a == b["overturned"]) for a, b in zip(got, rows))
         check(len(got) == len(rows) and agree >= len(rows) - 1,
               "predict reproduces the planted outcomes: %d of %d" % (agree, len(rows)))
+
+        # fragility: the lab's outcomes came from the model, so where a motion both stood and
+        # overturned in the lab, its threshold there (between its strongest test below the first
+        # overturn and that overturn) holds the PGA at which the model, scaling that motion's
+        # recording over the grid, first overturns with P >= 0.5 (a motion that never overturned
+        # says nothing: rocking is not monotonic in amplitude, the model may overturn between tests)
+        fo = os.path.join(tmp, "frag", "prism")
+        rf = run("shaketable", "fragility", out + ".toml", "--tests", tests, "--out", fo, "--max-pga", "1.0",
+                 "--bootstrap", "100", "--progress", "none")
+        check(rf.returncode == 0, "fragility runs (%s)" % rf.stderr.strip()[-300:])
+        if rf.returncode == 0:
+            check_fragility_thresholds(fo + ".fragility.work", rows)
+            with open(fo + ".fragility.csv") as f:
+                table = {(x["pgv_pga_bin"], x["source"]): x for x in csv.DictReader(f)}
+            check(all(("all motions", s) in table for s in ("lab", "model")) and len(table) == 8,
+                  "the table has lab and model rows for 3 bins and all motions")
+            check(os.path.getsize(fo + ".fragility.png") > 10000, "the figure is written")
+        t = os.path.join(tmp, "tests_without.csv")
+        rf = run("shaketable", "fragility", out + ".toml", "--tests", t, "--out", fo + "_x", "--progress", "none")
+        lines = rf.stderr.strip().splitlines()
+        check(rf.returncode == 2 and len(lines) == 1 and "overturned" in lines[0],
+              "fragility without outcomes: one line, exit 2 (%s)" % lines)
+
+    planted_lab_fit()
 
     # bad input: one line naming the file, exit 2
     def bad(name, text, expect, extra=()):

@@ -24,6 +24,9 @@ struct DesignJob {
   /// A TOML file whose [lab] table says how to read the recordings; "" for the default format
   std::string lab_format_file;
   std::vector<double> rotation_angles_deg;
+  /// The [campaign] scales as the job file states them: "as recorded" (factor 1) or a
+  /// "start:stop:step" range of target PGAs (unit: g), read by the job reader like any job's
+  std::string scales = "as recorded";
   double free_time_s = 5;
   unsigned long long seed = 1;
 };
