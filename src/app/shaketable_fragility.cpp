@@ -29,8 +29,9 @@ namespace fs = std::filesystem;
 
 struct FragilityOptions {
   std::string scene, tests, out, lab_format, bins, format = "png", progress = "auto";
+  double min_pga_g = 0.02;
   double max_pga_g = 0;  ///< 0: 1.25 x the largest measured PGA
-  double step_g = 0.05;
+  int per_decade = 24;
   int bootstrap = 1000;
   long seed = 1;
 };
@@ -51,12 +52,18 @@ struct Design {
   bool fitted = false;
 };
 
-// The grid's decimals as the job states them ("0.05:1.5:0.05"), so the cube's scales are those
-// decimals exactly.
-std::string decimal(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.6g", v);
-  return text;
+// A geometric grid from `low` to at least `high` (the lognormal's own spacing: as many points
+// below the median as above it), each value rounded to 4 significant digits so that the job
+// states it, and the cube stores it, exactly.
+std::vector<double> pga_grid(double low, double high, int per_decade) {
+  std::vector<double> grid;
+  const double ratio = std::pow(10.0, 1.0 / per_decade);
+  for (double v = low; grid.empty() || grid.back() < high; v *= ratio) {
+    const double digits = std::pow(10.0, 3 - std::floor(std::log10(v)));
+    const double rounded = std::round(v * digits) / digits;
+    if (grid.empty() || rounded > grid.back()) grid.push_back(rounded);
+  }
+  return grid;
 }
 
 campaign::CampaignOptions prepare(Design& d, const FragilityOptions& o) {
@@ -67,26 +74,31 @@ campaign::CampaignOptions prepare(Design& d, const FragilityOptions& o) {
   d.ensemble = shaketable::load_ensemble(o.scene);
   const shaketable::Ensemble& e = d.ensemble;
 
-  // one recording per motion: the test shaken hardest (the table's own recording at its best
-  // signal-to-noise ratio); ties go to the first listed
-  std::map<std::string, std::size_t> hardest;
-  std::vector<motion::GroundMotion> motions;
+  // one recording per motion: its median test by measured PGA. The table does not reproduce a
+  // motion alike at every amplitude (its hardest tests add high-frequency content: PGV/PGA falls
+  // by up to 10x), so the recording in the middle of the tested range, where the lab placed its
+  // tests around the rock's threshold, stands for the motion; chosen without the outcomes.
+  std::map<std::string, std::vector<std::size_t>> tests_of;
   for (std::size_t t = 0; t < d.tests.tests.size(); ++t) {
     const io::LabTest& test = d.tests.tests[t];
-    motion::GroundMotion m = io::read_lab_motion(test.file, d.lab.format);
+    const motion::GroundMotion m = io::read_lab_motion(test.file, d.lab.format);
     const motion::Peaks p = motion::peaks(m.x, m.dt);
     d.measured.push_back({p.pga / kGravity, p.pgv / p.pga});
-    const auto [it, added] = hardest.emplace(test.record, t);
-    if (!added && d.measured[t].pga_g > d.measured[it->second].pga_g) it->second = t;
+    tests_of[test.record].push_back(t);
   }
-  for (const auto& [record, t] : hardest) d.motion_test.push_back(t);
+  for (auto& [record, list] : tests_of) {
+    std::stable_sort(list.begin(), list.end(),
+                     [&](std::size_t a, std::size_t b) { return d.measured[a].pga_g < d.measured[b].pga_g; });
+    d.motion_test.push_back(list[(list.size() - 1) / 2]);
+  }
   std::sort(d.motion_test.begin(), d.motion_test.end());
 
   double top = 0;
   for (const Measured& m : d.measured) top = std::max(top, m.pga_g);
-  const double max_pga = o.max_pga_g > 0 ? o.max_pga_g : std::ceil(1.25 * top / o.step_g) * o.step_g;
-  if (!(max_pga >= o.step_g)) throw InputError("", 0, "--max-pga must be at least --step");
-  if (max_pga / o.step_g > 200) throw InputError("", 0, "--max-pga / --step gives more than 200 scales");
+  const double max_pga = o.max_pga_g > 0 ? o.max_pga_g : 1.25 * top;
+  if (!(max_pga > o.min_pga_g)) throw InputError("", 0, "--max-pga must exceed --min-pga");
+  const std::vector<double> grid = pga_grid(o.min_pga_g, max_pga, o.per_decade);
+  if (grid.size() > 200) throw InputError("", 0, "--min-pga, --max-pga and --per-decade give more than 200 PGAs");
 
   io::DesignJob job;
   job.object_name = "rock";
@@ -108,7 +120,11 @@ campaign::CampaignOptions prepare(Design& d, const FragilityOptions& o) {
   }
   job.lab_format_file = o.lab_format.empty() ? "" : fs::absolute(o.lab_format).string();
   job.rotation_angles_deg = e.rotations_deg;
-  job.scales = decimal(o.step_g) + ":" + decimal(max_pga) + ":" + decimal(o.step_g);
+  job.scale_list_g = grid;
+  // the grid reaches well past the rock's strength: above three scales that overturned it under
+  // every heading, the rest of a motion's scales are inferred, not run (the fits leave them out, as
+  // `rigid fragility` does)
+  job.stop_after = 3;
 
   d.work = o.out + ".fragility.work";
   std::error_code ec;
@@ -120,10 +136,10 @@ campaign::CampaignOptions prepare(Design& d, const FragilityOptions& o) {
   d.cube = options.output;
   io::write_design_job(options.job, job);
   attach_progress(options, o.progress, 10);
-  const std::size_t scales = std::size_t(std::lround(max_pga / o.step_g));
-  std::printf("shaketable fragility: %zu motions (the hardest-shaken test of each) x %zu PGAs (%s g) x %zu ensemble "
-              "scenes x %zu headings = %zu runs\n",
-              d.motion_test.size(), scales, job.scales.c_str(), e.scenes.size(), e.rotations_deg.size(),
+  const std::size_t scales = grid.size();
+  std::printf("shaketable fragility: %zu motions (the median test of each by PGA) x %zu PGAs (%.3g-%.3g g) x %zu ensemble "
+              "scenes x %zu headings = at most %zu runs (3 scales overturned at every heading end a motion)\n",
+              d.motion_test.size(), scales, grid.front(), grid.back(), e.scenes.size(), e.rotations_deg.size(),
               d.motion_test.size() * scales * e.scenes.size() * e.rotations_deg.size());
   std::fflush(stdout);
   return options;
@@ -177,9 +193,12 @@ void add_shaketable_fragility(CLI::App& parent) {
   cmd->add_option("--out", o->out, "Prefix of the outputs: OUT.fragility.csv, OUT.fragility.FORMAT, OUT.fragility.work/")
       ->required();
   cmd->add_option("--lab-format", o->lab_format, "TOML file whose [lab] table says how to read the recordings");
+  cmd->add_option("--min-pga", o->min_pga_g, "Bottom of the PGA grid (g)")->capture_default_str()->check(CLI::Range(0.001, 5.0));
   cmd->add_option("--max-pga", o->max_pga_g, "Top of the PGA grid (g); default 1.25 x the largest measured PGA")
       ->check(CLI::Range(0.01, 20.0));
-  cmd->add_option("--step", o->step_g, "Step of the PGA grid (g)")->capture_default_str()->check(CLI::Range(0.005, 1.0));
+  cmd->add_option("--per-decade", o->per_decade, "PGAs per decade of the geometric grid")
+      ->capture_default_str()
+      ->check(CLI::Range(2, 100));
   cmd->add_option("--bins", o->bins,
                   "PGV/PGA bin edges (s), comma-separated, e.g. 0.02,0.06,0.1,0.3; default: three bins holding a "
                   "third of the motions each");

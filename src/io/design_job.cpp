@@ -1,5 +1,6 @@
 #include "rigid/io/design_job.hpp"
 
+#include <filesystem>
 #include <sstream>
 
 #include <toml++/toml.h>
@@ -11,15 +12,25 @@
 namespace rigid::io {
 
 void write_design_job(const std::string& path, const DesignJob& job) {
+  // the job lives in a work folder: relative paths (the caller's, against its working directory)
+  // are written absolute
+  const auto absolute = [](const std::string& p) { return std::filesystem::absolute(p).lexically_normal().string(); };
   toml::table root;
   toml::array angles;
   for (double a : job.rotation_angles_deg) angles.push_back(a);
-  root.insert("campaign", toml::table{{"seed", static_cast<std::int64_t>(job.seed)},
-                                      {"scales", job.scales},
-                                      {"rotation_angles_deg", angles},
-                                      {"stop_after", 0}});
+  toml::table campaign{{"seed", static_cast<std::int64_t>(job.seed)},
+                       {"rotation_angles_deg", angles},
+                       {"stop_after", job.stop_after}};
+  if (job.scale_list_g.empty()) {
+    campaign.insert("scales", job.scales);
+  } else {
+    toml::array scales;
+    for (double s : job.scale_list_g) scales.push_back(s);
+    campaign.insert("scales", scales);
+  }
+  root.insert("campaign", campaign);
   toml::array objects;
-  objects.push_back(toml::table{{"name", job.object_name}, {"scene", job.scene}});
+  objects.push_back(toml::table{{"name", job.object_name}, {"scene", absolute(job.scene)}});
   root.insert("object", objects);
   if (!job.variants.empty()) {
     toml::array variants;
@@ -34,7 +45,8 @@ void write_design_job(const std::string& path, const DesignJob& job) {
     root.insert("variant", variants);
   }
   toml::array records;
-  for (const auto& r : job.records) records.push_back(toml::table{{"lab", r.lab}, {"start", r.start}, {"end", r.end}});
+  for (const auto& r : job.records)
+    records.push_back(toml::table{{"lab", absolute(r.lab)}, {"start", r.start}, {"end", r.end}});
   root.insert("record", records);
   if (!job.lab_format_file.empty()) {
     const std::string text = read_input_file(job.lab_format_file, kMaxTextFileBytes);

@@ -188,7 +188,7 @@ def main(argv=None):
     print(f"Fragility of the shake-table rock, lab beside model ({args.level:.0%} bootstrap intervals over motions, "
           f"{args.bootstrap} resamples):")
     for r in rows:
-        print(f"  PGV/PGA {r['label']}: {len(r['motions'])} motions, {r['tests']} tests ({r['overturned']} overturned)")
+        print(f"  {'PGV/PGA ' if r['label'][0].isdigit() else ''}{r['label']}: {len(r['motions'])} motions, {r['tests']} tests ({r['overturned']} overturned)")
         print(f"    lab   {describe(r['lab'])}")
         print(f"    model {describe(r['model'])}")
         if "theta_g" in r["lab"] and "theta_g" in r["model"]:
@@ -228,8 +228,10 @@ def draw(rows, lab, model_p, simulated, scales_g, path, inputs):
     import matplotlib.pyplot as plt
     n = len(rows)
     fig, axes = plt.subplots(1, n, figsize=(3.6 * n, 3.6), sharey=True, squeeze=False)
-    top = max(float(np.max(scales_g)), float(np.max(lab.scales_g)))
-    x = np.linspace(top / 400, top, 400)
+    # PGA on a log axis: the lognormal's own scale, and the lab's tests span two decades
+    low = 0.8 * min(float(np.min(scales_g)), float(np.min(lab.scales_g[lab.scales_g > 0])))
+    top = 1.25 * max(float(np.max(scales_g)), float(np.max(lab.scales_g)))
+    x = np.geomspace(low, top, 400)
     handles = {}
     for ax, r in zip(axes[0], rows):
         motions = r["motions"]
@@ -252,9 +254,10 @@ def draw(rows, lab, model_p, simulated, scales_g, path, inputs):
             if math.isfinite(lo) and math.isfinite(hi):
                 h = ax.fill_between(x, probit_curve(x, f, hi), probit_curve(x, f, lo), color=color, alpha=0.15, lw=0)
                 handles[name + ": theta's interval"] = h
-        ax.set_title(f"PGV/PGA {r['label']}\n{len(motions)} motions, {r['tests']} tests", fontsize=9)
+        ax.set_title(f"{'PGV/PGA ' if r['label'][0].isdigit() else ''}{r['label']}\n{len(motions)} motions, {r['tests']} tests", fontsize=9)
         ax.set_xlabel("PGA (g)")
-        ax.set_xlim(0, top)
+        ax.set_xscale("log")
+        ax.set_xlim(low, top)
         ax.set_ylim(-0.08, 1.08)
         ax.grid(alpha=0.3)
     axes[0][0].set_ylabel("P(overturn)")

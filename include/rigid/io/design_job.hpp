@@ -27,6 +27,11 @@ struct DesignJob {
   /// The [campaign] scales as the job file states them: "as recorded" (factor 1) or a
   /// "start:stop:step" range of target PGAs (unit: g), read by the job reader like any job's
   std::string scales = "as recorded";
+  /// When not empty: the target PGAs as a list (unit: g), in place of `scales`
+  std::vector<double> scale_list_g;
+  /// The campaign's stop rule: stop raising a record's scale after this many consecutive scales
+  /// overturned at every rotation (0: every scale is run)
+  int stop_after = 0;
   double free_time_s = 5;
   unsigned long long seed = 1;
 };
