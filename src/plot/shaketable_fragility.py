@@ -122,13 +122,24 @@ def fmt_g(v):
     return "-" if v is None or not math.isfinite(v) else f"{v:.3f}"
 
 
+def beyond_note(r, low_g, high_g):
+    """A note when theta's interval reaches past the PGAs the fit saw (the fit extrapolates)."""
+    lo, hi = r.get("theta_interval_g", (math.nan, math.nan))
+    if math.isfinite(hi) and hi > high_g:
+        return f"theta's interval reaches past the largest PGA of the data ({high_g:.3g} g): extrapolated"
+    if math.isfinite(lo) and lo < low_g:
+        return f"theta's interval reaches below the smallest PGA of the data ({low_g:.3g} g): extrapolated"
+    return ""
+
+
 def describe(r):
     if "theta_g" not in r:
         return f"no fit: {r.get('reason', '')}"
     lo, hi = r["theta_interval_g"]
     blo, bhi = r["beta_interval"]
     text = f"theta {fmt_g(r['theta_g'])} g [{fmt_g(lo)}, {fmt_g(hi)}]  beta {r['beta']:.2f} [{fmt_g(blo)}, {fmt_g(bhi)}]"
-    return text + (f"  ({r['interval_note']})" if r.get("interval_note") else "")
+    notes = [n for n in (r.get("interval_note"), r.get("beyond_note")) if n]
+    return text + "".join(f"\n          ({n})" for n in notes)
 
 
 def main(argv=None):
@@ -180,6 +191,9 @@ def main(argv=None):
             continue
         lab_fit = fit_row("lab", lab, motions, np.random.default_rng([args.seed, g, 0]), args)
         model_fit = fit_row("model", model, motions, np.random.default_rng([args.seed, g, 1]), args)
+        tested = lab.scales_g[lab.n[motions].sum(axis=0) > 0]
+        lab_fit["beyond_note"] = beyond_note(lab_fit, float(tested.min()), float(tested.max()))
+        model_fit["beyond_note"] = beyond_note(model_fit, float(np.min(cube.scales)), float(np.max(cube.scales)))
         tests = int(lab.n[motions].sum())
         over = int(lab.k[motions].sum())
         rows.append(dict(label=label, lower_s=lo, upper_s=hi, motions=motions, tests=tests, overturned=over,
@@ -210,7 +224,7 @@ def main(argv=None):
                             r["overturned"], source] +
                            [f"{v:.4f}" if v is not None and math.isfinite(v) else "" for v in
                             (f.get("theta_g"), t_lo, t_hi, f.get("beta"), b_lo, b_hi)] +
-                           [f.get("interval_note") or f.get("reason") or ""])
+                           ["; ".join(n for n in (f.get("interval_note"), f.get("reason"), f.get("beyond_note")) if n)])
     draw(rows, lab, model_p, simulated, cube.scales, figure, inputs)
     print(f"wrote {table} (the table) and {figure} (the figure)")
     return 0
