@@ -49,14 +49,6 @@ import sys
 try:
     import h5py
     import numpy as np
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    from matplotlib import colors as mcolors
-    from matplotlib import patches as mpatches
-    from matplotlib import lines as mlines
-    from matplotlib import patheffects as pe
-    from matplotlib import ticker as mticker
     import cube_checksums
     import cube_files
     import fragility_fit
@@ -79,6 +71,27 @@ STUDY_MISMATCH_2D_MINUS_3D = {0.1: (0.03, 0.12), 0.2: (0.02, 0.08), 0.3: (0.02, 
 
 class InputError(Exception):
     pass
+
+
+# matplotlib is imported by the commands that draw, not at start: `rigid fragility` and `rigid hazard`
+# read cubes through this module and would otherwise pay about a second per call for it.
+plt = mcolors = mpatches = mlines = pe = mticker = None
+
+
+def load_matplotlib():
+    global plt, mcolors, mpatches, mlines, pe, mticker
+    if plt is not None:
+        return
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as pyplot
+        from matplotlib import colors, lines, patheffects, patches, ticker
+    except ImportError as e:  # pragma: no cover
+        sys.stderr.write(f"rigid plot: error: {e}; install python3-matplotlib and run with /usr/bin/python3 "
+                         f"(this is {sys.executable})\n")
+        sys.exit(2)
+    plt, mcolors, mpatches, mlines, pe, mticker = pyplot, colors, patches, lines, patheffects, ticker
 
 
 # --------------------------------------------------------------------------------------------
@@ -616,6 +629,7 @@ def counts_mode(cube, option):
 
 
 def plot_map(cube, obj, fit, norm_, info, path, counts):
+    load_matplotlib()
     fig, ax = plt.subplots(figsize=(9.5, 6.2), dpi=DPI)
     cmap = plt.get_cmap("viridis")
     cnorm = mcolors.Normalize(0.0, 1.0)
@@ -650,6 +664,7 @@ def plot_map(cube, obj, fit, norm_, info, path, counts):
 
 def plot_records(cube, obj, fit, norm_, path):
     """One panel per PGV/PGA bin that holds records (bins without are left out, not drawn empty)."""
+    load_matplotlib()
     bins = cube.bin_of_records()
     shown = [b for b in range(len(cube.edges) - 1) if np.any(bins == b)] or [0]
     ncol = min(3, len(shown))
@@ -743,6 +758,7 @@ def variant_lognormal(cube, obj, args, pgv_pga_s):
 
 
 def plot_variant_band(cube, name, curves, pooled, pgv_pga_s, path):
+    load_matplotlib()
     fig, ax = plt.subplots(figsize=(11, 5.6), dpi=DPI)
     a = pooled["pga_g"]
     for k, (theta, beta, how) in curves:
@@ -943,6 +959,7 @@ class _View:
 
 
 def plot_diff(view_a, view_b, name, fa, ca_, fb, cb_, d, stats, la, lb, fits, path, counts):
+    load_matplotlib()
     fig = plt.figure(figsize=(18.5, 6.4), dpi=DPI)
     outer = fig.add_gridspec(1, 2, width_ratios=[2.1, 1.08], wspace=0.13,
                              left=0.045, right=0.965, bottom=0.2, top=0.84)
