@@ -355,6 +355,7 @@ class RigidPlot(unittest.TestCase):
 def display_paths(artist):
     """The artist's drawn geometry in display coordinates, as (path, filled, pad): lines split at
     NaNs (pad: half the marker size, in pixels), a mesh's cells, a band's or patch's outline."""
+    import matplotlib.collections
     import matplotlib.lines
     import matplotlib.path
     out = []
@@ -370,6 +371,10 @@ def display_paths(artist):
                 out.append((matplotlib.path.Path(xy[start:i]), False, pad))
                 start = None
         return out
+    if isinstance(artist, matplotlib.collections.PathCollection):  # scatter: markers at data offsets
+        xy = artist.get_offset_transform().transform(artist.get_offsets())
+        size = math.sqrt(max(artist.get_sizes(), default=0.0)) * artist.figure.dpi / 72
+        return [(matplotlib.path.Path(p[None, :]), False, 0.5 * size) for p in xy if np.all(np.isfinite(p))]
     trans = artist.get_transform()
     for path in artist.get_paths() if hasattr(artist, "get_paths") else [artist.get_path()]:
         out.append((trans.transform_path(path), True, 0))
@@ -458,6 +463,7 @@ class Figures(unittest.TestCase):
                                                   "--bootstrap", "20", "--plot", os.path.join(cls.tmp, "hazard.png")]),
                             "hazard --plot")
             accuracy_plot.plot(accuracy_plot.read(accuracy_csv), os.path.join(cls.tmp, "accuracy_pareto.png"))
+            draw_shaketable_fragility(rng, os.path.join(cls.tmp, "shaketable_fragility.png"))
         finally:
             matplotlib.figure.Figure.savefig = original
 
@@ -519,7 +525,7 @@ class Figures(unittest.TestCase):
 
     def test_legends_off_the_data(self):
         expected = ("rock_map.png", "rock_records.png", "rock_diff.png", "rock_variants.png", "hazard.png",
-                    "accuracy_pareto.png")
+                    "accuracy_pareto.png", "shaketable_fragility.png")
         for suffix in expected:
             fig = self.figure(suffix)
             fig.canvas.draw()
@@ -542,6 +548,29 @@ class Figures(unittest.TestCase):
         ax.legend(loc="center")  # inside a filled band: covered, though no vertex lies in the legend
         self.assertGreaterEqual(len(legend_overlaps(fig)), 1)
         plt.close(fig)
+        fig, ax = plt.subplots()
+        ax.scatter([0.5], [0.5], label="one point")  # a scatter marker under the legend
+        ax.set_xlim(0, 1)
+        ax.set_ylim(0, 1)
+        ax.legend(loc="center")
+        self.assertEqual(len(legend_overlaps(fig)), 1)
+        ax.legend(loc="upper left")
+        self.assertEqual(legend_overlaps(fig), [])
+        plt.close(fig)
+
+
+def draw_shaketable_fragility(rng, path):
+    """`rigid shaketable fragility`'s figure on planted lab tests: two PGV/PGA bins of 3 motions,
+    12 PGAs each, outcomes from a probit of median 0.5 g, the model's share and both fits."""
+    import shaketable_fragility as sf
+    scales = np.linspace(0.1, 1.2, 12)
+    p = np.array([phi(math.log(a / 0.5) / 0.3) for a in scales])
+    k = (rng.random((6, 12)) < p).astype(float)
+    lab = sf.BinnedCells(k, np.ones((6, 12)), scales)
+    fit = {"theta_g": 0.5, "beta": 0.3, "theta_interval_g": (0.45, 0.56)}
+    rows = [{"motions": np.arange(3 * i, 3 * i + 3), "lab": fit, "model": dict(fit, theta_g=0.55),
+             "label": label, "tests": 36} for i, label in enumerate(("0.06-0.1 s", "0.1-0.2 s"))]
+    sf.draw(rows, lab, np.tile(p, (6, 1)), np.ones((6, 12), bool), scales, path, [])
 
 
 def planted_outcomes_of(cube):
