@@ -30,6 +30,7 @@ except ImportError as e:  # pragma: no cover
     sys.stderr.write(f"accuracy_plot: error: {e}; run with /usr/bin/python3 (python3-matplotlib)\n")
     sys.exit(2)
 
+LEGEND_BAND = 0.2     # the figure's bottom share that holds the legends
 FLOOR = 1e-7          # where error 0 is drawn on the log axis
 MODEL_AXES = ("stiffness", "rigid")  # settings that change the physics, not the numerics
 ORACLES = ("housner_one_sine_threshold_g", "g_tan_alpha_g", "rigid_statics_toppling_g",
@@ -115,7 +116,7 @@ def pareto_front(points):
 
 def plot(rows, png):
     agg = aggregate(rows)
-    fig, (ax, bx) = plt.subplots(1, 2, figsize=(12.5, 5.4), gridspec_kw=dict(width_ratios=[1.35, 1]))
+    fig, (ax, bx) = plt.subplots(1, 2, figsize=(12.5, 6.8), gridspec_kw=dict(width_ratios=[1.35, 1]))
     # left: numerical settings
     style = {("safety", "splitting"): dict(marker="o", color="#444444", label="safety sweep, splitting"),
              ("safety", "rk4"): dict(marker="s", color="#9467bd", label="safety sweep, RK4"),
@@ -159,7 +160,6 @@ def plot(rows, png):
     ncases = max((a["cases"] for a in agg.values()), default=0)
     ax.set_title(f"Numerical settings ({ncases} cases; numbers = safety factor)", fontsize=11)
     ax.grid(True, which="major", alpha=0.3)
-    ax.legend(fontsize=8, loc="lower left", framealpha=0.9)
 
     # right: both contact models against the rigid-block oracles, one point per model setting
     models = {}
@@ -195,9 +195,15 @@ def plot(rows, png):
     bx.set_ylabel("|relative error| vs rigid-block oracles (median; bar: worst)")
     bx.set_title("Contact model (a model axis, not a preset)", fontsize=11)
     bx.grid(True, which="major", alpha=0.3)
-    if models:
-        bx.legend(fontsize=8, loc="best", framealpha=0.9)
-    fig.tight_layout()
+    # each panel's legend below it, in the figure's bottom band: off the points (inside, a corner
+    # free of points is not guaranteed)
+    fig.tight_layout(rect=(0, LEGEND_BAND, 1, 1))
+    for axes in (ax, bx):
+        handles, labels = axes.get_legend_handles_labels()
+        if handles:
+            box = axes.get_position()
+            fig.legend(handles, labels, loc="upper center", bbox_to_anchor=(0.5 * (box.x0 + box.x1), LEGEND_BAND),
+                       ncol=2, fontsize=8, frameon=False)
     fig.savefig(png, dpi=90)
 
 

@@ -49,14 +49,6 @@ import sys
 try:
     import h5py
     import numpy as np
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    from matplotlib import colors as mcolors
-    from matplotlib import patches as mpatches
-    from matplotlib import lines as mlines
-    from matplotlib import patheffects as pe
-    from matplotlib import ticker as mticker
     import cube_checksums
     import cube_files
     import fragility_fit
@@ -79,6 +71,27 @@ STUDY_MISMATCH_2D_MINUS_3D = {0.1: (0.03, 0.12), 0.2: (0.02, 0.08), 0.3: (0.02, 
 
 class InputError(Exception):
     pass
+
+
+# matplotlib is imported by the commands that draw, not at start: `rigid fragility` and `rigid hazard`
+# read cubes through this module and would otherwise pay about a second per call for it.
+plt = mcolors = mpatches = mlines = pe = mticker = None
+
+
+def load_matplotlib():
+    global plt, mcolors, mpatches, mlines, pe, mticker
+    if plt is not None:
+        return
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as pyplot
+        from matplotlib import colors, lines, patheffects, patches, ticker
+    except ImportError as e:  # pragma: no cover
+        sys.stderr.write(f"rigid plot: error: {e}; install python3-matplotlib and run with /usr/bin/python3 "
+                         f"(this is {sys.executable})\n")
+        sys.exit(2)
+    plt, mcolors, mpatches, mlines, pe, mticker = pyplot, colors, patches, lines, patheffects, ticker
 
 
 # --------------------------------------------------------------------------------------------
@@ -517,81 +530,111 @@ def _fmt_edge(v):
     return f"{v:.3g}"
 
 
-def _setup_map_axes(ax, cube, yedges, scale_edges):
-    ax.set_yscale("log")
-    ax.set_ylim(yedges[0], yedges[-1])
+class MapRows:
+    """The rows of a map: one per PGV/PGA bin that holds records, equal heights, one above the other
+    (row k spans y = k..k+1); bins without records are left out, also between bins with records, so
+    the y axis is not continuous and each row is labelled with its own bin. Within a row PGV/PGA runs
+    on a log scale between the bin's edges (open outer edges clipped to the records' range)."""
+
+    def __init__(self, edges, pgv_pga):
+        edges = np.asarray(edges, float)
+        pgv_pga = np.asarray(pgv_pga, float)
+        B = len(edges) - 1
+        bins = np.array([pgv_pga_bin(edges, v) for v in pgv_pga], dtype=int)
+        self.records_in_bin = np.bincount(bins[bins >= 0], minlength=B)
+        self.bins = np.flatnonzero(self.records_in_bin)
+        if self.bins.size == 0:  # no record in any bin: show every bin (all hatched)
+            self.bins = np.arange(B)
+        self.edges = edges
+        self.log_edges = np.log(display_y_edges(edges, pgv_pga))
+
+    def __len__(self):
+        return len(self.bins)
+
+    def y(self, pgv_pga):
+        """Row coordinates of PGV/PGA values; NaN for values in no row (matplotlib breaks lines there)."""
+        v = np.atleast_1d(np.asarray(pgv_pga, float))
+        out = np.full(v.shape, np.nan)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            lv = np.log(v)
+        for k, b in enumerate(self.bins):
+            lo, hi = self.log_edges[b], self.log_edges[b + 1]
+            inside = (lv >= lo) & (lv <= hi)
+            out[inside] = k + (lv[inside] - lo) / (hi - lo)
+        return out
+
+    def label(self, k):
+        b = self.bins[k]
+        return f"{_fmt_edge(self.edges[b])}\u2013{_fmt_edge(self.edges[b + 1])}"
+
+
+def _setup_map_axes(ax, cube, rows, scale_edges):
+    ax.set_ylim(0, len(rows))
     ax.set_xlim(scale_edges[0], scale_edges[-1])
-    inner = [v for v in cube.edges[1:-1]]
-    ticks = list(inner)
-    labels = [_fmt_edge(v) for v in inner]
-    if cube.edges[0] > 0:
-        ticks.insert(0, cube.edges[0]); labels.insert(0, _fmt_edge(cube.edges[0]))
-    if np.isfinite(cube.edges[-1]):
-        ticks.append(cube.edges[-1]); labels.append(_fmt_edge(cube.edges[-1]))
-    ax.yaxis.set_major_locator(mticker.FixedLocator(ticks))
-    ax.yaxis.set_major_formatter(mticker.FixedFormatter(labels))
+    ax.yaxis.set_major_locator(mticker.FixedLocator([k + 0.5 for k in range(len(rows))]))
+    ax.yaxis.set_major_formatter(mticker.FixedFormatter([rows.label(k) for k in range(len(rows))]))
     ax.yaxis.set_minor_locator(mticker.NullLocator())
+    ax.tick_params(axis="y", length=0)
     S = len(cube.scales)
     step = 1 if S <= 12 else int(math.ceil(S / 12))
     ax.set_xticks(cube.scales[::step])
     ax.set_xticklabels([f"{v:g}" for v in cube.scales[::step]])
     ax.set_xlabel("PGA = target GMRotI50 PGA (g)")
-    ax.set_ylabel("PGV/PGA bin edges (s), log axis")
+    ax.set_ylabel("PGV/PGA bin (s), the bins with records")
 
 
-def _hatch_background(ax, scale_edges, yedges):
-    ax.add_patch(mpatches.Rectangle((scale_edges[0], yedges[0]), scale_edges[-1] - scale_edges[0],
-                                    yedges[-1] - yedges[0], facecolor="white", edgecolor="0.7",
-                                    hatch="///", lw=0, zorder=0))
+def _hatch_background(ax, scale_edges, rows):
+    ax.add_patch(mpatches.Rectangle((scale_edges[0], 0), scale_edges[-1] - scale_edges[0], len(rows),
+                                    facecolor="white", edgecolor="0.7", hatch="///", lw=0, zorder=0))
 
 
-def draw_surface(ax, cube, values, count, cmap, norm, counts="none"):
-    """Cells coloured by value over (scale, PGV/PGA bin); empty cells show the hatched background.
+def draw_surface(ax, cube, values, count, cmap, norm, counts="none", rows=None):
+    """Cells coloured by value over (scale, PGV/PGA bin), one row per bin with records (`rows`,
+    default: the cube's); cells without a value show the hatched background.
     counts: "none"; "deviations": print a cell's record count only where it is below its bin's
-    number of records (not-run or failed cells); "all": print every cell's count."""
+    number of records (not-run or failed cells); "all": print every cell's count.
+    Returns (mesh, rows, scale_edges, whether a hatched cell shows)."""
+    rows = MapRows(cube.edges, cube.pgv_pga) if rows is None else rows
     scale_edges = scale_cell_edges(cube.scales)
-    yedges = display_y_edges(cube.edges, cube.pgv_pga)
-    _hatch_background(ax, scale_edges, yedges)
-    data = np.ma.masked_invalid(np.asarray(values, float).T)  # [B, S]
-    mesh = ax.pcolormesh(scale_edges, yedges, data, cmap=cmap, norm=norm, edgecolors="0.35",
+    _hatch_background(ax, scale_edges, rows)
+    data = np.ma.masked_invalid(np.asarray(values, float).T[rows.bins])  # [shown bins, S]
+    mesh = ax.pcolormesh(scale_edges, np.arange(len(rows) + 1), data, cmap=cmap, norm=norm, edgecolors="0.35",
                          linewidth=0.4, zorder=1)
-    _setup_map_axes(ax, cube, yedges, scale_edges)
+    _setup_map_axes(ax, cube, rows, scale_edges)
     if counts != "none" and count is not None:
-        B, S = data.shape
-        in_bin = np.bincount(cube.bin_of_records()[cube.bin_of_records() >= 0], minlength=B)
-        for b in range(B):
-            yc = math.sqrt(yedges[b] * yedges[b + 1])
-            for s in range(S):
-                if data.mask is not np.ma.nomask and data.mask[b, s]:
+        bins = cube.bin_of_records()
+        in_bin = np.bincount(bins[bins >= 0], minlength=len(cube.edges) - 1)  # this cube's records
+        for k, b in enumerate(rows.bins):
+            for s in range(data.shape[1]):
+                if np.ma.is_masked(data[k, s]):
                     continue
                 if counts == "deviations" and count[s, b] >= in_bin[b]:
                     continue
-                rgba = cmap(norm(data[b, s]))
+                rgba = cmap(norm(data[k, s]))
                 lum = 0.299 * rgba[0] + 0.587 * rgba[1] + 0.114 * rgba[2]
-                ax.text(0.5 * (scale_edges[s] + scale_edges[s + 1]), yc, str(int(count[s, b])),
+                ax.text(0.5 * (scale_edges[s] + scale_edges[s + 1]), k + 0.5, str(int(count[s, b])),
                         ha="center", va="center", fontsize=7, color="black" if lum > 0.5 else "white",
                         zorder=3)
-    return mesh, yedges, scale_edges
+    return mesh, rows, scale_edges, bool(np.ma.getmaskarray(data).any())
 
 
-def add_bin_totals(ax, cube, yedges):
-    """The number of records of each PGV/PGA bin, as labels on the right-hand axis."""
-    B = len(cube.edges) - 1
-    in_bin = np.bincount(cube.bin_of_records()[cube.bin_of_records() >= 0], minlength=B)
+def add_bin_totals(ax, rows):
+    """The number of records of each row's bin, as labels on the right-hand axis."""
     sec = ax.secondary_yaxis("right")
-    centres = [math.sqrt(yedges[b] * yedges[b + 1]) for b in range(B)]
-    sec.yaxis.set_major_locator(mticker.FixedLocator(centres))
-    sec.yaxis.set_major_formatter(mticker.FixedFormatter([f"{n}" for n in in_bin]))
+    sec.yaxis.set_major_locator(mticker.FixedLocator([k + 0.5 for k in range(len(rows))]))
+    sec.yaxis.set_major_formatter(mticker.FixedFormatter([f"{rows.records_in_bin[b]}" for b in rows.bins]))
     sec.yaxis.set_minor_locator(mticker.NullLocator())
     sec.tick_params(axis="y", length=0, labelsize=8)
     sec.set_ylabel("records in bin", fontsize=9)
     return sec
 
 
-def draw_contours(ax, fit, norm_, pgv_range, color="black", label_prefix="", levels=CONTOUR_LEVELS):
-    """The fit's k % contours as PGA(PGV/PGA) curves over the records' PGV/PGA range."""
+def draw_contours(ax, rows, fit, norm_, pgv_range, color="black", label_prefix="", levels=CONTOUR_LEVELS):
+    """The fit's k % contours as PGA(PGV/PGA) curves over the records' PGV/PGA range, in the rows'
+    coordinates (broken where PGV/PGA lies in a bin without records)."""
     handles = []
     v = np.geomspace(pgv_range[0], pgv_range[1], 200) if pgv_range[1] > pgv_range[0] else np.array(pgv_range)
+    y = rows.y(v)
     for lev in levels:
         pga = contour_pga(fit, norm_, v, lev)
         style = CONTOUR_STYLE[lev]
@@ -600,7 +643,7 @@ def draw_contours(ax, fit, norm_, pgv_range, color="black", label_prefix="", lev
         if not np.any((pga >= x0) & (pga <= x1)):
             where = " (left of the plot)" if np.all(pga < x0) else (" (right of the plot)" if np.all(pga > x1)
                                                                    else " (outside the plot)")
-        (line,) = ax.plot(pga, v, color=color, ls=style["ls"], lw=style["lw"], zorder=4,
+        (line,) = ax.plot(pga, y, color=color, ls=style["ls"], lw=style["lw"], zorder=4,
                           path_effects=[pe.Stroke(linewidth=style["lw"] + 2.2, foreground="white"), pe.Normal()],
                           label=f"{label_prefix}{lev} % contour{where}")
         ax.set_xlim(x0, x1)
@@ -616,19 +659,18 @@ def counts_mode(cube, option):
 
 
 def plot_map(cube, obj, fit, norm_, info, path, counts):
+    load_matplotlib()
     fig, ax = plt.subplots(figsize=(9.5, 6.2), dpi=DPI)
     cmap = plt.get_cmap("viridis")
     cnorm = mcolors.Normalize(0.0, 1.0)
-    mesh, yedges, _ = draw_surface(ax, cube, obj.fragility, obj.count, cmap, cnorm, counts)
-    held = np.flatnonzero(np.bincount(cube.bin_of_records()[cube.bin_of_records() >= 0], minlength=len(yedges) - 1))
-    if held.size:  # the rows of bins without records, below and above the records' bins, left out
-        ax.set_ylim(yedges[held[0]], yedges[held[-1] + 1])
-    add_bin_totals(ax, cube, yedges)
+    mesh, rows, _, hatched = draw_surface(ax, cube, obj.fragility, obj.count, cmap, cnorm, counts)
+    add_bin_totals(ax, rows)
     cb = fig.colorbar(mesh, ax=ax, ticks=[0, 0.25, 0.5, 0.75, 1.0], pad=0.09)
     cb.set_label("P(overturn): mean over the records of the cell")
-    handles = [mpatches.Patch(facecolor="white", edgecolor="0.5", hatch="///", label="no record in bin")]
+    handles = [mpatches.Patch(facecolor="white", edgecolor="0.5", hatch="///",
+                              label="no simulated cell (not run or failed)")] if hatched else []
     if fit is not None:
-        handles += draw_contours(ax, fit, norm_, info["pgv_pga_range_s"])
+        handles += draw_contours(ax, rows, fit, norm_, info["pgv_pga_range_s"])
         sig = fit_sigma(fit, np.array(info["x_range"]))
         sig_txt = f"{sig.min():.2g}" if abs(sig[0] - sig[1]) < 1e-9 else f"{sig.min():.2g}\u2013{sig.max():.2g}"
         fit_text = (f"{FIT_LABEL}: {info['n_cells']} cells of {info['n_records']} records, "
@@ -648,13 +690,25 @@ def plot_map(cube, obj, fit, norm_, info, path, counts):
     plt.close(fig)
 
 
+RECORDS_LISTED = 6  # panels with at most this many records name them
+
+
+def record_label(cube, r):
+    return f"{cube.records[r]} ({cube.pgv_pga[r]:.3g} s)"
+
+
 def plot_records(cube, obj, fit, norm_, path):
     """One panel per PGV/PGA bin that holds records (bins without are left out, not drawn empty)."""
+    load_matplotlib()
     bins = cube.bin_of_records()
     shown = [b for b in range(len(cube.edges) - 1) if np.any(bins == b)] or [0]
     ncol = min(3, len(shown))
     nrow = int(math.ceil(len(shown) / ncol))
-    fig, axes = plt.subplots(nrow, ncol, figsize=(4.1 * ncol + 1.2, 2.9 * nrow + 1.3), dpi=DPI,
+    # a panel of up to RECORDS_LISTED records names them in a legend to its right, off the curves;
+    # the figure widens by the longest name (about 0.06 in per character at 7 pt)
+    listed = [r for b in shown if np.sum(bins == b) <= RECORDS_LISTED for r in np.flatnonzero(bins == b)]
+    legend_in = (0.5 + 0.06 * max(len(record_label(cube, r)) for r in listed)) if listed else 0.0
+    fig, axes = plt.subplots(nrow, ncol, figsize=((4.1 + legend_in) * ncol + 1.2, 2.9 * nrow + 1.3), dpi=DPI,
                              sharex=True, sharey=True, squeeze=False)
     finite = cube.pgv_pga[np.isfinite(cube.pgv_pga) & (cube.pgv_pga > 0)]
     lo, hi = (finite.min(), finite.max()) if finite.size else (0.05, 0.5)
@@ -677,15 +731,15 @@ def plot_records(cube, obj, fit, norm_, path):
         ax.grid(True, color="0.88", lw=0.6)
         ax.set_ylim(-0.05, 1.05)
         ax.set_yticks([0, 0.5, 1])
-        if not recs:
+        if not recs:  # only when no bin holds a record: the one panel says so
             ax.text(0.5, 0.5, "no records", transform=ax.transAxes, ha="center", va="center", color="0.5")
             continue
         for r in recs:  # above the bin mean, so a bin of one record still shows its colour
             ax.plot(cube.scales, obj.probability[r], color=cmap(cnorm(cube.pgv_pga[r])), lw=1.3,
-                    marker=marker, ms=3.5, alpha=0.85, zorder=7,
-                    label=f"{cube.records[r]} ({cube.pgv_pga[r]:.3g} s)")
-        if len(recs) <= 6:  # where the curves leave the most room; 'best' weighs every data point
-            ax.legend(loc="best", fontsize=7, frameon=True, framealpha=0.85, handlelength=1.5)
+                    marker=marker, ms=3.5, alpha=0.85, zorder=7, label=record_label(cube, r))
+        if len(recs) <= RECORDS_LISTED:
+            ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0, fontsize=7, frameon=False,
+                      handlelength=1.5)
         ax.plot(cube.scales, obj.fragility[:, b], color="black", lw=2.6, ls="--", zorder=5)
         if fit is not None:
             v = float(np.median(cube.pgv_pga[recs]))
@@ -743,6 +797,7 @@ def variant_lognormal(cube, obj, args, pgv_pga_s):
 
 
 def plot_variant_band(cube, name, curves, pooled, pgv_pga_s, path):
+    load_matplotlib()
     fig, ax = plt.subplots(figsize=(11, 5.6), dpi=DPI)
     a = pooled["pga_g"]
     for k, (theta, beta, how) in curves:
@@ -943,28 +998,31 @@ class _View:
 
 
 def plot_diff(view_a, view_b, name, fa, ca_, fb, cb_, d, stats, la, lb, fits, path, counts):
-    fig = plt.figure(figsize=(18.5, 6.4), dpi=DPI)
-    outer = fig.add_gridspec(1, 2, width_ratios=[2.1, 1.08], wspace=0.13,
-                             left=0.045, right=0.965, bottom=0.2, top=0.84)
+    load_matplotlib()
+    fig = plt.figure(figsize=(19.5, 6.4), dpi=DPI)
+    outer = fig.add_gridspec(1, 2, width_ratios=[2.1, 1.08], wspace=0.2,
+                             left=0.06, right=0.965, bottom=0.2, top=0.84)
     left = outer[0].subgridspec(1, 3, width_ratios=[1, 1, 0.045], wspace=0.07)
     right = outer[1].subgridspec(1, 2, width_ratios=[1, 0.045], wspace=0.06)
     ax_a, ax_b, cax_p = fig.add_subplot(left[0]), fig.add_subplot(left[1]), fig.add_subplot(left[2])
     ax_d, cax_d = fig.add_subplot(right[0]), fig.add_subplot(right[1])
     cmap = plt.get_cmap("viridis")
     pn = mcolors.Normalize(0.0, 1.0)
+    # the same rows in the three panels: the bins with records in either cube
+    rows = MapRows(view_a.edges, np.concatenate([view_a.pgv_pga, view_b.pgv_pga]))
     for ax, v, frag, cnt, lab, fit in ((ax_a, view_a, fa, ca_, la, fits[0]), (ax_b, view_b, fb, cb_, lb, fits[1])):
-        mesh, _, _ = draw_surface(ax, v, frag, cnt, cmap, pn, counts)
+        mesh, _, _, _ = draw_surface(ax, v, frag, cnt, cmap, pn, counts, rows)
         ax.set_title(f"{lab}: P(overturn)  ({os.path.basename(v.path)})", fontsize=10)
         if fit is not None:
-            draw_contours(ax, fit[0], fit[1], fit[2]["pgv_pga_range_s"])
+            draw_contours(ax, rows, fit[0], fit[1], fit[2]["pgv_pga_range_s"])
     fig.colorbar(mesh, cax=cax_p, ticks=[0, 0.25, 0.5, 0.75, 1], label="P(overturn)")
     dmap = plt.get_cmap("RdBu_r")
     dn = mcolors.Normalize(-1.0, 1.0)
-    mesh_d, _, _ = draw_surface(ax_d, view_a, d, None, dmap, dn, "none")
+    mesh_d, _, _, _ = draw_surface(ax_d, view_a, d, None, dmap, dn, "none", rows)
     handles = []
     for fit, color, lab in ((fits[0], "black", la), (fits[1], "tab:orange", lb)):
         if fit is not None:
-            handles += draw_contours(ax_d, fit[0], fit[1], fit[2]["pgv_pga_range_s"], color=color,
+            handles += draw_contours(ax_d, rows, fit[0], fit[1], fit[2]["pgv_pga_range_s"], color=color,
                                      label_prefix=f"{lab} ", levels=(50,))
     ax_d.set_title(f"difference {la} \u2212 {lb} (red: {la} more fragile)\n"
                    f"mean \u00b1 sd = {stats[1]:+.3f} \u00b1 {stats[2]:.3f} over {stats[0]} cells", fontsize=10)
@@ -972,7 +1030,7 @@ def plot_diff(view_a, view_b, name, fa, ca_, fb, cb_, d, stats, la, lb, fits, pa
         ax.set_ylabel("")
     ax_b.tick_params(axis="y", labelleft=False)
     fig.colorbar(mesh_d, cax=cax_d, ticks=[-1, -0.5, 0, 0.5, 1], label=f"P({la}) \u2212 P({lb})")
-    leg = [mpatches.Patch(facecolor="white", edgecolor="0.5", hatch="///", label="no record / not in both")]
+    leg = [mpatches.Patch(facecolor="white", edgecolor="0.5", hatch="///", label="no cell in both cubes")]
     if fits[0] is not None or fits[1] is not None:
         leg += [mlines.Line2D([], [], color="black", lw=2, ls=CONTOUR_STYLE[k]["ls"], label=f"{k} % contour")
                 for k in CONTOUR_LEVELS]

@@ -12,6 +12,7 @@ import importlib.util
 import json
 import math
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -345,6 +346,271 @@ class RigidPlot(unittest.TestCase):
         self.assertIn("no such file", p.stderr)
         p = run_tool("maps", self.cube, "--out", self.tmp, "--object", "nope", expect=2)
         self.assertIn("no object 'nope'", p.stderr)
+
+
+# --------------------------------------------------------------------------------------------
+# Figures: which rows and panels a map shows, and legends off the data
+
+
+def display_paths(artist):
+    """The artist's drawn geometry in display coordinates, as (path, filled, pad): lines split at
+    NaNs (pad: half the marker size, in pixels), a mesh's cells, a band's or patch's outline."""
+    import matplotlib.collections
+    import matplotlib.lines
+    import matplotlib.path
+    out = []
+    if isinstance(artist, matplotlib.lines.Line2D):
+        xy = artist.get_transform().transform(artist.get_xydata())
+        ok = np.all(np.isfinite(xy), axis=1)
+        pad = 0.5 * artist.get_markersize() * artist.figure.dpi / 72 if artist.get_marker() not in (None, "", "None") else 0
+        start = None
+        for i in range(len(ok) + 1):  # each run of finite points is one polyline
+            if i < len(ok) and ok[i]:
+                start = i if start is None else start
+            elif start is not None:
+                out.append((matplotlib.path.Path(xy[start:i]), False, pad))
+                start = None
+        return out
+    if isinstance(artist, matplotlib.collections.PathCollection):  # scatter: markers at data offsets
+        xy = artist.get_offset_transform().transform(artist.get_offsets())
+        size = math.sqrt(max(artist.get_sizes(), default=0.0)) * artist.figure.dpi / 72
+        return [(matplotlib.path.Path(p[None, :]), False, 0.5 * size) for p in xy if np.all(np.isfinite(p))]
+    trans = artist.get_transform()
+    for path in artist.get_paths() if hasattr(artist, "get_paths") else [artist.get_path()]:
+        out.append((trans.transform_path(path), True, 0))
+    return out
+
+
+def legend_overlaps(fig):
+    """(legend, axes, artist) triples where a legend's window extent touches drawn data: a line or
+    marker inside it, a filled mesh cell, band or patch under it. Only the part of the legend inside
+    an axes can cover that axes' data (artists are clipped to their axes)."""
+    from matplotlib.transforms import Bbox
+    fig.canvas.draw()
+    legends = list(fig.legends) + [ax.get_legend() for ax in fig.axes if ax.get_legend() is not None]
+    hits = []
+    for leg in legends:
+        box = leg.get_window_extent()
+        for ax in fig.axes:
+            region = Bbox.intersection(box, ax.get_window_extent())
+            if region is None or region.width <= 0 or region.height <= 0:
+                continue
+            for artist in list(ax.lines) + list(ax.collections) + list(ax.patches):
+                if not artist.get_visible():
+                    continue
+                for path, filled, pad in display_paths(artist):
+                    r = region.padded(pad) if pad else region
+                    if path.intersects_bbox(r, filled=filled) or any(r.contains(x, y) for x, y in path.vertices):
+                        hits.append((leg, ax, artist))
+                        break
+    return hits
+
+
+class Figures(unittest.TestCase):
+    """A cube whose records fill bins 1, 2, 5 and 7 of EDGES only (3 bins without records between
+    them), two of them with few enough records to be named in a legend."""
+    HELD = {1: 20, 2: 5, 5: 20, 7: 6}
+
+    @classmethod
+    def setUpClass(cls):
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.figure
+        cls.tmp = tempfile.mkdtemp(prefix="rigid_plot_figures_")
+        rng = np.random.default_rng(20261126)
+        pgv = []
+        for b, n in cls.HELD.items():
+            pgv += list(np.exp(rng.uniform(math.log(EDGES[b]) + 0.01, math.log(EDGES[b + 1]) - 0.01, n)))
+        cls.pgv_pga = np.array(pgv)
+        cls.cube = os.path.join(cls.tmp, "gapped.h5")
+        outcome = planted_outcomes(rng, cls.pgv_pga, MU0, MU1, SIGMA)
+        # the 6 records of bin 7 overturn at random (P ~ 0.5 at every scale): their curves zigzag over
+        # the whole panel, so no corner inside it is free for a legend
+        last = [r for r, v in enumerate(cls.pgv_pga) if bin_of(v) == 7]
+        outcome[last] = np.where(rng.random(outcome[last].shape) < 0.5, 2, 1)
+        write_cube(cls.cube, cls.pgv_pga, [("rock", outcome, {})])
+        other = os.path.join(cls.tmp, "gapped_b.h5")
+        write_cube(other, cls.pgv_pga, [("rock", planted_outcomes(rng, cls.pgv_pga, MU0 - 0.3, MU1, SIGMA), {})])
+        curve = os.path.join(cls.tmp, "curve.csv")
+        a = np.geomspace(1e-3, 10.0, 40)
+        with open(curve, "w") as fh:
+            fh.write("pga_g,annual_rate\n" + "".join(f"{x!r},{1e-4 * x ** -2.0!r}\n" for x in a))
+        accuracy_csv = os.path.join(cls.tmp, "accuracy.csv")
+        write_accuracy_rows(accuracy_csv)
+
+        rp = load_module()
+        import rigid_fragility
+        import accuracy_plot
+        import fragility_fit
+        cls.figures = {}
+        original = matplotlib.figure.Figure.savefig
+
+        def keep(fig, fname, *args, **kwargs):  # the tools write through a private temporary ".NAME.XXXX.tmp"
+            name = os.path.basename(str(fname))
+            cls.figures[re.sub(r"^\.(.*)\.[^.]+\.tmp$", r"\1", name)] = fig
+            return original(fig, fname, *args, **kwargs)
+
+        matplotlib.figure.Figure.savefig = keep
+        try:
+            cls.assert_zero(rp.main(["maps", cls.cube, "--out", os.path.join(cls.tmp, "maps")]), "maps")
+            cls.assert_zero(rp.main(["diff", cls.cube, other, "--out", os.path.join(cls.tmp, "diff")]), "diff")
+            grid = np.geomspace(0.05, 5.0, 200)
+            lognormals = [(0.4, 0.3), (0.6, 0.4), (0.9, 0.35)]
+            pooled = fragility_fit.pooled_fragility(lognormals, grid)
+            rp.plot_variant_band(rp.Cube(cls.cube), "rock", [(k, (t, b, "fit")) for k, (t, b) in enumerate(lognormals)],
+                                 pooled, 0.15, os.path.join(cls.tmp, "rock_variants.png"))
+            cls.assert_zero(rigid_fragility.main(["hazard", cls.cube, "--curve", curve, "--age", "1000",
+                                                  "--bootstrap", "20", "--plot", os.path.join(cls.tmp, "hazard.png")]),
+                            "hazard --plot")
+            accuracy_plot.plot(accuracy_plot.read(accuracy_csv), os.path.join(cls.tmp, "accuracy_pareto.png"))
+            draw_shaketable_fragility(rng, os.path.join(cls.tmp, "shaketable_fragility.png"))
+        finally:
+            matplotlib.figure.Figure.savefig = original
+
+    @staticmethod
+    def assert_zero(code, what):
+        if code not in (0, None):
+            raise AssertionError(f"{what}: exit {code}")
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.tmp, ignore_errors=True)
+
+    def figure(self, suffix):
+        found = [f for name, f in self.figures.items() if name.endswith(suffix)]
+        self.assertEqual(len(found), 1, (suffix, sorted(self.figures)))
+        return found[0]
+
+    @staticmethod
+    def bin_label(b):
+        def edge(v):
+            return "\u221e" if v == math.inf else f"{v:.3g}"
+        return f"{edge(EDGES[b])}\u2013{edge(EDGES[b + 1])}"
+
+    def test_map_rows_are_the_bins_with_records(self):
+        import matplotlib.collections
+        held = sorted({bin_of(v) for v in self.pgv_pga})
+        self.assertEqual(held, sorted(self.HELD))  # the fixture itself
+        for suffix, panels in (("rock_map.png", 1), ("rock_diff.png", 3)):
+            fig = self.figure(suffix)
+            fig.canvas.draw()
+            # the map panels: a mesh and a title (a colour bar's axes has a mesh, no title)
+            maps = [ax for ax in fig.axes if ax.get_title()
+                    and any(isinstance(c, matplotlib.collections.QuadMesh) for c in ax.collections)]
+            self.assertEqual(len(maps), panels, suffix)
+            for ax in maps:
+                mesh = [c for c in ax.collections if isinstance(c, matplotlib.collections.QuadMesh)][0]
+                rows, cols = np.array(mesh.get_coordinates().shape[:2]) - 1
+                self.assertEqual((rows, cols), (len(held), len(SCALES)), suffix)
+                positions = list(ax.get_yticks())  # the labels as the formatter writes them (hidden on shared axes)
+                ticks = [ax.yaxis.get_major_formatter()(y, i) for i, y in enumerate(positions)]
+                lo, hi = sorted(ax.get_ylim())
+                shown = [t for t, y in zip(ticks, positions) if lo <= y <= hi]
+                self.assertEqual(shown, [self.bin_label(b) for b in held], suffix)
+        # the map's cells are the cube's fragility of the bins with records, in order
+        fig = self.figure("rock_map.png")
+        mesh = [c for c in fig.axes[0].collections if isinstance(c, matplotlib.collections.QuadMesh)][0]
+        _, frag, _ = derived(planted_outcomes_of(self.cube), self.pgv_pga)
+        shown = np.ma.filled(mesh.get_array().astype(float), np.nan).reshape(len(held), len(SCALES))
+        np.testing.assert_allclose(shown, frag.T[held], rtol=0, atol=1e-12)
+
+    def test_records_panels_only_for_bins_with_records(self):
+        fig = self.figure("rock_records.png")
+        panels = [ax for ax in fig.axes if ax.get_visible() and ax.get_title().startswith("PGV/PGA")]
+        self.assertEqual([ax.get_title().split(" (")[0] for ax in panels],
+                         [f"PGV/PGA {self.bin_label(b)} s" for b in sorted(self.HELD)])
+        self.assertNotIn("no records", [t.get_text() for ax in fig.axes for t in ax.texts])
+        named = [ax for ax in panels if ax.get_legend() is not None]
+        self.assertEqual(len(named), 2)  # the panels of 5 and 6 records name them
+
+    def test_legends_off_the_data(self):
+        expected = ("rock_map.png", "rock_records.png", "rock_diff.png", "rock_variants.png", "hazard.png",
+                    "accuracy_pareto.png", "shaketable_fragility.png")
+        for suffix in expected:
+            fig = self.figure(suffix)
+            fig.canvas.draw()
+            legends = list(fig.legends) + [ax.get_legend() for ax in fig.axes if ax.get_legend() is not None]
+            self.assertTrue(legends, f"{suffix}: no legend drawn")
+            hits = legend_overlaps(fig)
+            self.assertEqual([], [(suffix, type(a).__name__, a.get_label()) for _, _, a in hits])
+
+    def test_overlap_oracle_finds_a_covered_curve(self):
+        """The oracle itself: a legend put on a curve is found, one beside the axes is not."""
+        import matplotlib.pyplot as plt
+        fig, ax = plt.subplots()
+        x = np.linspace(0, 1, 50)
+        ax.plot(x, x, label="diagonal")
+        ax.legend(loc="center")
+        self.assertEqual(len(legend_overlaps(fig)), 1)
+        ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0))
+        self.assertEqual(legend_overlaps(fig), [])
+        ax.fill_between(x, 0, 1, alpha=0.2)
+        ax.legend(loc="center")  # inside a filled band: covered, though no vertex lies in the legend
+        self.assertGreaterEqual(len(legend_overlaps(fig)), 1)
+        plt.close(fig)
+        fig, ax = plt.subplots()
+        ax.scatter([0.5], [0.5], label="one point")  # a scatter marker under the legend
+        ax.set_xlim(0, 1)
+        ax.set_ylim(0, 1)
+        ax.legend(loc="center")
+        self.assertEqual(len(legend_overlaps(fig)), 1)
+        ax.legend(loc="upper left")
+        self.assertEqual(legend_overlaps(fig), [])
+        plt.close(fig)
+
+
+def draw_shaketable_fragility(rng, path):
+    """`rigid shaketable fragility`'s figure on planted lab tests: two PGV/PGA bins of 3 motions,
+    12 PGAs each, outcomes from a probit of median 0.5 g, the model's share and both fits."""
+    import shaketable_fragility as sf
+    scales = np.linspace(0.1, 1.2, 12)
+    p = np.array([phi(math.log(a / 0.5) / 0.3) for a in scales])
+    k = (rng.random((6, 12)) < p).astype(float)
+    lab = sf.BinnedCells(k, np.ones((6, 12)), scales)
+    fit = {"theta_g": 0.5, "beta": 0.3, "theta_interval_g": (0.45, 0.56)}
+    rows = [{"motions": np.arange(3 * i, 3 * i + 3), "lab": fit, "model": dict(fit, theta_g=0.55),
+             "label": label, "tests": 36} for i, label in enumerate(("0.06-0.1 s", "0.1-0.2 s"))]
+    sf.draw(rows, lab, np.tile(p, (6, 1)), np.ones((6, 12), bool), scales, path, [])
+
+
+def planted_outcomes_of(cube):
+    with h5py.File(cube, "r") as f:
+        return f["objects/rock/outcome"][()]
+
+
+def write_accuracy_rows(path):
+    """A small `rigid study accuracy` CSV: two cases, a safety sweep per integrator, tolerances, the
+    presets, the converged reference and the contact-model rows against an oracle."""
+    cols = ["scene", "motion", "setting", "axis", "preset", "integrator", "safety", "wall_s", "error", "traj_rel_err",
+            "outcome_match", "oracle", "oracle_value", "oracle_err", "model_quantity", "model_value",
+            "search_wall_s", "contact", "stiffness_n_m"]
+    rows = []
+    for case, scale in (("a", 1.0), ("b", 2.0)):
+        def row(setting, axis, **kw):
+            r = dict.fromkeys(cols, "")
+            r.update(scene=f"scene_{case}", motion="sine", setting=setting, axis=axis, integrator="splitting",
+                     safety="0.2", outcome_match="1", oracle="housner_one_sine_threshold_g")
+            r.update({k: str(v) for k, v in kw.items()})
+            rows.append(r)
+        for integ in ("splitting", "rk4"):
+            for sf in (0.05, 0.1, 0.2, 0.4, 0.8):
+                row(f"safety {sf:g} {integ}", "safety", integrator=integ, safety=sf, wall_s=scale / sf,
+                    error=scale * 1e-3 * sf ** 2)
+        row("tolerance loose", "tolerance", wall_s=scale * 3, error=scale * 2e-4)
+        row("tolerance sleep", "tolerance", wall_s=scale * 0.3, error=scale * 1e-6)  # cheap and accurate: lower left
+        for p, sf in (("fast", 0.8), ("balanced", 0.2), ("reference", 0.05)):
+            row(f"preset {p}", "preset", preset=p, safety=sf, wall_s=scale / sf, error=scale * 1e-3 * sf ** 2)
+        row("converged reference", "converged", safety=0.01, wall_s=scale * 100, error=0, traj_rel_err=0)
+        for k in (1e8, 1e9, 1e10):
+            row(f"stiffness {k:g}", "stiffness", contact="penalty", stiffness_n_m=k, wall_s=scale * math.log10(k),
+                oracle_err=0.1 / math.log10(k), search_wall_s=1)
+        for sf in (0.05, 0.2, 0.8):
+            row(f"rigid {sf:g}", "rigid", contact="rigid", safety=sf, wall_s=scale / sf, oracle_err=0.01 * sf,
+                search_wall_s=1)
+    with open(path, "w", newline="") as fh:
+        w = csv.DictWriter(fh, fieldnames=cols)
+        w.writeheader()
+        w.writerows(rows)
 
 
 if __name__ == "__main__":
