@@ -146,6 +146,10 @@ LabInput lab_input(const std::string& format_file) {
 }
 
 io::DesignJob::Record strong_motion_window(const motion::GroundMotion& m, const std::string& file, double level_g) {
+  io::DesignJob::Record r;
+  r.lab = file;
+  r.end = m.duration();
+  if (!(level_g > 0)) return r;  // the whole recording
   const double level = level_g * kGravity;
   long first = -1, last = -1;
   for (std::size_t i = 0; i < m.x.size(); ++i) {
@@ -154,8 +158,6 @@ io::DesignJob::Record strong_motion_window(const motion::GroundMotion& m, const 
       last = long(i);
     }
   }
-  io::DesignJob::Record r;
-  r.lab = file;
   if (first < 0) {
     r.start = 0;
     r.end = std::min(2.0, m.duration());
@@ -177,6 +179,20 @@ double static_toppling_g(const std::string& scene) {
   const auto rocking = scenario::rocking_parameters(io::load_scene(scene));
   if (!rocking) throw InputError(scene, 0, "has no single free block standing on its pedestal (no rocking parameters)");
   return std::tan(rocking->alpha);
+}
+
+double window_level_g(bool rigid_contact_only, double weakest_static_toppling_g) {
+  return (rigid_contact_only ? 0.5 : 0.1) * weakest_static_toppling_g;
+}
+
+double window_level_g(const std::vector<std::string>& scenes) {
+  double weakest = 1e300;
+  bool rigid = true;
+  for (const std::string& s : scenes) {
+    rigid = rigid && io::load_scene(s).law.model == contact::ContactModel::rigid;
+    weakest = std::min(weakest, static_toppling_g(s));
+  }
+  return window_level_g(rigid, weakest);
 }
 
 calibration::OutcomeGrid outcome_grid(const io::Cube& cube, const std::vector<double>& headings_deg) {

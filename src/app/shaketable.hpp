@@ -77,6 +77,15 @@ std::vector<io::DesignJob::Record> strong_motion_windows(const io::LabTestList& 
 /// The smallest quasi-static toppling acceleration of a scene's free block (unit: g).
 double static_toppling_g(const std::string& scene);
 
+/// The level of the strong-motion windows for these scenes (unit: g): half the weakest static
+/// toppling acceleration when every scene has rigid contact (a rock at rest on a rigid support
+/// cannot start to move below it); a tenth of it when one has penalty contact, whose compliant
+/// support lets the rock rock below that acceleration: the window then only drops the table's
+/// quiet lead-in and tail (docs/validation-shaketable.md measures what it changes).
+double window_level_g(bool rigid_contact_only, double weakest_static_toppling_g);
+/// window_level_g of these scenes' contact laws and their weakest static toppling.
+double window_level_g(const std::vector<std::string>& scenes);
+
 /// The outcome grid of a designed campaign's cube: variant v, test t (record t), heading h
 /// (rotation index h). Throws InputError if a cell is not simulated or failed.
 calibration::OutcomeGrid outcome_grid(const io::Cube& cube, const std::vector<double>& headings_deg);

@@ -206,14 +206,19 @@ campaign::CampaignOptions prepare(Calibration& c, const CalibrateOptions& o) {
   fs::create_directories(c.work, ec);
   if (ec) throw InputError(c.work.string(), 0, "cannot create the calibration's folder: " + ec.message());
   const std::map<double, std::string> bases = import_bases(o, c.work);
+  // the window's level (window_level_g): the design's contact laws decide, not the bases' scenes
+  const bool rigid_only =
+      std::all_of(o.contact_models.begin(), o.contact_models.end(), [](const std::string& m) { return m == "rigid"; });
   double weakest = 1e300;
   for (const auto& [_, scene] : bases) weakest = std::min(weakest, shaketable::static_toppling_g(scene));
-  c.windows = shaketable::strong_motion_windows(c.tests, c.lab, 0.5 * weakest);
+  const double level_g = shaketable::window_level_g(rigid_only, weakest);
+  c.windows = shaketable::strong_motion_windows(c.tests, c.lab, level_g);
   double kept = 0;
   for (const auto& w : c.windows) kept += w.end - w.start;
-  std::printf("shaketable: %zu tests of %zu recorded motions (%ld overturned); strong-motion windows (|a| > %.3f g, half "
-              "the weakest base's static toppling) keep %.0f s of motion\n",
-              c.tests.tests.size(), groups.size(), overturned, 0.5 * weakest, kept);
+  std::printf("shaketable: %zu tests of %zu recorded motions (%ld overturned); strong-motion windows (|a| > %.3f g, "
+              "%s the weakest base's static toppling) keep %.0f s of motion\n",
+              c.tests.tests.size(), groups.size(), overturned, level_g,
+              rigid_only ? "half" : "a tenth of (penalty contact rocks below it)", kept);
   for (const auto& [mm, scene] : bases) {
     for (const std::string& model : o.contact_models) {
       Physics p;

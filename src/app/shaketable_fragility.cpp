@@ -108,14 +108,14 @@ campaign::CampaignOptions prepare(Design& d, const FragilityOptions& o) {
   if (!e.json.empty()) {
     for (const std::string& s : e.scenes) job.variants.push_back({{"scene", s}});
   }
-  double weakest = shaketable::static_toppling_g(job.scene);
-  for (const std::string& s : e.scenes) weakest = std::min(weakest, shaketable::static_toppling_g(s));
-  // A rock at rest cannot start to move below its static toppling acceleration: at the grid's
-  // top PGA the record is scaled by max_pga / PGA, so half that level in the recording's own
-  // units keeps every part of it that could move the rock at any scale of the grid.
+  std::vector<std::string> scenes = e.scenes;
+  scenes.push_back(job.scene);
+  const double level_g = shaketable::window_level_g(scenes);
+  // at the grid's top PGA a recording is scaled by max_pga / PGA: the window's level in the
+  // recording's own units keeps every part of it that could move the rock at any scale of the grid
   for (std::size_t t : d.motion_test) {
     const io::LabTest& test = d.tests.tests[t];
-    const double level = 0.5 * weakest * d.measured[t].pga_g / max_pga;
+    const double level = level_g * d.measured[t].pga_g / max_pga;
     job.records.push_back(shaketable::strong_motion_window(io::read_lab_motion(test.file, d.lab.format), test.file, level));
   }
   job.lab_format_file = o.lab_format.empty() ? "" : fs::absolute(o.lab_format).string();

@@ -49,9 +49,9 @@ campaign::CampaignOptions prepare(Prediction& p, const PredictOptions& o) {
   if (!e.json.empty()) {
     for (const std::string& s : e.scenes) job.variants.push_back({{"scene", s}});
   }
-  double weakest = shaketable::static_toppling_g(job.scene);
-  for (const std::string& s : e.scenes) weakest = std::min(weakest, shaketable::static_toppling_g(s));
-  job.records = shaketable::strong_motion_windows(p.tests, p.lab, 0.5 * weakest);
+  std::vector<std::string> scenes = e.scenes;
+  scenes.push_back(job.scene);
+  job.records = shaketable::strong_motion_windows(p.tests, p.lab, shaketable::window_level_g(scenes));
   job.lab_format_file = o.lab_format.empty() ? "" : fs::absolute(o.lab_format).string();
   job.rotation_angles_deg = e.rotations_deg;
   const std::string work = o.out + ".work";
