@@ -1,9 +1,10 @@
 // Butterworth design in double precision (include/rigid/motion/butterworth.hpp). The steps are the
 // textbook ones: the analog prototype, the analog frequency transformations s -> s/Wc, Wc/s and
 // (s^2 + W0^2) / (B s), and the bilinear transform with prewarped corners (Oppenheim & Schafer,
-// Discrete-Time Signal Processing, 3rd ed., sec. 7.2; Parks & Burrus, Digital Filter Design,
-// 1987, ch. 7). Each step works on poles and zeros rather than on polynomial coefficients, which
-// would lose the poles next to z = 1 that a 0.1 Hz corner at 800 Hz puts there.
+// Discrete-Time Signal Processing, 3rd ed., sec. 7.2, for the bilinear transform; Parks & Burrus,
+// Digital Filter Design, 1987, for the analog transformations). Each step works on poles and
+// zeros rather than on polynomial coefficients, whose round-off would move the poles that a
+// 0.1 Hz corner at 800 Hz puts next to z = 1.
 #include "rigid/motion/butterworth.hpp"
 
 #include <algorithm>
