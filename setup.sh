@@ -31,7 +31,7 @@ jobs=${JOBS:-$(nproc)}
 packages=(build-essential cmake git pkg-config
   openmpi-bin libopenmpi-dev libeigen3-dev libhdf5-dev hdf5-tools libcli11-dev
   nettle-dev zlib1g-dev nlohmann-json3-dev libspdlog-dev libassimp-dev
-  googletest libgtest-dev libtomlplusplus-dev libbenchmark-dev libode-dev libliquid-dev
+  googletest libgtest-dev libtomlplusplus-dev libbenchmark-dev libode-dev
   python3 python3-numpy python3-h5py python3-matplotlib python3-scipy
   python3-xarray python3-h5netcdf python3-netcdf4 python3-pandas python3-statsmodels
   slurm-wlm munge

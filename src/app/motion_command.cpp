@@ -17,6 +17,7 @@
 #include "rigid/core/error.hpp"
 #include "rigid/io/at2.hpp"
 #include "rigid/io/record_list.hpp"
+#include "rigid/motion/butterworth.hpp"
 #include "rigid/motion/lab_processing.hpp"
 #include "rigid/motion/synth.hpp"
 
@@ -80,14 +81,20 @@ void run_lab_info(const InfoOptions& o) {
     j["pgv_m_s"] = p.pgv;
     j["pgv_pga_s"] = pgv_pga;
     j["pgd_m"] = p.pgd;
-    // the band-pass as designed (liquid-dsp), in scipy's sos layout [b0, b1, b2, 1, a1, a2]
-    io::Json sos = io::Json::array();
-    if (format.processing.band_pass) {
-      const motion::LabProcessing& q = format.processing;
-      for (const motion::Biquad& b : motion::butterworth_bandpass(q.low_hz, q.high_hz, q.order, m.dt))
-        sos.push_back({b.b0, b.b1, b.b2, 1.0, b.a1, b.a2});
+    // the filters as designed, in scipy's sos layout [b0, b1, b2, 1, a1, a2], so that they can be
+    // checked against scipy.signal.butter: the band-pass, and the combined channel's crossover pair
+    const auto sos_json = [](const std::vector<motion::Biquad>& sections) {
+      io::Json rows = io::Json::array();
+      for (const motion::Biquad& b : sections) rows.push_back({b.b0, b.b1, b.b2, 1.0, b.a1, b.a2});
+      return rows;
+    };
+    const motion::LabProcessing& q = format.processing;
+    j["filter_sos"] = q.band_pass ? sos_json(motion::butterworth_bandpass(q.low_hz, q.high_hz, q.order, m.dt))
+                                  : io::Json::array();
+    if (format.channel == io::LabChannel::combined) {
+      j["crossover_lowpass_sos"] = sos_json(motion::butterworth_lowpass(q.crossover_hz, q.order, m.dt));
+      j["crossover_highpass_sos"] = sos_json(motion::butterworth_highpass(q.crossover_hz, q.order, m.dt));
     }
-    j["filter_sos"] = sos;
     std::printf("%s\n", io::json_line(j).c_str());
   } else {
     std::printf("%s  (%s)\n", m.name.c_str(), o.lab.file.c_str());

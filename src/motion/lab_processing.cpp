@@ -1,6 +1,6 @@
-// Lab signal processing (include/rigid/motion/lab_processing.hpp): the band-pass design comes from
-// liquid-dsp; the filtering, its padding and initial states follow scipy.signal.sosfiltfilt so
-// that scipy is an independent check of the whole chain.
+// Lab signal processing (include/rigid/motion/lab_processing.hpp): the band-pass design is
+// motion/butterworth.cpp's; the filtering, its padding and initial states follow
+// scipy.signal.sosfiltfilt so that scipy is an independent check of the whole chain.
 #include "rigid/motion/lab_processing.hpp"
 
 #include <algorithm>
@@ -10,13 +10,13 @@
 #include <string>
 
 #include <Eigen/Dense>
-#include <liquid/liquid.h>
+
+#include "rigid/core/types.hpp"
 
 namespace rigid::motion {
 
 namespace {
 
-constexpr double kPiLocal = 3.14159265358979323846;
 
 // scipy.signal.lfilter_zi of one section: the state a unit step leaves it in at steady state
 std::array<double, 2> steady_state(const Biquad& s) {
@@ -44,59 +44,6 @@ std::vector<std::array<double, 2>> scaled(std::vector<std::array<double, 2>> zi,
 
 }  // namespace
 
-std::vector<Biquad> butterworth_bandpass(double low_hz, double high_hz, int order, double dt) {
-  if (!(dt > 0) || !std::isfinite(dt)) throw std::invalid_argument("the time step must be positive");
-  const double nyquist = 0.5 / dt;
-  if (!(low_hz > 0) || !(high_hz > low_hz) || !(high_hz < nyquist))
-    throw std::invalid_argument("the band-pass needs 0 < low < high < Nyquist (" + std::to_string(int(nyquist)) +
-                                " Hz at this time step)");
-  if (order < 1 || order > 8) throw std::invalid_argument("the filter order must be 1 to 8");
-  // liquid's band-pass is the digital low-pass-to-band-pass transform (Constantinides) of a
-  // bilinear low-pass: fc is the upper edge and f0 the centre with
-  // cos(2 pi f0) = cos(w1 + w2) / cos(w2 - w1), w = pi f dt; this is the same filter as
-  // scipy.signal.butter's analog transform with prewarped edges
-  const double w1 = kPiLocal * low_hz * dt, w2 = kPiLocal * high_hz * dt;
-  const double f0 = std::acos(std::cos(w1 + w2) / std::cos(w2 - w1)) / (2.0 * kPiLocal);
-  const unsigned n = unsigned(order);
-  std::vector<float> b(3 * n), a(3 * n);
-  if (liquid_iirdes(LIQUID_IIRDES_BUTTER, LIQUID_IIRDES_BANDPASS, LIQUID_IIRDES_SOS, n,
-                    float(high_hz * dt), float(f0), 1.0f, 60.0f, b.data(), a.data()) != 0)
-    throw std::invalid_argument("liquid-dsp refused the band-pass design");
-  std::vector<Biquad> sections(n);
-  for (unsigned i = 0; i < n; ++i) {
-    // liquid normalises a0 to 1
-    sections[i] = {b[3 * i], b[3 * i + 1], b[3 * i + 2], a[3 * i + 1], a[3 * i + 2]};
-  }
-  return sections;
-}
-
-namespace {
-
-std::vector<Biquad> one_sided(liquid_iirdes_bandtype band, double fc_hz, int order, double dt) {
-  if (!(dt > 0) || !std::isfinite(dt)) throw std::invalid_argument("the time step must be positive");
-  if (!(fc_hz > 0) || !(fc_hz < 0.5 / dt))
-    throw std::invalid_argument("the corner must lie in (0, Nyquist) (" + std::to_string(int(0.5 / dt)) + " Hz)");
-  if (order < 1 || order > 8) throw std::invalid_argument("the filter order must be 1 to 8");
-  const unsigned n = unsigned(order), sections = (n + 1) / 2;
-  std::vector<float> b(3 * sections), a(3 * sections);
-  if (liquid_iirdes(LIQUID_IIRDES_BUTTER, band, LIQUID_IIRDES_SOS, n, float(fc_hz * dt), 0.0f, 1.0f, 60.0f, b.data(),
-                    a.data()) != 0)
-    throw std::invalid_argument("liquid-dsp refused the filter design");
-  std::vector<Biquad> out(sections);
-  for (unsigned i = 0; i < sections; ++i) out[i] = {b[3 * i], b[3 * i + 1], b[3 * i + 2], a[3 * i + 1], a[3 * i + 2]};
-  return out;
-}
-
-}  // namespace
-
-std::vector<Biquad> butterworth_lowpass(double fc_hz, int order, double dt) {
-  return one_sided(LIQUID_IIRDES_LOWPASS, fc_hz, order, dt);
-}
-
-std::vector<Biquad> butterworth_highpass(double fc_hz, int order, double dt) {
-  return one_sided(LIQUID_IIRDES_HIGHPASS, fc_hz, order, dt);
-}
-
 std::vector<double> merge_complementary(const std::vector<double>& low, const std::vector<double>& high,
                                         double crossover_hz, int order, double dt) {
   if (low.size() != high.size()) throw std::invalid_argument("the two channels differ in length");
@@ -107,7 +54,7 @@ std::vector<double> merge_complementary(const std::vector<double>& low, const st
 }
 
 double gain_at(const std::vector<Biquad>& sections, double f_hz, double dt) {
-  const std::complex<double> z1 = std::polar(1.0, -2.0 * kPiLocal * f_hz * dt);  // z^-1
+  const std::complex<double> z1 = std::polar(1.0, -2.0 * kPi * f_hz * dt);  // z^-1
   std::complex<double> h = 1.0;
   for (const Biquad& s : sections)
     h *= (s.b0 + s.b1 * z1 + s.b2 * z1 * z1) / (1.0 + s.a1 * z1 + s.a2 * z1 * z1);
@@ -132,10 +79,14 @@ std::vector<double> sos_filter(const std::vector<Biquad>& sections, const std::v
 }
 
 std::vector<double> filtfilt(const std::vector<Biquad>& sections, const std::vector<double>& x) {
-  // scipy's padlen: 3 (2 sections + 1), less the trailing zeros of first-order sections
-  std::size_t first_order = 0;
-  for (const Biquad& s : sections) first_order += s.b2 == 0.0 && s.a2 == 0.0;
-  const std::size_t pad = 3 * (2 * sections.size() + 1 - first_order);
+  // scipy's padlen: 3 (2 sections + 1), less the smaller count of sections with b2 = 0 and with
+  // a2 = 0 (an odd order's extra pole and zero at the origin may sit in different sections)
+  std::size_t no_b2 = 0, no_a2 = 0;
+  for (const Biquad& s : sections) {
+    no_b2 += s.b2 == 0.0;
+    no_a2 += s.a2 == 0.0;
+  }
+  const std::size_t pad = 3 * (2 * sections.size() + 1 - std::min(no_b2, no_a2));
   const std::size_t n = x.size();
   if (n <= pad)
     throw std::invalid_argument("the signal needs more than " + std::to_string(pad) +

@@ -11,7 +11,7 @@ calls and the `rigid` executable's link line; docs/architecture.md, "Layout and 
 
 (a module may include its own headers and those of every module below it, transitively), and the
 third-party rules: the engine core (geometry .. scenario, study) includes only Eigen and the standard
-library, and motion liquid-dsp (the lab band-pass design: numerics, no I/O); only io includes HDF5,
+library; only io includes HDF5,
 toml++, nettle, assimp and CGAL; nlohmann-json is io's and above (io/json.hpp); only campaign includes MPI;
 zlib is io's (gzip lab recordings) and campaign's (journal checksums); spdlog is campaign's and app's (campaign/log.hpp); only app includes CLI11; POSIX headers (unistd.h, sys/...)
 only io, campaign and app. A quoted include that is not "rigid/..." must be a private header of
@@ -54,7 +54,6 @@ THIRD_PARTY = {
     "json": {"io", "campaign", "app"},
     "mpi": {"campaign"},
     "zlib": {"io", "campaign"},
-    "liquid": {"motion"},
     "spdlog": {"campaign", "app"},
     "cli11": {"app"},
 }
@@ -84,8 +83,6 @@ def family(header):
         return "mpi"
     if header in ("zlib.h",):
         return "zlib"
-    if header.startswith("liquid/"):
-        return "liquid"
     if header.startswith("spdlog/"):
         return "spdlog"
     if header.startswith("CLI/"):

@@ -1,6 +1,7 @@
-// Lab signal processing against closed forms: a sine inside the band passes the zero-phase
-// Butterworth band-pass unchanged (amplitude and phase), one outside is attenuated by the
-// Butterworth magnitude squared, the second difference of a sine is -w^2 times it (to the
+// Lab signal processing against closed forms: the band-, low- and high-pass designs of every
+// order have the Butterworth magnitude through the bilinear transform; a sine inside the band
+// passes the zero-phase band-pass with that magnitude squared and no lag, one outside is
+// attenuated by it, the second difference of a sine is -w^2 times it (to the
 // operator's known gain), and the baselines remove exactly the polynomials they fit.
 #include <cmath>
 #include <vector>
@@ -70,15 +71,18 @@ TEST(LabBandPass, ASineInsideTheBandPassesWithItsAmplitudeAndNoLag) {
   for (double f : {1.0, 3.0, 8.0}) {
     const std::vector<double> x = tapered_sine(f, 1.0, 40.0);
     const std::vector<double> y = filtfilt(s, x);
-    // the exact Butterworth's |H|^2 is 1 to 1e-6 here; liquid-dsp designs in single precision,
-    // which moves the poles next to z = 1 enough to lift the pass band by 2.3e-3 at 1 Hz, 5.6e-4
-    // at 2 Hz, 2.4e-4 at 3 Hz (scipy.signal.sosfiltfilt with its sections agrees)
-    const double tolerance = f < 2 ? 3e-3 : 1e-3;
-    EXPECT_LT(middle_error(y, x), tolerance) << f << " Hz";
+    // the forward-backward filter's gain is the Butterworth |H|^2: 1 - 1.7e-10 at 1 Hz but
+    // 1 - 8e-5 at 8 Hz. What else is left is the 0.1 Hz corner's slow response to the ramps
+    // (up to 6e-5 at 1 Hz, 1e-6 in the fitted amplitude); a single-precision design would lift
+    // the pass band by 2.3e-3 at 1 Hz
+    const double expected = std::pow(butterworth_gain(f, 0.1, 25.0, 4), 2);
+    std::vector<double> scaled = x;
+    for (double& v : scaled) v *= expected;
+    EXPECT_LT(middle_error(y, scaled), 1e-4) << f << " Hz";
     // no lag: y fitted as A sin + B cos over the middle has phase atan2(B, A) = 0
     const auto [amp_sin, amp_cos] = sine_fit(y, f);
-    EXPECT_NEAR(std::atan2(amp_cos, amp_sin), 0.0, 1e-4) << f << " Hz";
-    EXPECT_NEAR(std::hypot(amp_sin, amp_cos), 1.0, tolerance) << f << " Hz";
+    EXPECT_NEAR(std::atan2(amp_cos, amp_sin), 0.0, 1e-7) << f << " Hz";
+    EXPECT_NEAR(std::hypot(amp_sin, amp_cos), expected, 2e-6) << f << " Hz";
   }
 }
 
@@ -87,14 +91,52 @@ TEST(LabBandPass, ASineOutsideTheBandIsAttenuatedAsTheButterworthMagnitudeSquare
   for (double f : {25.0, 40.0, 50.0, 80.0}) {
     const std::vector<double> y = filtfilt(s, tapered_sine(f, 1.0, 40.0));
     const double expected = std::pow(butterworth_gain(f, 0.1, 25.0, 4), 2);
-    // the one-pass design agrees with the closed form to float round-off of the coefficients
-    EXPECT_NEAR(gain_at(s, f, kDt), butterworth_gain(f, 0.1, 25.0, 4), 1e-4) << f << " Hz";
+    // the one-pass design agrees with the closed form to double round-off
+    EXPECT_NEAR(gain_at(s, f, kDt), butterworth_gain(f, 0.1, 25.0, 4), 1e-10) << f << " Hz";
     const auto [amp_sin, amp_cos] = sine_fit(y, f);
     EXPECT_NEAR(std::hypot(amp_sin, amp_cos), expected, 1e-3 * expected) << f << " Hz";
   }
   // below the band: a 0.02 Hz sine over 250 s (5 periods), |H|^2 = 1 / (1 + 5^8) = 2.6e-6
   const std::vector<double> y = filtfilt(s, sine(0.02, 1.0, 250.0));
   EXPECT_LT(middle_peak(y), 1e-3);
+}
+
+// The low- and high-pass of every order against the Butterworth magnitudes through the bilinear
+// transform, 1 / sqrt(1 + r^2n) and r^n / sqrt(1 + r^2n), r = tan(pi f dt) / tan(pi fc dt), with a
+// corner next to z = 1 (0.15 Hz at 800 Hz), where a single-precision design is off by ~1 %. The
+// tolerance, 1e-6 relative, is that of evaluating the sections next to z = 1: a double zero at
+// z = 1 gives |1 - z^-1|^2 ~ (2 pi f dt)^2 = 1e-8 at 0.015 Hz, computed from coefficients of order 1.
+TEST(LabLowHighPass, EveryOrderHasTheButterworthMagnitude) {
+  for (double fc : {0.15, 2.0, 60.0}) {
+    for (int n = 1; n <= 8; ++n) {
+      const std::vector<Biquad> low = butterworth_lowpass(fc, n, kDt), high = butterworth_highpass(fc, n, kDt);
+      EXPECT_EQ(low.size(), std::size_t((n + 1) / 2));
+      EXPECT_EQ(high.size(), std::size_t((n + 1) / 2));
+      for (double ratio : {0.1, 0.5, 0.9, 1.0, 1.2, 3.0}) {
+        const double f = ratio * fc;
+        const double r = std::tan(kPi * f * kDt) / std::tan(kPi * fc * kDt), rn = std::pow(r, n);
+        const double lp = 1.0 / std::sqrt(1.0 + rn * rn), hp = rn * lp;
+        EXPECT_NEAR(gain_at(low, f, kDt), lp, 1e-6 * lp) << "low-pass " << fc << " Hz order " << n << " at " << f << " Hz";
+        EXPECT_NEAR(gain_at(high, f, kDt), hp, 1e-6 * hp) << "high-pass " << fc << " Hz order " << n << " at " << f << " Hz";
+      }
+    }
+  }
+  EXPECT_THROW(butterworth_lowpass(0.0, 4, kDt), std::invalid_argument);
+  EXPECT_THROW(butterworth_highpass(400.0, 4, kDt), std::invalid_argument);
+  EXPECT_THROW(butterworth_lowpass(2.0, 9, kDt), std::invalid_argument);
+}
+
+// The band-pass of every order against the closed form at a low corner next to z = 1 (tolerance
+// as for the low- and high-pass above)
+TEST(LabBandPass, EveryOrderHasTheButterworthMagnitude) {
+  for (int n = 1; n <= 8; ++n) {
+    const std::vector<Biquad> s = butterworth_bandpass(0.1, 25.0, n, kDt);
+    EXPECT_EQ(s.size(), std::size_t(n));
+    for (double f : {0.02, 0.05, 0.1, 0.2, 0.5, 1.0, 5.0, 25.0, 60.0}) {
+      const double expected = butterworth_gain(f, 0.1, 25.0, n);
+      EXPECT_NEAR(gain_at(s, f, kDt), expected, 1e-6 * expected) << "order " << n << " at " << f << " Hz";
+    }
+  }
 }
 
 TEST(LabBandPass, RefusesABandOutsideNyquistOrAnImpossibleOrder) {

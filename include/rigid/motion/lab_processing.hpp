@@ -3,13 +3,15 @@
 /// correction, a zero-phase Butterworth band-pass, and double differentiation of a displacement
 /// channel. No file I/O here (rigid::io reads the recordings, io/lab_recording.hpp).
 ///
-/// The band-pass is designed by liquid-dsp (Debian libliquid-dev, liquid_iirdes: Butterworth,
-/// band-pass, second-order sections), applied forward then backward in double precision exactly
-/// as scipy.signal.sosfiltfilt does with its defaults (padtype "odd", padlen 3 (2 n_sections + 1),
-/// each pass started from the sections' steady state scaled by its first sample).
+/// The band-pass is designed in double precision as scipy.signal.butter designs it
+/// (motion/butterworth.hpp), applied forward then backward exactly as scipy.signal.sosfiltfilt
+/// does with its defaults (padtype "odd", padlen 3 (2 n_sections + 1), each pass started from the
+/// sections' steady state scaled by its first sample), so that scipy checks the whole chain.
 #include <array>
 #include <string>
 #include <vector>
+
+#include "rigid/motion/butterworth.hpp"
 
 namespace rigid::motion {
 
@@ -34,23 +36,6 @@ struct LabProcessing {
   double crossover_hz = 2.0;
 };
 
-/// One second-order section: y = (b0 + b1 z^-1 + b2 z^-2) / (1 + a1 z^-1 + a2 z^-2) x.
-struct Biquad {
-  double b0 = 1, b1 = 0, b2 = 0, a1 = 0, a2 = 0;
-};
-
-/// The Butterworth band-pass [low_hz, high_hz] of the given prototype order at time step dt
-/// (unit: s), as `order` second-order sections designed by liquid-dsp (single precision: the
-/// coefficients carry float round-off, ~1e-7 relative). Throws std::invalid_argument unless
-/// 0 < low_hz < high_hz < 0.5/dt and 1 <= order <= 8.
-std::vector<Biquad> butterworth_bandpass(double low_hz, double high_hz, int order, double dt);
-
-/// Butterworth low-pass and high-pass of the given order at corner fc_hz (liquid-dsp, single
-/// precision as above), as ceil(order / 2) sections. Throws std::invalid_argument unless
-/// 0 < fc_hz < 0.5/dt and 1 <= order <= 8.
-std::vector<Biquad> butterworth_lowpass(double fc_hz, int order, double dt);
-std::vector<Biquad> butterworth_highpass(double fc_hz, int order, double dt);
-
 /// filtfilt(low-pass, low) + filtfilt(high-pass, high) at one corner and order. Zero-phase
 /// Butterworth filters of one order and corner are power complementary, |H_lp|^2 + |H_hp|^2 = 1 at
 /// every frequency, so what both inputs share passes unchanged and each input contributes only
@@ -68,7 +53,8 @@ std::vector<double> sos_filter(const std::vector<Biquad>& sections, const std::v
                                const std::vector<std::array<double, 2>>& state = {});
 
 /// Zero-phase filtering, scipy.signal.sosfiltfilt with its defaults: the signal is extended at
-/// each end by padlen = 3 (2 sections + 1 - first-order sections) samples of odd reflection (2 x[0] - x[padlen..1] before,
+/// each end by padlen = 3 (2 sections + 1 - m) samples, m the smaller of the numbers of sections
+/// with b2 = 0 and with a2 = 0, of odd reflection (2 x[0] - x[padlen..1] before,
 /// 2 x[n-1] - x[n-2..n-1-padlen] after), filtered forward from the steady-state section states
 /// (scipy.signal.sosfilt_zi) times the first extended sample, reversed, filtered again from the
 /// steady state times its first sample, reversed, and the padding removed. Throws
