@@ -22,6 +22,7 @@
 #include "rigid/io/mesh_import.hpp"
 #include "rigid/io/scene_file.hpp"
 #include "rigid/io/stl.hpp"
+#include "rigid/repair/mesh_repair.hpp"
 #include "rigid/scenario/rocking_parameters.hpp"
 #include "rigid/scenario/scene.hpp"
 #include "import_scan.hpp"
@@ -228,7 +229,7 @@ std::string likely_cause(const scenario::LooseBlock& loose, const ImportOptions&
 }
 
 // What --repair changed in one scan, in a line and in the report.
-std::string describe(const std::string& path, const io::ScanRepair& r) {
+std::string describe(const std::string& path, const repair::ScanRepair& r) {
   char buf[400];
   std::snprintf(buf, sizeof buf,
                 "%s: --repair: %zu -> %zu facets (%zu removed, %zu added), %zu holes filled, %zu left open, %zu edge "
@@ -239,7 +240,7 @@ std::string describe(const std::string& path, const io::ScanRepair& r) {
   return buf;
 }
 
-io::Json repair_json(const std::string& path, const io::ScanRepair& r) {
+io::Json repair_json(const std::string& path, const repair::ScanRepair& r) {
   io::Json j;
   j["scan"] = path;
   j["facets_before"] = long(r.facets_before);
@@ -278,12 +279,14 @@ void import_scan(const ImportOptions& o) {
   const fs::path out(o.out);
   const std::string name = out.filename().string();
   std::vector<std::string> warnings, notes;
-  std::vector<std::pair<std::string, io::ScanRepair>> repairs;  // scan -> what --repair changed
+  std::vector<std::pair<std::string, repair::ScanRepair>> repairs;  // scan -> what --repair changed
   const auto read = [&](const std::string& path) {
     if (!o.repair) return io::read_scan(path, o.scale, rotation, warnings);
-    io::ScanRepair repair;
-    geometry::ClosedMesh mesh = io::read_scan(path, o.scale, rotation, warnings, &repair);
-    repairs.emplace_back(path, repair);
+    repair::ScanRepair report;
+    geometry::ClosedMesh mesh = io::read_scan(path, o.scale, rotation, warnings, [&](const geometry::TriangleSoup& soup) {
+      return repair::repair_scan(soup, report, path);
+    });
+    repairs.emplace_back(path, report);
     return mesh;
   };
   geometry::ClosedMesh rock = read(o.scan);

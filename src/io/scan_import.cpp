@@ -26,7 +26,7 @@ geometry::ClosedMesh checked_scan(const geometry::TriangleSoup& soup, const std:
 }  // namespace
 
 geometry::ClosedMesh read_scan(const std::string& path, double scale, const Mat3& rotation,
-                               std::vector<std::string>& warnings, ScanRepair* repair) {
+                               std::vector<std::string>& warnings, const SoupMender& mend) {
   geometry::TriangleSoup soup = io::read_mesh(path);
   const std::vector<std::size_t> collapsed = geometry::drop_collapsed_facets(soup);
   if (!collapsed.empty()) {
@@ -39,8 +39,8 @@ geometry::ClosedMesh read_scan(const std::string& path, double scale, const Mat3
   for (auto& t : soup) {
     for (Vec3* p : {&t.a, &t.b, &t.c}) *p = scale * (rotation * *p);
   }
-  if (!repair) return checked_scan(soup, path, warnings);
-  soup = repair_scan(soup, *repair, path);
+  if (!mend) return checked_scan(soup, path, warnings);
+  soup = mend(soup);
   try {
     return checked_scan(soup, path, warnings);
   } catch (const InputError& e) {

@@ -7,12 +7,13 @@ calls and the `rigid` executable's link line; docs/architecture.md, "Layout and 
 
   core <- geometry <- contact <- dynamics;  core <- motion, rocking;
   scenario <- dynamics, motion, rocking;  study <- scenario;  io <- scenario;  campaign <- io;
-  calibration <- core;  app <- campaign, study, calibration
+  calibration <- core;  repair <- geometry;  app <- campaign, study, calibration, repair
 
 (a module may include its own headers and those of every module below it, transitively), and the
 third-party rules: the engine core (geometry .. scenario, study) includes only Eigen and the standard
 library; only io includes HDF5,
-toml++, nettle, assimp and CGAL; nlohmann-json is io's and above (io/json.hpp); only campaign includes MPI;
+toml++, nettle and assimp; only repair includes CGAL (linked by app alone: io and the tests that
+link it stay free of CGAL's compile); nlohmann-json is io's and above (io/json.hpp); only campaign includes MPI;
 zlib is io's (gzip lab recordings) and campaign's (journal checksums); spdlog is campaign's and app's (campaign/log.hpp); only app includes CLI11; POSIX headers (unistd.h, sys/...)
 only io, campaign and app. A quoted include that is not "rigid/..." must be a private header of
 the module's own src/<module>/ folder.
@@ -50,7 +51,7 @@ THIRD_PARTY = {
     "toml": {"io"},
     "nettle": {"io"},
     "assimp": {"io"},
-    "cgal": {"io"},
+    "cgal": {"repair"},
     "json": {"io", "campaign", "app"},
     "mpi": {"campaign"},
     "zlib": {"io", "campaign"},

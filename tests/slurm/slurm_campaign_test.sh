@@ -17,12 +17,12 @@
 # and a `scontrol update` 45 s late), so before each interruption the test holds the campaign's
 # ranks (SIGSTOP) and releases them (SIGCONT) once the batch shell has logged the signal, and the
 # call that starts a requeued job runs in the background: the interruption lands mid-campaign
-# however late Slurm answers. tests/slurm/slurm_campaign.toml runs about 50 s at 2 ranks
-# (the whole test about 2 minutes).
+# however late Slurm answers. tests/slurm/slurm_campaign.toml runs about 25 s at 2 ranks
+# (the whole test about a minute and a half).
 # Skips (exit 0) when not root or when the Slurm packages cannot be installed. Every wait is
 # bounded; the whole test stops after RIGID_SLURM_TEST_TIMEOUT s (default 480), and the cluster
 # is always brought down. The last line is `N passed, N failed`.
-# Environment: RIGID_SLURM_TEST_PROGRESS  seconds of work before each interruption (default 5)
+# Environment: RIGID_SLURM_TEST_PROGRESS  seconds of work before each interruption (default 3)
 #              RIGID_COMPARE              comparison command (default: /usr/bin/python3 compare_cubes.py)
 #              RIGID_SLURM_TEST_KEEP=1    keep the work directory (logs, cubes) after a pass too
 #              RIGID_LAUNCHER             passed on to the batch script (mpirun or srun)
@@ -40,7 +40,7 @@ skip() { echo "SKIP: $*"; echo "0 passed, 0 failed"; exit 0; }
 rigid=$(realpath "$1") job=$(realpath "$2")
 [[ -x $rigid && -f $job ]] || { fail "missing $1 or $2"; echo "$passed passed, $failed failed"; exit 1; }
 read -ra compare <<<"${RIGID_COMPARE:-/usr/bin/python3 $repo/tests/python/compare_cubes.py}"
-progress=${RIGID_SLURM_TEST_PROGRESS:-5}
+progress=${RIGID_SLURM_TEST_PROGRESS:-3}
 deadline=$((SECONDS + ${RIGID_SLURM_TEST_TIMEOUT:-480}))
 
 work=$(mktemp -d /tmp/rigid-slurm-test.XXXXXX)

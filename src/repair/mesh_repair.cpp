@@ -20,9 +20,9 @@
 #include <vector>
 
 #include "rigid/core/error.hpp"
-#include "rigid/io/mesh_import.hpp"
+#include "rigid/repair/mesh_repair.hpp"
 
-namespace rigid::io {
+namespace rigid::repair {
 namespace {
 
 namespace PMP = CGAL::Polygon_mesh_processing;
@@ -123,4 +123,4 @@ geometry::TriangleSoup repair_scan(const geometry::TriangleSoup& soup, ScanRepai
   return repaired;
 }
 
-}  // namespace rigid::io
+}  // namespace rigid::repair
