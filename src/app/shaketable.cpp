@@ -136,6 +136,15 @@ double Ensemble::probability(const std::function<bool(int, int)>& overturned, bo
   return p;
 }
 
+void add_recording_options(CLI::App& cmd, std::string& lab_format, std::string& progress) {
+  cmd.add_option("--lab-format", lab_format,
+                 "TOML file whose [lab] table says how to read the recordings (default: the lab export of "
+                 "docs/ground-motions.md: tab-separated, time, acceleration in g, displacement in V)");
+  cmd.add_option("--progress", progress, "auto, bar, log or none")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"auto", "bar", "log", "none"}));
+}
+
 LabInput lab_input(const std::string& format_file) {
   LabInput in;
   in.format_file = format_file;

@@ -1,11 +1,14 @@
 #pragma once
-// What `rigid shaketable calibrate` and `predict` share: the physics a design varies, the
-// strong-motion windows of the recorded table motions, the designed campaigns and the outcome
-// grid read back from their cubes (docs/validation-shaketable.md).
+// What `rigid shaketable calibrate`, `predict` and `fragility` share: the physics a design varies,
+// the calibration's ensemble, the strong-motion windows of the recorded table motions, the
+// designed campaigns and the outcome grid read back from their cubes
+// (docs/validation-shaketable.md).
 #include <functional>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include <CLI/CLI.hpp>
 
 #include "rigid/calibration/outcome_model.hpp"
 #include "rigid/campaign/driver.hpp"
@@ -57,6 +60,10 @@ struct Ensemble {
   double probability(const std::function<bool(int, int)>& overturned, bool with_lapse = true) const;
 };
 Ensemble load_ensemble(const std::string& scene);
+
+/// The options every shaketable command shares: --lab-format FILE (the recordings' format) and
+/// --progress (auto, bar, log or none).
+void add_recording_options(CLI::App& cmd, std::string& lab_format, std::string& progress);
 
 /// The recordings' format: a TOML file's [lab] table, or the default (this lab's export).
 struct LabInput {

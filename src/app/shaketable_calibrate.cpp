@@ -216,9 +216,9 @@ campaign::CampaignOptions prepare(Calibration& c, const CalibrateOptions& o) {
   double kept = 0;
   for (const auto& w : c.windows) kept += w.end - w.start;
   std::printf("shaketable: %zu tests of %zu recorded motions (%ld overturned); strong-motion windows (|a| > %.3f g, "
-              "%s the weakest base's static toppling) keep %.0f s of motion\n",
-              c.tests.tests.size(), groups.size(), overturned, level_g,
-              rigid_only ? "half" : "a tenth of (penalty contact rocks below it)", kept);
+              "%s of the weakest base's static toppling acceleration%s) keep %.0f s of motion\n",
+              c.tests.tests.size(), groups.size(), overturned, level_g, rigid_only ? "half" : "a tenth",
+              rigid_only ? "" : ": penalty contact rocks the rock below it", kept);
   for (const auto& [mm, scene] : bases) {
     for (const std::string& model : o.contact_models) {
       Physics p;
@@ -301,7 +301,6 @@ void add_shaketable_calibrate(CLI::App& parent) {
   cmd->add_option("--tests", o->tests, "Test list CSV: test_no,record,pgv_over_pga_s,pga_g,file,overturned (file relative to the CSV)")
       ->required();
   cmd->add_option("--out", o->out, "Output DIR/NAME")->required();
-  cmd->add_option("--lab-format", o->lab_format, "TOML file whose [lab] table says how to read the recordings (default: tab-separated, time, acceleration in g)");
   cmd->add_option("--scale", o->scale, "Scan units to metres, as for rigid model import")->capture_default_str();
   cmd->add_option("--up", o->up, "The scan's up axis, as for rigid model import")->capture_default_str();
   cmd->add_option("--flatten-mm", o->flatten_mm, "Base models to compare: the rough base cut flat this far above its lowest point (mm)")
@@ -321,7 +320,7 @@ void add_shaketable_calibrate(CLI::App& parent) {
   cmd->add_option("--tilt-deg", o->tilt_deg, "Overturned = tilted beyond this angle (deg)")->capture_default_str();
   cmd->add_option("--max-vertices", o->max_vertices, "Vertex budget of the rock's hull")->capture_default_str();
   cmd->add_option("--pedestal-margin", o->pedestal_margin, "The table: overhang of the box under the rock (m)")->capture_default_str();
-  cmd->add_option("--progress", o->progress, "auto, bar, log or none")->capture_default_str()->check(CLI::IsMember({"auto", "bar", "log", "none"}));
+  shaketable::add_recording_options(*cmd, o->lab_format, o->progress);
   cmd->callback([o] {
     Calibration c;
     shaketable::run_designed_campaigns(

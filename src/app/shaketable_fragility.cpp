@@ -192,7 +192,6 @@ void add_shaketable_fragility(CLI::App& parent) {
   cmd->add_option("--tests", o->tests, "Test list CSV with an overturned column; file relative to the CSV")->required();
   cmd->add_option("--out", o->out, "Prefix of the outputs: OUT.fragility.csv, OUT.fragility.FORMAT, OUT.fragility.work/")
       ->required();
-  cmd->add_option("--lab-format", o->lab_format, "TOML file whose [lab] table says how to read the recordings");
   cmd->add_option("--min-pga", o->min_pga_g, "Bottom of the PGA grid (g)")->capture_default_str()->check(CLI::Range(0.001, 5.0));
   cmd->add_option("--max-pga", o->max_pga_g, "Top of the PGA grid (g); default 1.25 x the largest measured PGA")
       ->check(CLI::Range(0.01, 20.0));
@@ -209,7 +208,7 @@ void add_shaketable_fragility(CLI::App& parent) {
   cmd->add_option("--format", o->format, "Figure format: png, pdf or svg")
       ->capture_default_str()
       ->check(CLI::IsMember({"png", "pdf", "svg"}));
-  cmd->add_option("--progress", o->progress, "auto, bar, log or none")->capture_default_str()->check(CLI::IsMember({"auto", "bar", "log", "none"}));
+  shaketable::add_recording_options(*cmd, o->lab_format, o->progress);
   cmd->callback([o] {
     io::refuse_output_over_inputs(o->out + ".fragility.csv", {o->tests, o->scene});
     io::refuse_output_over_inputs(o->out + ".fragility." + o->format, {o->tests, o->scene});

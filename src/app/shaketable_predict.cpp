@@ -117,8 +117,7 @@ void add_shaketable_predict(CLI::App& parent) {
   cmd->add_option("scene", o->scene, "The scene, e.g. OUT.toml of rigid shaketable calibrate")->required();
   cmd->add_option("--tests", o->tests, "Test list CSV (test_no,record,...,file[,overturned]); file relative to the CSV")->required();
   cmd->add_option("--out", o->out, "Predictions CSV: test_no,record,pga_g,pgv_over_pga_s,p_overturn,predicted")->required();
-  cmd->add_option("--lab-format", o->lab_format, "TOML file whose [lab] table says how to read the recordings");
-  cmd->add_option("--progress", o->progress, "auto, bar, log or none")->capture_default_str()->check(CLI::IsMember({"auto", "bar", "log", "none"}));
+  shaketable::add_recording_options(*cmd, o->lab_format, o->progress);
   cmd->callback([o] {
     Prediction p;
     shaketable::run_designed_campaigns(
