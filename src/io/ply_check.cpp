@@ -106,6 +106,10 @@ Header read_header(std::string_view bytes, const std::string& name) {
       return h;
     }
     if (w[0] == "format") {
+      // one format line, before the elements: a second one would be read by this check and the
+      // first by the importer, which would then parse the body in another encoding
+      if (has_format) throw InputError(name, line_no, "a second format line in the PLY header");
+      if (!h.elements.empty()) throw InputError(name, line_no, "the format line must come before the elements");
       if (w.size() != 3 || w[2] != "1.0") throw InputError(name, line_no, "format line must be 'format TYPE 1.0'");
       if (w[1] == "ascii") h.format = Format::ascii;
       else if (w[1] == "binary_little_endian") h.format = Format::little_endian;

@@ -97,6 +97,12 @@ def make_ply_inputs(d):
     bad.append(("ASCII PLY: corner index past the vertices",
                 write_bytes(d, "ascii_past.ply", ascii_ply().replace(b"\n3 0 2 1\n", b"\n3 0 2 99\n")), [":19:", "99"]))
     bad.append(("ASCII PLY truncated", write_bytes(d, "ascii_cut.ply", ascii_ply()[:-30]), ["truncated"]))
+    # found by the PLY fuzzer: the check read the second format line (ascii), assimp the first
+    # (binary), and assimp's post-processing crashed on the body it then made of the text
+    two_formats = ascii_ply().replace(b"format ascii 1.0\n", b"format binary_big_endian 1.0\nformat ascii 1.0\n")
+    bad.append(("two format lines", write_bytes(d, "two_formats.ply", two_formats), [":3:", "second format line"]))
+    late = ascii_ply().replace(b"format ascii 1.0\n", b"").replace(b"end_header", b"format ascii 1.0\nend_header")
+    bad.append(("format line after the elements", write_bytes(d, "late_format.ply", late), ["before the elements"]))
     return bad
 
 
