@@ -123,6 +123,19 @@ Ensemble load_ensemble(const std::string& scene_file) {
   return e;
 }
 
+io::DesignJob ensemble_job(const std::string& scene, const Ensemble& e, const std::string& lab_format_file) {
+  namespace fs = std::filesystem;
+  io::DesignJob job;
+  job.object_name = "rock";
+  job.scene = fs::absolute(scene).lexically_normal().string();
+  if (!e.json.empty()) {
+    for (const std::string& s : e.scenes) job.variants.push_back({{"scene", s}});
+  }
+  job.lab_format_file = lab_format_file.empty() ? "" : fs::absolute(lab_format_file).string();
+  job.rotation_angles_deg = e.rotations_deg;
+  return job;
+}
+
 double Ensemble::probability(const std::function<bool(int, int)>& overturned, bool with_lapse) const {
   double total = 0, p = 0;
   for (const Member& m : members) total += m.weight;

@@ -61,6 +61,12 @@ struct Ensemble {
 };
 Ensemble load_ensemble(const std::string& scene);
 
+/// The designed job of a scene over its ensemble, as predict and fragility run it: the object
+/// "rock" is the scene, each ensemble scene a variant (none without a calibration file), the
+/// ensemble's headings its rotations, `lab_format_file` its recordings' format ("" the default).
+/// Records, scales and the comment are the caller's.
+io::DesignJob ensemble_job(const std::string& scene, const Ensemble& ensemble, const std::string& lab_format_file);
+
 /// The options every shaketable command shares: --lab-format FILE (the recordings' format) and
 /// --progress (auto, bar, log or none).
 void add_recording_options(CLI::App& cmd, std::string& lab_format, std::string& progress);

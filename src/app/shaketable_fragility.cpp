@@ -100,14 +100,9 @@ campaign::CampaignOptions prepare(Design& d, const FragilityOptions& o) {
   const std::vector<double> grid = pga_grid(o.min_pga_g, max_pga, o.per_decade);
   if (grid.size() > 200) throw InputError("", 0, "--min-pga, --max-pga and --per-decade give more than 200 PGAs");
 
-  io::DesignJob job;
-  job.object_name = "rock";
-  job.scene = fs::absolute(o.scene).lexically_normal().string();
+  io::DesignJob job = shaketable::ensemble_job(o.scene, e, o.lab_format);
   job.comment = "rigid shaketable fragility " + o.scene + " --tests " + o.tests +
                 "\n(written by the command; run again to resume)";
-  if (!e.json.empty()) {
-    for (const std::string& s : e.scenes) job.variants.push_back({{"scene", s}});
-  }
   std::vector<std::string> scenes = e.scenes;
   scenes.push_back(job.scene);
   const double level_g = shaketable::window_level_g(scenes);
@@ -118,8 +113,6 @@ campaign::CampaignOptions prepare(Design& d, const FragilityOptions& o) {
     const double level = level_g * d.measured[t].pga_g / max_pga;
     job.records.push_back(shaketable::strong_motion_window(io::read_lab_motion(test.file, d.lab.format), test.file, level));
   }
-  job.lab_format_file = o.lab_format.empty() ? "" : fs::absolute(o.lab_format).string();
-  job.rotation_angles_deg = e.rotations_deg;
   job.scale_list_g = grid;
   // the grid reaches well past the rock's strength: above three scales that overturned it under
   // every heading, the rest of a motion's scales are inferred, not run (the fits leave them out, as

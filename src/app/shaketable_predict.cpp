@@ -42,18 +42,11 @@ campaign::CampaignOptions prepare(Prediction& p, const PredictOptions& o) {
   p.lab = shaketable::lab_input(o.lab_format);
   p.ensemble = shaketable::load_ensemble(o.scene);
   const shaketable::Ensemble& e = p.ensemble;
-  io::DesignJob job;
-  job.object_name = "rock";
-  job.scene = fs::absolute(o.scene).lexically_normal().string();
+  io::DesignJob job = shaketable::ensemble_job(o.scene, e, o.lab_format);
   job.comment = "rigid shaketable predict " + o.scene + " --tests " + o.tests + "\n(written by the command; run again to resume)";
-  if (!e.json.empty()) {
-    for (const std::string& s : e.scenes) job.variants.push_back({{"scene", s}});
-  }
   std::vector<std::string> scenes = e.scenes;
   scenes.push_back(job.scene);
   job.records = shaketable::strong_motion_windows(p.tests, p.lab, shaketable::window_level_g(scenes));
-  job.lab_format_file = o.lab_format.empty() ? "" : fs::absolute(o.lab_format).string();
-  job.rotation_angles_deg = e.rotations_deg;
   const std::string work = o.out + ".work";
   std::error_code ec;
   fs::create_directories(work, ec);
