@@ -40,6 +40,7 @@ rigid=$(realpath "$1")
 mkdir -p "$2" && out=$(realpath "$2")
 [[ $(id -u) == 0 ]] && export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 cd "$repo"
+[[ -d ../shared/waveforms/peer ]] || { echo "needs ../shared beside the checkout (jobs/validation_ci.toml reads its PEER records)" >&2; exit 2; }
 launch() {  # launch RANKS ARGS...: rigid on RANKS MPI ranks (1: no launcher)
   local n=$1; shift
   if ((n == 1)); then "$rigid" "$@"; else mpirun --oversubscribe -np "$n" "$rigid" "$@"; fi

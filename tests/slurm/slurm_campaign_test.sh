@@ -17,7 +17,10 @@
 # and a `scontrol update` 45 s late), so before each interruption the test holds the campaign's
 # ranks (SIGSTOP) and releases them (SIGCONT) once the batch shell has logged the signal, and the
 # call that starts a requeued job runs in the background: the interruption lands mid-campaign
-# however late Slurm answers. tests/slurm/slurm_campaign.toml runs about 25 s at 2 ranks
+# however late Slurm answers. On one CI run the test itself then stalled for 19 s between seeing
+# the ranks and holding them, and the campaign ended first: from the submission on, its shell runs
+# at a real-time priority, and it finds the ranks without reading their command lines (a read
+# that waits for a busy process's memory-map lock). tests/slurm/slurm_campaign.toml runs about 25 s at 2 ranks
 # (the whole test about a minute and a half).
 # Skips (exit 0) when not root or when the Slurm packages cannot be installed. Every wait is
 # bounded; the whole test stops after RIGID_SLURM_TEST_TIMEOUT s (default 480), and the cluster
@@ -96,11 +99,14 @@ log_has() { grep -q -- "$1" "$work/job.out" 2>/dev/null; }
 log_count() { cat "$work/job.out" 2>/dev/null | grep -c -- "$1"; }
 # run_ended N: the batch script has logged the exit of its Nth campaign run
 run_ended() { (($(log_count 'rigid-campaign: exit status') >= $1)); }
-# the campaign's rank processes: `rigid` processes writing this test's output (not mpirun)
+# the campaign's rank processes: `rigid` processes (not mpirun) running in the job's folder. Read
+# from /proc/PID/comm and the cwd link only: reading a busy process's cmdline (as pgrep does) waits
+# for its memory-map lock, and on a CI machine such a read did not return until the campaign ended.
 campaign_ranks() {
-  local p
-  for p in $(pgrep -x rigid); do
-    tr '\0' ' ' <"/proc/$p/cmdline" 2>/dev/null | grep -qF -- "--out $work/out.h5 " && echo "$p"
+  local d comm
+  for d in /proc/[0-9]*; do
+    { read -r comm <"$d/comm"; } 2>/dev/null || continue
+    [[ $comm == rigid && $(readlink "$d/cwd" 2>/dev/null) == "$work" ]] && echo "${d#/proc/}"
   done
 }
 # ranks_up: both ranks of a new campaign run exist (none of them held before)
@@ -181,6 +187,12 @@ else
   fail "reference run failed (exit $?): $(tail -n 3 "$work/ref.log")"
   exit
 fi
+
+# From here on the test's own processes run at a real-time priority: a campaign busy on both
+# cores must not keep them off the CPU between seeing the ranks and holding them. The cluster and
+# the reference run were started before, so neither Slurm nor the job's ranks inherit it.
+if chrt -f -p 10 $$ 2>/dev/null; then note "test shell at real-time priority (SCHED_FIFO 10)"
+else note "could not raise the test shell's priority (chrt): timing then depends on the scheduler"; fi
 
 # the campaign through sbatch
 jid=$(cd "$work" && RIGID=$rigid RIGID_GRACE=5 RIGID_CAMPAIGN_ARGS="--checkpoint-interval 1 --progress log" \
