@@ -1,20 +1,21 @@
 // `rigid model import`: a scanned rock (OBJ, PLY, STL) to a scene the other commands run: the
 // checked mesh (mass properties), its contact shape (a reduced hull or a convex decomposition),
 // a pedestal, a settled state, and a report of what the contact shape costs in accuracy.
-#include <cmath>
 #include <cerrno>
-#include <cstring>
-#include <optional>
+#include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <unistd.h>
 
 #include "commands.hpp"
+#include "import_scan.hpp"
 #include "rigid/core/error.hpp"
 #include "rigid/geometry/contact_shape.hpp"
 #include "rigid/geometry/mesh_split.hpp"
@@ -25,14 +26,12 @@
 #include "rigid/repair/mesh_repair.hpp"
 #include "rigid/scenario/rocking_parameters.hpp"
 #include "rigid/scenario/scene.hpp"
-#include "import_scan.hpp"
 #include "scene_input.hpp"
 
 namespace rigid::app {
 namespace {
 
 namespace fs = std::filesystem;
-
 
 // A closed mesh from a soup the split made (both parts are closed by construction).
 geometry::ClosedMesh closed_part(const geometry::TriangleSoup& soup, const std::string& what) {
@@ -77,8 +76,9 @@ class Staging {
     fs::remove_all(path_, ec);
     if (!fs::create_directory(path_, ec) || ec) {
       remove_created();
-      throw InputError("", 0, "--out: cannot write in directory " + dir_.string() + ": " +
-                                  (ec ? ec.message() : std::string("it exists")));
+      throw InputError(
+          "", 0,
+          "--out: cannot write in directory " + dir_.string() + ": " + (ec ? ec.message() : std::string("it exists")));
     }
   }
   Staging(const Staging&) = delete;
@@ -115,8 +115,8 @@ struct ContactReport {
   double mesh_volume = 0;
   double contact_volume = 0;
   std::size_t vertices = 0;
-  double reduction = 0;     // largest Hausdorff distance the vertex budget cost (m)
-  double deepest_gap = 0;   // hull only: deepest point of the mesh below the hull (m)
+  double reduction = 0;    // largest Hausdorff distance the vertex budget cost (m)
+  double deepest_gap = 0;  // hull only: deepest point of the mesh below the hull (m)
   std::vector<geometry::ConvexPiece> pieces;
 };
 
@@ -156,8 +156,8 @@ std::string write_body(const fs::path& dir, const std::string& name, const std::
                        const geometry::ClosedMesh& mesh, const ContactReport& report, bool fixed) {
   const std::string mesh_file = name + "_" + body + ".stl";
   io::write_stl_binary((dir / mesh_file).string(), soup_of(mesh));
-  std::string table = "[[block]]\nname = \"" + body + "\"\nstl = \"" + mesh_file + "\"\nfixed = " +
-                      (fixed ? "true" : "false") + "\ncontact = [";
+  std::string table = "[[block]]\nname = \"" + body + "\"\nstl = \"" + mesh_file +
+                      "\"\nfixed = " + (fixed ? "true" : "false") + "\ncontact = [";
   for (std::size_t k = 0; k < report.pieces.size(); ++k) {
     char piece[64];
     std::snprintf(piece, sizeof piece, "%s_%s_c%03zu.stl", name.c_str(), body.c_str(), k);
@@ -207,10 +207,12 @@ void check_pedestal_under_rock(const geometry::ClosedMesh& rock, const geometry:
   const bool overlap = rlo.x() < phi.x() && plo.x() < rhi.x() && rlo.y() < phi.y() && plo.y() < rhi.y();
   if (!overlap) {
     char buf[200];
-    std::snprintf(buf, sizeof buf, "its footprint x %.3g..%.3g, y %.3g..%.3g m misses the rock's x %.3g..%.3g, y %.3g..%.3g m",
-                  plo.x(), phi.x(), plo.y(), phi.y(), rlo.x(), rhi.x(), rlo.y(), rhi.y());
-    throw InputError(o.pedestal, 0, std::string("the pedestal is not under the rock: ") + buf +
-                                        " (both scans must share units, axes and origin)");
+    std::snprintf(buf, sizeof buf,
+                  "its footprint x %.3g..%.3g, y %.3g..%.3g m misses the rock's x %.3g..%.3g, y %.3g..%.3g m", plo.x(),
+                  phi.x(), plo.y(), phi.y(), rlo.x(), rhi.x(), rlo.y(), rhi.y());
+    throw InputError(
+        o.pedestal, 0,
+        std::string("the pedestal is not under the rock: ") + buf + " (both scans must share units, axes and origin)");
   }
   if (plo.z() >= rhi.z()) {
     throw InputError(o.pedestal, 0, "the pedestal lies above the rock (both scans must share units, axes and origin)");
@@ -235,8 +237,9 @@ std::string describe(const std::string& path, const repair::ScanRepair& r) {
                 "%s: --repair: %zu -> %zu facets (%zu removed, %zu added), %zu holes filled, %zu left open, %zu edge "
                 "pairs stitched, %s; volume %.6g -> %.6g m^3 (%+.3f %%)",
                 path.c_str(), r.facets_before, r.facets_after, r.facets_removed, r.facets_added, r.holes_filled,
-                r.holes_left, r.edges_stitched, r.self_intersections_left ? "self-intersections left" : "no self-intersection left",
-                r.volume_before, r.volume_after, 100 * (r.volume_after / r.volume_before - 1));
+                r.holes_left, r.edges_stitched,
+                r.self_intersections_left ? "self-intersections left" : "no self-intersection left", r.volume_before,
+                r.volume_after, 100 * (r.volume_after / r.volume_before - 1));
   return buf;
 }
 
@@ -260,15 +263,67 @@ void check_options(const ImportOptions& o) {
   if (!(o.scale > 0) || !std::isfinite(o.scale)) throw InputError("", 0, "--scale must be a positive number");
   if (!(o.flatten_base >= 0 && o.flatten_base < 1)) throw InputError("", 0, "--flatten-base must be in [0, 1) m");
   if (!(o.density >= 1 && o.density <= 1e5)) throw InputError("", 0, "--density must be between 1 and 1e5 kg/m^3");
-  if (o.contact_shape != "hull" && o.contact_shape != "decompose") throw InputError("", 0, "--contact-shape must be hull or decompose");
+  if (o.contact_shape != "hull" && o.contact_shape != "decompose")
+    throw InputError("", 0, "--contact-shape must be hull or decompose");
   if (o.max_vertices != 0 && o.max_vertices < 4) throw InputError("", 0, "--max-vertices must be at least 4");
   if (!(o.concavity >= 0 && o.concavity < 1)) throw InputError("", 0, "--concavity must be in [0, 1)");
   if (o.max_pieces < 1) throw InputError("", 0, "--max-pieces must be at least 1");
-  if (!(o.pedestal_margin >= 0 && o.pedestal_margin < 10)) throw InputError("", 0, "--pedestal-margin must be in [0, 10) m");
+  if (!(o.pedestal_margin >= 0 && o.pedestal_margin < 10))
+    throw InputError("", 0, "--pedestal-margin must be in [0, 10) m");
   if (!(o.tilt_deg >= 0 && o.tilt_deg < 90)) throw InputError("", 0, "--tilt-rule must be in (0, 90) deg");
   if (o.split_z && !std::isfinite(*o.split_z)) throw InputError("", 0, "--split-z must be a finite height (m)");
   if (o.split_z && o.pedestal != "box") throw InputError("", 0, "give either --split-z or --pedestal FILE, not both");
   if (fs::path(o.out).filename().empty()) throw InputError("", 0, "--out needs DIR/NAME");
+}
+
+// The imported scene settled on its pedestal; exit 2 (InputError) when the rock does not come to
+// rest on it standing on its base, naming the likely cause.
+scenario::Scene settled_on_pedestal(const fs::path& scene_path, const ImportOptions& o, double size) {
+  const scenario::Scene scene = load_scene_with_warnings(scene_path.string());
+  const scenario::Settled settled = scenario::settle(scene, dynamics::StepSettings{});
+  if (settled.loose) {
+    throw InputError(o.scan, 0, scenario::describe(*settled.loose) + ": " + likely_cause(*settled.loose, o, size));
+  }
+  // resting on the pedestal is not enough: a rock that fell over onto a wide one does not stand
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    const double turned = scenario::tilt(scene.bodies[i].orientation, settled.scene.bodies[i].orientation) * 180 / kPi;
+    if (!scene.bodies[i].fixed && turned > 5.0) {
+      char text[200];
+      std::snprintf(text, sizeof text,
+                    "does not stand on its base: it tips over (%.0f deg) while settling on its pedestal", turned);
+      throw InputError(o.scan, 0, text);
+    }
+  }
+  return settled.scene;
+}
+
+// What the import did, for the person who ran it: warnings on stderr, the rest on stdout.
+void print_summary(const ImportOptions& o, const std::vector<std::string>& warnings,
+                   const std::vector<std::pair<std::string, repair::ScanRepair>>& repairs,
+                   const std::vector<std::string>& notes, std::size_t scan_facets,
+                   const std::vector<ContactReport>& reports,
+                   const std::optional<scenario::RockingParameters>& rocking) {
+  const ContactReport& rock_report = reports.front();
+  for (const auto& w : warnings) std::fprintf(stderr, "rigid: warning: %s\n", w.c_str());
+  for (const auto& [path, r] : repairs) std::printf("%s\n", describe(path, r).c_str());
+  std::printf("%s: %zu facets%s, closed, manifold, oriented outward, no self-intersection\n", o.scan.c_str(),
+              scan_facets, o.repair ? " after --repair" : "");
+  for (const auto& note : notes) std::printf("%s\n", note.c_str());
+  std::printf("%-9s %13s %16s %7s %9s %22s\n", "body", "mesh m^3", "contact m^3", "pieces", "vertices",
+              "budget Hausdorff m");
+  for (const auto& r : reports) {
+    std::printf("%-9s %13.6f %9.6f (%+5.1f%%) %7zu %9zu %22.4f\n", r.body.c_str(), r.mesh_volume, r.contact_volume,
+                100 * (r.contact_volume / r.mesh_volume - 1), r.pieces.size(), r.vertices, r.reduction);
+  }
+  if (rock_report.pieces.size() == 1) {
+    std::printf("the hull bridges hollows up to %.4f m deep (--contact-shape decompose follows them)\n",
+                rock_report.deepest_gap);
+  }
+  if (rocking) {
+    std::printf("settled: alpha %.4f rad, static toppling %.4f g towards azimuth %.0f deg, R %.4f m, p %.3f rad/s\n",
+                rocking->alpha, std::tan(rocking->alpha), rocking->azimuth * 180 / kPi + 0.0, rocking->radius,
+                rocking->p);
+  }
 }
 
 }  // namespace
@@ -283,9 +338,9 @@ void import_scan(const ImportOptions& o) {
   const auto read = [&](const std::string& path) {
     if (!o.repair) return io::read_scan(path, o.scale, rotation, warnings);
     repair::ScanRepair report;
-    geometry::ClosedMesh mesh = io::read_scan(path, o.scale, rotation, warnings, [&](const geometry::TriangleSoup& soup) {
-      return repair::repair_scan(soup, report, path);
-    });
+    geometry::ClosedMesh mesh =
+        io::read_scan(path, o.scale, rotation, warnings,
+                      [&](const geometry::TriangleSoup& soup) { return repair::repair_scan(soup, report, path); });
     repairs.emplace_back(path, report);
     return mesh;
   };
@@ -299,7 +354,8 @@ void import_scan(const ImportOptions& o) {
     } catch (const std::invalid_argument& e) {
       throw InputError(o.scan, 0, std::string("--split-z: ") + (std::strchr(e.what(), ':') + 2));
     }
-    if (parts.level != *o.split_z) notes.push_back("split at z = " + std::to_string(parts.level) + " m (moved off a vertex)");
+    if (parts.level != *o.split_z)
+      notes.push_back("split at z = " + std::to_string(parts.level) + " m (moved off a vertex)");
     rock = closed_part(parts.above, o.scan + " above z = " + std::to_string(parts.level));
     split_pedestal = closed_part(parts.below, o.scan + " below z = " + std::to_string(parts.level));
   }
@@ -309,13 +365,14 @@ void import_scan(const ImportOptions& o) {
     // raising vertices can fold the surface where it curls under the base: check again
     const auto crossing = geometry::find_self_intersection(rock);
     if (crossing[0] >= 0) {
-      throw InputError(o.scan, 0, "--flatten-base " + std::to_string(o.flatten_base) + " folds facet " +
-                                      std::to_string(crossing[1]) + " through facet " + std::to_string(crossing[0]) +
-                                      ": use a smaller height");
+      throw InputError(o.scan, 0,
+                       "--flatten-base " + std::to_string(o.flatten_base) + " folds facet " +
+                           std::to_string(crossing[1]) + " through facet " + std::to_string(crossing[0]) +
+                           ": use a smaller height");
     }
     notes.push_back("base cut flat " + std::to_string(o.flatten_base) + " m above its lowest point (" +
-                       std::to_string(moved) + " vertices raised; volume " + std::to_string(raw_volume) + " -> " +
-                       std::to_string(geometry::mass_properties(rock, 1.0).volume) + " m^3)");
+                    std::to_string(moved) + " vertices raised; volume " + std::to_string(raw_volume) + " -> " +
+                    std::to_string(geometry::mass_properties(rock, 1.0).volume) + " m^3)");
   }
   // the rock's base at z = 0, centred over the origin; a pedestal scan moves with it
   const auto [lo, hi] = bounds(rock.vertices);
@@ -359,35 +416,23 @@ void import_scan(const ImportOptions& o) {
   blocks += write_body(dir, name, "rock", rock, rock_report, false);
 
   const fs::path scene_path = dir / (name + ".toml");
-  const std::string header =
-      "# " + name + ": imported from " + o.scan + " by rigid model import (--scale " + std::to_string(o.scale) +
-      " --up " + o.up + " --contact-shape " + o.contact_shape + "). The rock's mass properties come from " + name +
-      "_rock.stl, its contact from the convex pieces listed with it.\n";
+  const std::string header = "# " + name + ": imported from " + o.scan + " by rigid model import (--scale " +
+                             std::to_string(o.scale) + " --up " + o.up + " --contact-shape " + o.contact_shape +
+                             "). The rock's mass properties come from " + name +
+                             "_rock.stl, its contact from the convex pieces listed with it.\n";
   std::string physics = io::default_physics_table();
   const std::string study_density = "density = 2600.0\n";
   char density[64];
   std::snprintf(density, sizeof density, "density = %.17g\n", o.density);
   physics.replace(physics.find(study_density), study_density.size(), density);
-  const std::string failure = o.tilt_deg > 0 ? "rule = \"tilt\"\ntilt_deg = " + std::to_string(o.tilt_deg) : "rule = \"below\"";
+  const std::string failure =
+      o.tilt_deg > 0 ? "rule = \"tilt\"\ntilt_deg = " + std::to_string(o.tilt_deg) : "rule = \"below\"";
   const std::string body = physics + "\n[failure]\n" + failure + "\n\n" + blocks;
   write_text(scene_path, header + body);
   // settle it on its pedestal: the campaigns start from this state, which must rest on it
-  const scenario::Scene scene = load_scene_with_warnings(scene_path.string());
-  const scenario::Settled settled = scenario::settle(scene, dynamics::StepSettings{});
-  if (settled.loose) {
-    throw InputError(o.scan, 0, scenario::describe(*settled.loose) + ": " + likely_cause(*settled.loose, o, size));
-  }
-  // resting on the pedestal is not enough: a rock that fell over onto a wide one does not stand
-  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
-    const double turned = scenario::tilt(scene.bodies[i].orientation, settled.scene.bodies[i].orientation) * 180 / kPi;
-    if (!scene.bodies[i].fixed && turned > 5.0) {
-      char text[200];
-      std::snprintf(text, sizeof text, "does not stand on its base: it tips over (%.0f deg) while settling on its pedestal", turned);
-      throw InputError(o.scan, 0, text);
-    }
-  }
+  const scenario::Scene settled = settled_on_pedestal(scene_path, o, size);
   const std::string state = name + ".state.toml";
-  io::save_state((dir / state).string(), settled.scene);
+  io::save_state((dir / state).string(), settled);
   write_text(scene_path, header + "state = \"" + state + "\"\n\n" + body);
 
   io::Json report;
@@ -405,7 +450,7 @@ void import_scan(const ImportOptions& o) {
   io::Json bodies = io::Json::array();
   for (const auto& r : reports) bodies.push_back(report_json(r));
   report["bodies"] = bodies;
-  const auto rocking = scenario::rocking_parameters(settled.scene);
+  const auto rocking = scenario::rocking_parameters(settled);
   if (rocking) {
     report["alpha_rad"] = rocking->alpha;
     report["static_toppling_g"] = std::tan(rocking->alpha);
@@ -413,25 +458,7 @@ void import_scan(const ImportOptions& o) {
   write_text(dir / (name + ".import.json"), report.dump(2) + "\n");
   staging.commit();
 
-  for (const auto& w : warnings) std::fprintf(stderr, "rigid: warning: %s\n", w.c_str());
-  for (const auto& [path, r] : repairs) std::printf("%s\n", describe(path, r).c_str());
-  std::printf("%s: %zu facets%s, closed, manifold, oriented outward, no self-intersection\n", o.scan.c_str(),
-              scan_facets, o.repair ? " after --repair" : "");
-  for (const auto& note : notes) std::printf("%s\n", note.c_str());
-  std::printf("%-9s %13s %16s %7s %9s %22s\n", "body", "mesh m^3", "contact m^3", "pieces", "vertices",
-              "budget Hausdorff m");
-  for (const auto& r : reports) {
-    std::printf("%-9s %13.6f %9.6f (%+5.1f%%) %7zu %9zu %22.4f\n", r.body.c_str(), r.mesh_volume, r.contact_volume,
-                100 * (r.contact_volume / r.mesh_volume - 1), r.pieces.size(), r.vertices, r.reduction);
-  }
-  if (rock_report.pieces.size() == 1) {
-    std::printf("the hull bridges hollows up to %.4f m deep (--contact-shape decompose follows them)\n",
-                rock_report.deepest_gap);
-  }
-  if (rocking) {
-    std::printf("settled: alpha %.4f rad, static toppling %.4f g towards azimuth %.0f deg, R %.4f m, p %.3f rad/s\n",
-                rocking->alpha, std::tan(rocking->alpha), rocking->azimuth * 180 / kPi + 0.0, rocking->radius, rocking->p);
-  }
+  print_summary(o, warnings, repairs, notes, scan_facets, reports, rocking);
   std::printf("wrote %s.{toml,state.toml,import.json} and its meshes\n", o.out.c_str());
 }
 
@@ -441,28 +468,32 @@ void add_import_subcommand(CLI::App& model_command) {
       "import", "A scanned rock (OBJ, PLY, STL) to a scene: checked mesh, contact shape, pedestal, settled state");
   cmd->add_option("scan", o->scan, "The rock's closed mesh: OBJ, PLY (ASCII or binary) or STL")->required();
   cmd->add_option("--out", o->out, "Output DIR/NAME")->required();
-  cmd->add_option("--scale", o->scale, "Multiplies the file's coordinates into metres (0.001 for mm)")->capture_default_str();
+  cmd->add_option("--scale", o->scale, "Multiplies the file's coordinates into metres (0.001 for mm)")
+      ->capture_default_str();
   cmd->add_option("--up", o->up, "The file's axis that points up: x, -x, y, -y, z, -z")->capture_default_str();
   cmd->add_option("--contact-shape", o->contact_shape,
                   "hull: one convex hull with a vertex budget; decompose: convex pieces that follow the hollows")
       ->capture_default_str();
   cmd->add_option("--max-vertices", o->max_vertices, "Vertex budget of the hull (default 128) or of each piece (48)");
-  cmd->add_option("--concavity", o->concavity, "decompose: stop when the pieces exceed the mesh volume by this fraction")
+  cmd->add_option("--concavity", o->concavity,
+                  "decompose: stop when the pieces exceed the mesh volume by this fraction")
       ->capture_default_str();
   cmd->add_option("--max-pieces", o->max_pieces, "decompose: at most this many pieces")->capture_default_str();
-  cmd->add_option("--pedestal", o->pedestal, "box (a fixed box under the rock) or a scan of the pedestal (same units and axes)")
+  cmd->add_option("--pedestal", o->pedestal,
+                  "box (a fixed box under the rock) or a scan of the pedestal (same units and axes)")
       ->capture_default_str();
   cmd->add_option("--split-z", o->split_z,
                   "One scan of rock and pedestal: the part above the plane z = Z (m, after --scale and --up) is "
                   "the rock, the part below its pedestal");
-  cmd->add_option("--pedestal-margin", o->pedestal_margin, "box: overhang beyond the rock's footprint (m)")->capture_default_str();
+  cmd->add_option("--pedestal-margin", o->pedestal_margin, "box: overhang beyond the rock's footprint (m)")
+      ->capture_default_str();
   cmd->add_option("--flatten-base", o->flatten_base,
                   "Cut the base flat this far above its lowest point (m): a scan's rough base otherwise rests on its "
                   "three lowest asperities")
       ->capture_default_str();
   cmd->add_flag("--repair", o->repair,
-               "Mend a scan's self-intersections, small holes (up to 64 edges) and open seams with CGAL, and "
-               "report what changed (facets removed and added, holes filled, volume)");
+                "Mend a scan's self-intersections, small holes (up to 64 edges) and open seams with CGAL, and "
+                "report what changed (facets removed and added, holes filled, volume)");
   cmd->add_option("--density", o->density, "Rock density written to the scene (kg/m^3)")->capture_default_str();
   cmd->add_option("--tilt-rule", o->tilt_deg,
                   "Failure rule: overturned once tilted beyond this angle (deg; for a rock on a wide table, where it "

@@ -7,9 +7,7 @@
 
 namespace rigid::contact {
 
-const char* contact_model_name(ContactModel model) {
-  return model == ContactModel::rigid ? "rigid" : "penalty";
-}
+const char* contact_model_name(ContactModel model) { return model == ContactModel::rigid ? "rigid" : "penalty"; }
 
 bool parse_contact_model(std::string_view name, ContactModel& model) {
   if (name == "rigid") {
@@ -63,8 +61,8 @@ bool inside(const geometry::ConvexPolyhedron& shape, const Mat3& rotation, const
 // Distance along the unit direction `exit_dir` from world_point to the plane of the block's face
 // most aligned with exit_dir (the face it is pressed into), for a point known to be on or in the
 // block (unit: m).
-double depth_to_contact_face(const geometry::ConvexPolyhedron& shape, const Mat3& rotation,
-                             const Vec3& position, const Vec3& world_point, const Vec3& exit_dir) {
+double depth_to_contact_face(const geometry::ConvexPolyhedron& shape, const Mat3& rotation, const Vec3& position,
+                             const Vec3& world_point, const Vec3& exit_dir) {
   const Vec3 p = rotation.transpose() * (world_point - position);
   const Vec3 d = rotation.transpose() * exit_dir;
   double best_alignment = -2, best_below = 0;
@@ -82,8 +80,8 @@ double depth_to_contact_face(const geometry::ConvexPolyhedron& shape, const Mat3
 // (Cyrus-Beck), testing face `first` first (one q0 is outside of, for a quick rejection). Returns
 // false when no part of it is inside; else [t0, t1], the inside part's parameters, and the faces
 // through which it enters and leaves (-1 at an end inside every face).
-bool clip_segment(const geometry::ConvexPolyhedron& shape, const Vec3& q0, const Vec3& q1,
-                  double tolerance, int first, double& t0, double& t1, int& enter, int& leave) {
+bool clip_segment(const geometry::ConvexPolyhedron& shape, const Vec3& q0, const Vec3& q1, double tolerance, int first,
+                  double& t0, double& t1, int& enter, int& leave) {
   t0 = 0;
   t1 = 1;
   enter = leave = -1;
@@ -196,6 +194,117 @@ CommonPlane find_common_plane(const PlacedHull& a, const PlacedHull& b, const Ve
   return cp;
 }
 
+namespace {
+
+// Edge crossings: where an edge of one block enters the other through a side face, the contact
+// region has a corner that is no vertex of either block (a block overhanging its pedestal's edge,
+// the pedestal's edge under the block's base; two faces overlapping crosswise). Without these
+// points such a contact had no support between the vertex subcontacts, and the edge sank into
+// the face unresisted (by 1.4 cm under 10 g shaking) until the last vertex left and one
+// subcontact at full depth threw the block. Each end of the edge's inside part that is not the
+// edge's own vertex and lies on a side face of the other block is a subcontact, indented along
+// n to the face it is pressed into. Such a corner is where an edge of A crosses an edge of B
+// (seen along n) and is found from either block, so A's edges suffice; and there is none when
+// every vertex of one block past the other's supporting plane is inside the other (one contact
+// polygon inside the other: a block standing within its pedestal's top costs nothing more).
+// The scale of the search (normal, tolerance, merge distance) and the first of the pair's points
+// in `out` come from collect_subcontacts.
+void add_edge_crossings(const PlacedHull& edges_of, const PlacedHull& other, int side, double limit, const Vec3& n,
+                        double tolerance, double same2, std::size_t first, std::vector<SubcontactPoint>& out) {
+  const auto& shape = *edges_of.shape;
+  const double sign = side == 0 ? 1.0 : -1.0;  // A's edges press along +n into B, B's along -n
+  const Vec3 other_position = other.position + other.offset;
+  // the other block's bounding sphere (about its own middle for a piece of a compound body)
+  const Vec3 other_centre = other_position + other.rotation * other.shape->bounding_centre;
+  const double reach2 = other.shape->bounding_radius * other.shape->bounding_radius;
+  auto past = [&](int v) {  // beyond the other block's supporting plane
+    return sign * n.dot(edges_of.world_vertices[v] + edges_of.offset) > sign * limit;
+  };
+  auto has_subcontact = [&](int v) {  // the vertex is inside the other block (found above)
+    const int key = subcontact_key(side, v);
+    for (std::size_t k = first; k < out.size(); ++k) {
+      if (out[k].key == key) return true;
+    }
+    return false;
+  };
+  // An edge can reach into the other block only past its supporting plane, so only edges with
+  // an end there are tried, each once, from its lower-numbered end when both ends are there.
+  const int nv = static_cast<int>(shape.vertices.size());
+  const Mat3 to_other = other.rotation.transpose();
+  for (int v = 0; v < nv; ++v) {
+    if (!past(v)) continue;
+    const bool v_inside = has_subcontact(v);
+    const auto& around = shape.vertex_neighbors[v];
+    Vec3 qv{0, 0, 0};  // v in the other block's body frame, and the face it is most outside of
+    int v_out = -2;    // -2: not computed yet; -1: inside every face
+    for (std::size_t slot = 0; slot < around.size(); ++slot) {
+      const int u = around[slot];
+      const bool u_past = past(u);
+      if (u_past && u < v) continue;
+      if (v_inside && u_past && has_subcontact(u)) continue;  // both ends inside: all of it
+      // the edge runs from its lower-numbered end; its key is that end and the other's slot
+      const int v0 = std::min(v, u), v1 = std::max(v, u);
+      std::size_t slot0 = slot;
+      if (v0 != v) {
+        const auto& list = shape.vertex_neighbors[v0];
+        slot0 = static_cast<std::size_t>(std::lower_bound(list.begin(), list.end(), v1) - list.begin());
+      }
+      const Vec3 p0 = edges_of.world_vertices[v0] + edges_of.offset;
+      const Vec3 p1 = edges_of.world_vertices[v1] + edges_of.offset;
+      const Vec3 d = p1 - p0;
+      const double len2 = d.squaredNorm();
+      const double t_near = len2 > 0 ? std::clamp((other_centre - p0).dot(d) / len2, 0.0, 1.0) : 0.0;
+      if ((p0 + t_near * d - other_centre).squaredNorm() > reach2) continue;
+      if (v_out == -2) {
+        qv = to_other * (edges_of.world_vertices[v] + edges_of.offset - other_position);
+        double most = 0;
+        v_out = -1;
+        const auto& faces = other.shape->faces;
+        for (std::size_t f = 0; f < faces.size(); ++f) {
+          const double outside = faces[f].normal.dot(qv) - faces[f].offset - tolerance;
+          if (outside > most) {
+            most = outside;
+            v_out = static_cast<int>(f);
+          }
+        }
+      }
+      const Vec3 qu = to_other * (edges_of.world_vertices[u] + edges_of.offset - other_position);
+      const Vec3& q0 = v0 == v ? qv : qu;
+      const Vec3& q1 = v0 == v ? qu : qv;
+      double t0 = 0, t1 = 1;
+      int enter = -1, leave = -1;
+      if (!clip_segment(*other.shape, q0, q1, tolerance, v_out, t0, t1, enter, leave)) continue;
+      const double t_ends[2] = {t0, t1};
+      const int faces_at[2] = {enter, leave};
+      for (int end = 0; end < 2; ++end) {
+        const double t = t_ends[end];
+        if (t <= 1e-9 || t >= 1 - 1e-9) continue;  // the edge's own vertex: handled above
+        // only where the edge passes through a side face (within 60 degrees of parallel to n);
+        // through a face turned towards the contact the edge just leaves the overlap, and an
+        // edge-edge contact (faces at 45 degrees either side) is left to the shortest link
+        const Vec3 side_normal = other.rotation * other.shape->faces[faces_at[end]].normal;
+        if (std::abs(side_normal.dot(n)) > 0.5) continue;
+        const Vec3 x = p0 + t * d;
+        const double depth = std::min(sign * (n.dot(x) - limit), depth_to_contact_face(*other.shape, other.rotation,
+                                                                                       other_position, x, -sign * n));
+        if (depth <= tolerance) continue;
+        const Vec3 point = x - sign * 0.5 * depth * n;
+        bool duplicate = false;
+        for (std::size_t k = first; k < out.size(); ++k) {
+          duplicate |= (out[k].point - point).squaredNorm() < same2;
+        }
+        if (duplicate) continue;
+        // unique while v0 < 2^20 and slot0 < 256; beyond, keys may repeat (a shear spring may
+        // then be handed to another crossing: harmless, and no such mesh is realistic)
+        const int index = ((v0 & 0xFFFFF) << 9) | (static_cast<int>(slot0 & 0xFF) << 1) | end;
+        out.push_back({(side << 30) | kCrossingBit | index, point, depth});
+      }
+    }
+  }
+}
+
+}  // namespace
+
 void collect_subcontacts(const PlacedHull& a, const PlacedHull& b, const CommonPlane& plane,
                          std::vector<SubcontactPoint>& out) {
   const Vec3& n = plane.normal;
@@ -251,113 +360,8 @@ void collect_subcontacts(const PlacedHull& a, const PlacedHull& b, const CommonP
     out.push_back({subcontact_key(1, static_cast<int>(j)), p + 0.5 * depth * n, depth});
   }
 
-  // Edge crossings: where an edge of one block enters the other through a side face, the contact
-  // region has a corner that is no vertex of either block (a block overhanging its pedestal's edge,
-  // the pedestal's edge under the block's base; two faces overlapping crosswise). Without these
-  // points such a contact had no support between the vertex subcontacts, and the edge sank into
-  // the face unresisted (by 1.4 cm under 10 g shaking) until the last vertex left and one
-  // subcontact at full depth threw the block. Each end of the edge's inside part that is not the
-  // edge's own vertex and lies on a side face of the other block is a subcontact, indented along
-  // n to the face it is pressed into. Such a corner is where an edge of A crosses an edge of B
-  // (seen along n) and is found from either block, so A's edges suffice; and there is none when
-  // every vertex of one block past the other's supporting plane is inside the other (one contact
-  // polygon inside the other: a block standing within its pedestal's top costs nothing more).
-  auto add_crossings = [&](const PlacedHull& edges_of, const PlacedHull& other, int side,
-                           double limit) {
-    const auto& shape = *edges_of.shape;
-    const double sign = side == 0 ? 1.0 : -1.0;  // A's edges press along +n into B, B's along -n
-    const Vec3 other_position = other.position + other.offset;
-    // the other block's bounding sphere (about its own middle for a piece of a compound body)
-    const Vec3 other_centre = other_position + other.rotation * other.shape->bounding_centre;
-    const double reach2 = other.shape->bounding_radius * other.shape->bounding_radius;
-    auto past = [&](int v) {  // beyond the other block's supporting plane
-      return sign * n.dot(edges_of.world_vertices[v] + edges_of.offset) > sign * limit;
-    };
-    auto has_subcontact = [&](int v) {  // the vertex is inside the other block (found above)
-      const int key = subcontact_key(side, v);
-      for (std::size_t k = first; k < out.size(); ++k) {
-        if (out[k].key == key) return true;
-      }
-      return false;
-    };
-    // An edge can reach into the other block only past its supporting plane, so only edges with
-    // an end there are tried, each once, from its lower-numbered end when both ends are there.
-    const int nv = static_cast<int>(shape.vertices.size());
-    const Mat3 to_other = other.rotation.transpose();
-    for (int v = 0; v < nv; ++v) {
-      if (!past(v)) continue;
-      const bool v_inside = has_subcontact(v);
-      const auto& around = shape.vertex_neighbors[v];
-      Vec3 qv{0, 0, 0};  // v in the other block's body frame, and the face it is most outside of
-      int v_out = -2;    // -2: not computed yet; -1: inside every face
-      for (std::size_t slot = 0; slot < around.size(); ++slot) {
-        const int u = around[slot];
-        const bool u_past = past(u);
-        if (u_past && u < v) continue;
-        if (v_inside && u_past && has_subcontact(u)) continue;  // both ends inside: all of it
-        // the edge runs from its lower-numbered end; its key is that end and the other's slot
-        const int v0 = std::min(v, u), v1 = std::max(v, u);
-        std::size_t slot0 = slot;
-        if (v0 != v) {
-          const auto& list = shape.vertex_neighbors[v0];
-          slot0 = static_cast<std::size_t>(std::lower_bound(list.begin(), list.end(), v1) - list.begin());
-        }
-        const Vec3 p0 = edges_of.world_vertices[v0] + edges_of.offset;
-        const Vec3 p1 = edges_of.world_vertices[v1] + edges_of.offset;
-        const Vec3 d = p1 - p0;
-        const double len2 = d.squaredNorm();
-        const double t_near =
-            len2 > 0 ? std::clamp((other_centre - p0).dot(d) / len2, 0.0, 1.0) : 0.0;
-        if ((p0 + t_near * d - other_centre).squaredNorm() > reach2) continue;
-        if (v_out == -2) {
-          qv = to_other * (edges_of.world_vertices[v] + edges_of.offset - other_position);
-          double most = 0;
-          v_out = -1;
-          const auto& faces = other.shape->faces;
-          for (std::size_t f = 0; f < faces.size(); ++f) {
-            const double outside = faces[f].normal.dot(qv) - faces[f].offset - tolerance;
-            if (outside > most) {
-              most = outside;
-              v_out = static_cast<int>(f);
-            }
-          }
-        }
-        const Vec3 qu = to_other * (edges_of.world_vertices[u] + edges_of.offset - other_position);
-        const Vec3& q0 = v0 == v ? qv : qu;
-        const Vec3& q1 = v0 == v ? qu : qv;
-        double t0 = 0, t1 = 1;
-        int enter = -1, leave = -1;
-        if (!clip_segment(*other.shape, q0, q1, tolerance, v_out, t0, t1, enter, leave)) continue;
-        const double t_ends[2] = {t0, t1};
-        const int faces_at[2] = {enter, leave};
-        for (int end = 0; end < 2; ++end) {
-          const double t = t_ends[end];
-          if (t <= 1e-9 || t >= 1 - 1e-9) continue;  // the edge's own vertex: handled above
-          // only where the edge passes through a side face (within 60 degrees of parallel to n);
-          // through a face turned towards the contact the edge just leaves the overlap, and an
-          // edge-edge contact (faces at 45 degrees either side) is left to the shortest link
-          const Vec3 side_normal = other.rotation * other.shape->faces[faces_at[end]].normal;
-          if (std::abs(side_normal.dot(n)) > 0.5) continue;
-          const Vec3 x = p0 + t * d;
-          const double depth = std::min(
-              sign * (n.dot(x) - limit),
-              depth_to_contact_face(*other.shape, other.rotation, other_position, x, -sign * n));
-          if (depth <= tolerance) continue;
-          const Vec3 point = x - sign * 0.5 * depth * n;
-          bool duplicate = false;
-          for (std::size_t k = first; k < out.size(); ++k) {
-            duplicate |= (out[k].point - point).squaredNorm() < same2;
-          }
-          if (duplicate) continue;
-          // unique while v0 < 2^20 and slot0 < 256; beyond, keys may repeat (a shear spring may
-          // then be handed to another crossing: harmless, and no such mesh is realistic)
-          const int index = ((v0 & 0xFFFFF) << 9) | (static_cast<int>(slot0 & 0xFF) << 1) | end;
-          out.push_back({(side << 30) | kCrossingBit | index, point, depth});
-        }
-      }
-    }
-  };
-  if (a_inside < a_past && b_inside < b_past) add_crossings(a, b, 0, min_b);
+  // edge crossings (add_edge_crossings); none when one contact polygon lies inside the other
+  if (a_inside < a_past && b_inside < b_past) add_edge_crossings(a, b, 0, min_b, n, tolerance, same2, first, out);
 
   if (out.size() == first && plane.overlap > 0) {
     out.push_back({kEdgeSubcontact, 0.5 * (plane.point_a + plane.point_b), plane.overlap});

@@ -38,9 +38,7 @@ std::string fmt(double x) {
   return buf;
 }
 
-std::string fmt(const Vec3& v) {
-  return "(" + fmt(v.x()) + ", " + fmt(v.y()) + ", " + fmt(v.z()) + ")";
-}
+std::string fmt(const Vec3& v) { return "(" + fmt(v.x()) + ", " + fmt(v.y()) + ", " + fmt(v.z()) + ")"; }
 
 [[noreturn]] void fail(const std::string& source, std::size_t facet, const std::string& what) {
   throw InputError(source, 0, "facet " + std::to_string(facet) + ": " + what);
@@ -135,8 +133,7 @@ Adjacency build_adjacency(const std::vector<std::array<int, 3>>& tris) {
 
 // Welds soup vertices closer than eps: the first occurrence keeps its index and position, later
 // ones map to the nearest earlier representative (ties: the smaller index).
-std::vector<int> weld(const TriangleSoup& soup, const Vec3& lo, double diag, double eps,
-                      std::vector<Vec3>& vertices) {
+std::vector<int> weld(const TriangleSoup& soup, const Vec3& lo, double diag, double eps, std::vector<Vec3>& vertices) {
   // cells of 16 eps: a point within eps of another is in its cell or, where it lies within eps of
   // a cell face, in the neighbour across it; so a lookup visits ~2 cells, not 27
   const double cell = std::max(16 * eps, kMinRelativeCell * diag);
@@ -214,8 +211,7 @@ std::vector<int> weld(const TriangleSoup& soup, const Vec3& lo, double diag, dou
 
 // Signed enclosed volume and the sum of the absolute tetrahedron volumes it is made of (the
 // scale of its rounding error), with the origin at the vertex mean (physics.md §7).
-std::pair<double, double> signed_volume(const std::vector<Vec3>& v,
-                                        const std::vector<std::array<int, 3>>& tris) {
+std::pair<double, double> signed_volume(const std::vector<Vec3>& v, const std::vector<std::array<int, 3>>& tris) {
   Vec3 o = Vec3::Zero();
   for (const Vec3& p : v) o += p;
   o /= static_cast<double>(v.size());
@@ -336,8 +332,7 @@ std::vector<std::array<int, 3>> triangle_neighbors(const ClosedMesh& mesh) {
   const auto nv = static_cast<long long>(mesh.vertices.size());
   for (const auto& t : mesh.triangles) {
     for (int v : t) {
-      if (v < 0 || v >= nv)
-        throw std::invalid_argument("triangle_neighbors: vertex index out of range");
+      if (v < 0 || v >= nv) throw std::invalid_argument("triangle_neighbors: vertex index out of range");
     }
   }
   const Adjacency adj = build_adjacency(mesh.triangles);
@@ -353,67 +348,48 @@ std::vector<std::array<int, 3>> triangle_neighbors(const ClosedMesh& mesh) {
   return nb;
 }
 
-ClosedMesh make_closed_mesh(const TriangleSoup& soup, const MeshOptions& options,
-                            const std::string& source) {
-  if (!(std::isfinite(options.weld_tolerance) && options.weld_tolerance >= 0) ||
-      !(std::isfinite(options.convexity_tolerance) && options.convexity_tolerance >= 0) ||
-      !(std::isfinite(options.coplanar_angle) && options.coplanar_angle >= 0)) {
-    throw std::invalid_argument("MeshOptions: tolerances must be finite and non-negative");
-  }
-  if (soup.empty()) fail_mesh(source, "no facets");
-  if (soup.size() > static_cast<std::size_t>(std::numeric_limits<int>::max() / 3)) {
-    fail_mesh(source, "too many facets (" + std::to_string(soup.size()) + ")");
-  }
+namespace {
 
-  // finite, bounded coordinates and the bounding box
+// Finite, bounded coordinates; the soup's bounding box as (lo, hi).
+std::pair<Vec3, Vec3> checked_bounds(const TriangleSoup& soup, const std::string& source) {
   Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
   Vec3 hi = -lo;
   for (std::size_t f = 0; f < soup.size(); ++f) {
     for (const Vec3* p : {&soup[f].a, &soup[f].b, &soup[f].c}) {
       if (!p->allFinite()) fail(source, f, "vertex coordinate is NaN or infinite");
       if (p->cwiseAbs().maxCoeff() > kMaxCoordinate) {
-        fail(
-            source, f,
-            "vertex " + fmt(*p) + " is farther than " + fmt(kMaxCoordinate) + " m from the origin");
+        fail(source, f, "vertex " + fmt(*p) + " is farther than " + fmt(kMaxCoordinate) + " m from the origin");
       }
       lo = lo.cwiseMin(*p);
       hi = hi.cwiseMax(*p);
     }
   }
-  const double diag = (hi - lo).norm();
-  if (!(diag > 0)) fail(source, 0, "degenerate triangle (all vertices of the mesh coincide)");
+  return {lo, hi};
+}
 
-  // weld duplicate vertices
-  ClosedMesh mesh;
-  const double weld_eps = options.weld_tolerance * diag;
-  const std::vector<int> index = weld(soup, lo, diag, weld_eps, mesh.vertices);
+// Degenerate triangles: coincident vertices or a height below the weld tolerance.
+void check_triangle_heights(const ClosedMesh& mesh, double min_height, const std::string& source) {
   const std::vector<Vec3>& v = mesh.vertices;
-  mesh.triangles.resize(soup.size());
-  for (std::size_t f = 0; f < soup.size(); ++f) {
-    mesh.triangles[f] = {index[3 * f], index[3 * f + 1], index[3 * f + 2]};
-  }
-
-  // degenerate triangles: coincident vertices or a height below the weld tolerance
-  const double min_height = std::max(weld_eps, kMinRelativeHeight * diag);
-  for (std::size_t f = 0; f < soup.size(); ++f) {
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
     const auto& t = mesh.triangles[f];
     if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0]) {
       fail(source, f, "degenerate triangle (two of its vertices coincide after welding)");
     }
     const Vec3 &a = v[t[0]], &b = v[t[1]], &c = v[t[2]];
-    const double longest =
-        std::sqrt(std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()}));
+    const double longest = std::sqrt(std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()}));
     const double height = area_vector(a, b, c).norm() / longest;  // the smallest height
     if (!(height > min_height)) {
       fail(source, f,
-           "degenerate triangle (zero area: height " + fmt(height) + " m is below the tolerance " +
-               fmt(min_height) + " m)");
+           "degenerate triangle (zero area: height " + fmt(height) + " m is below the tolerance " + fmt(min_height) +
+               " m)");
     }
   }
+}
 
-  // closed and manifold: every undirected edge is used by exactly two facets
-  Adjacency adj = build_adjacency(mesh.triangles);
-  for (std::size_t f = 0; f < soup.size(); ++f) {
+// Closed and manifold: every undirected edge is used by exactly two facets.
+void check_closed(const ClosedMesh& mesh, const Adjacency& adj, const std::string& source) {
+  const std::vector<Vec3>& v = mesh.vertices;
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
     for (int i = 0; i < 3; ++i) {
       const int n = adj.count[f * 3 + i];
       if (n == 2) continue;
@@ -423,7 +399,7 @@ ClosedMesh make_closed_mesh(const TriangleSoup& soup, const MeshOptions& options
         // a hole: name its facets (the first few of every open edge's facets), so it can be found
         std::size_t open = 0;
         std::string facets;
-        for (std::size_t g = 0; g < soup.size(); ++g) {
+        for (std::size_t g = 0; g < mesh.triangles.size(); ++g) {
           for (int j = 0; j < 3; ++j) {
             if (adj.count[g * 3 + j] != 1) continue;
             if (open < 8) facets += (open ? ", " : "") + std::to_string(g);
@@ -435,14 +411,15 @@ ClosedMesh make_closed_mesh(const TriangleSoup& soup, const MeshOptions& options
                  std::to_string(open) + " open edges, at facets " + facets + (open > 8 ? ", ..." : ""));
       }
       fail(source, f,
-           "edge " + fmt(a) + "-" + fmt(b) + " is shared by " + std::to_string(n) +
-               " facets (non-manifold edge)");
+           "edge " + fmt(a) + "-" + fmt(b) + " is shared by " + std::to_string(n) + " facets (non-manifold edge)");
     }
   }
+}
 
-  // consistent orientation by breadth-first search from facet 0; a neighbour must run the
-  // shared edge the other way
-  const std::size_t nf = soup.size();
+// Consistent orientation by breadth-first search from facet 0 (a neighbour must run the shared
+// edge the other way); returns how many facets were flipped.
+std::size_t orient_consistently(ClosedMesh& mesh, const Adjacency& adj, const std::string& source) {
+  const std::size_t nf = mesh.triangles.size();
   std::vector<signed char> flip(nf, -1);
   std::deque<int> queue{0};
   flip[0] = 0;
@@ -475,9 +452,14 @@ ClosedMesh make_closed_mesh(const TriangleSoup& soup, const MeshOptions& options
       ++flipped;
     }
   }
-  if (flipped > 0) adj = build_adjacency(mesh.triangles);
 
-  // manifold vertices: the facets around each vertex form a single fan
+  return flipped;
+}
+
+// Manifold vertices: the facets around each vertex form a single fan.
+void check_vertex_fans(const ClosedMesh& mesh, const Adjacency& adj, const std::string& source) {
+  const std::vector<Vec3>& v = mesh.vertices;
+  const std::size_t nf = mesh.triangles.size();
   std::vector<int> uses_of_vertex(v.size(), 0), first_tri(v.size(), -1);
   for (std::size_t f = 0; f < nf; ++f) {
     for (int x : mesh.triangles[f]) {
@@ -498,10 +480,48 @@ ClosedMesh make_closed_mesh(const TriangleSoup& soup, const MeshOptions& options
            "vertex " + fmt(v[x]) + " joins separate fans of facets (non-manifold vertex)");
     }
   }
+}
+
+}  // namespace
+
+ClosedMesh make_closed_mesh(const TriangleSoup& soup, const MeshOptions& options, const std::string& source) {
+  if (!(std::isfinite(options.weld_tolerance) && options.weld_tolerance >= 0) ||
+      !(std::isfinite(options.convexity_tolerance) && options.convexity_tolerance >= 0) ||
+      !(std::isfinite(options.coplanar_angle) && options.coplanar_angle >= 0)) {
+    throw std::invalid_argument("MeshOptions: tolerances must be finite and non-negative");
+  }
+  if (soup.empty()) fail_mesh(source, "no facets");
+  if (soup.size() > static_cast<std::size_t>(std::numeric_limits<int>::max() / 3)) {
+    fail_mesh(source, "too many facets (" + std::to_string(soup.size()) + ")");
+  }
+
+  const auto [lo, hi] = checked_bounds(soup, source);
+  const double diag = (hi - lo).norm();
+  if (!(diag > 0)) fail(source, 0, "degenerate triangle (all vertices of the mesh coincide)");
+
+  // weld duplicate vertices
+  ClosedMesh mesh;
+  const double weld_eps = options.weld_tolerance * diag;
+  const std::vector<int> index = weld(soup, lo, diag, weld_eps, mesh.vertices);
+  const std::vector<Vec3>& v = mesh.vertices;
+  mesh.triangles.resize(soup.size());
+  for (std::size_t f = 0; f < soup.size(); ++f) {
+    mesh.triangles[f] = {index[3 * f], index[3 * f + 1], index[3 * f + 2]};
+  }
+
+  check_triangle_heights(mesh, std::max(weld_eps, kMinRelativeHeight * diag), source);
+
+  Adjacency adj = build_adjacency(mesh.triangles);
+  check_closed(mesh, adj, source);
+
+  const std::size_t nf = soup.size();
+  std::size_t flipped = orient_consistently(mesh, adj, source);
+  if (flipped > 0) adj = build_adjacency(mesh.triangles);
+  check_vertex_fans(mesh, adj, source);
 
   // a convex surface is a topological sphere: V - E + F = 2
-  const long long euler = static_cast<long long>(v.size()) - static_cast<long long>(3 * nf / 2) +
-                          static_cast<long long>(nf);
+  const long long euler =
+      static_cast<long long>(v.size()) - static_cast<long long>(3 * nf / 2) + static_cast<long long>(nf);
   if (options.require_convex && euler != 2) {
     fail_mesh(source, "Euler characteristic V - E + F is " + std::to_string(euler) +
                           ", not 2: the surface has handles and cannot be convex");
@@ -510,16 +530,14 @@ ClosedMesh make_closed_mesh(const TriangleSoup& soup, const MeshOptions& options
   // outward orientation: the enclosed volume must be positive
   const auto [volume, volume_scale] = signed_volume(v, mesh.triangles);
   if (!(std::abs(volume) > kMinRelativeVolume * volume_scale)) {
-    fail_mesh(source, "encloses no volume (" + fmt(volume) +
-                          " m^3): the surface is flat or folds back onto itself");
+    fail_mesh(source, "encloses no volume (" + fmt(volume) + " m^3): the surface is flat or folds back onto itself");
   }
   if (volume < 0) {
     for (auto& t : mesh.triangles) std::swap(t[1], t[2]);
     flipped = nf - flipped;
   }
   if (flipped == nf) {
-    mesh.warnings.push_back("orientation was inward; flipped all " + std::to_string(nf) +
-                            " facets");
+    mesh.warnings.push_back("orientation was inward; flipped all " + std::to_string(nf) + " facets");
   } else if (flipped > 0) {
     mesh.warnings.push_back(std::to_string(flipped) + " of " + std::to_string(nf) +
                             " facets were oriented inconsistently; flipped to face outward");

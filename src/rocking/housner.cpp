@@ -111,8 +111,7 @@ double barrier_energy(const RockingBlock& b, bool linearised) {
 }
 
 void validate_block(const RockingBlock& b) {
-  require(std::isfinite(b.alpha) && b.alpha > 0.0 && b.alpha < 0.5 * kPi,
-          "block alpha must be in (0, pi/2)");
+  require(std::isfinite(b.alpha) && b.alpha > 0.0 && b.alpha < 0.5 * kPi, "block alpha must be in (0, pi/2)");
   require(std::isfinite(b.p) && b.p > 0.0, "block p must be finite and positive");
   require(std::isfinite(b.restitution) && b.restitution >= 0.0 && b.restitution <= 1.0,
           "block restitution must be in [0, 1]");
@@ -122,8 +121,7 @@ void validate_block(const RockingBlock& b) {
 
 RockingBlock RockingBlock::rectangular(double half_width, double half_height) {
   require(std::isfinite(half_width) && half_width > 0.0, "half_width must be finite and positive");
-  require(std::isfinite(half_height) && half_height > 0.0,
-          "half_height must be finite and positive");
+  require(std::isfinite(half_height) && half_height > 0.0, "half_height must be finite and positive");
   RockingBlock b;
   b.alpha = std::atan2(half_width, half_height);
   b.R = std::hypot(half_width, half_height);
@@ -150,8 +148,8 @@ RockingBlock RockingBlock::general(double alpha, double R, double mass, double i
   return b;
 }
 
-GroundAcceleration GroundAcceleration::sampled(std::span<const double> accel, double dt,
-                                               double start_time, double scale) {
+GroundAcceleration GroundAcceleration::sampled(std::span<const double> accel, double dt, double start_time,
+                                               double scale) {
   require(std::isfinite(dt) && dt > 0.0, "sampling interval dt must be finite and positive");
   require(std::isfinite(start_time), "start_time must be finite");
   require(std::isfinite(scale), "scale must be finite");
@@ -168,8 +166,8 @@ GroundAcceleration GroundAcceleration::sampled(std::span<const double> accel, do
   return g;
 }
 
-GroundAcceleration GroundAcceleration::analytic(std::function<double(double)> accel,
-                                                double end_time, std::vector<double> breakpoints) {
+GroundAcceleration GroundAcceleration::analytic(std::function<double(double)> accel, double end_time,
+                                                std::vector<double> breakpoints) {
   require(static_cast<bool>(accel), "analytic ground motion needs a function");
   require(std::isfinite(end_time), "end_time must be finite");
   for (const double t : breakpoints) require(std::isfinite(t), "breakpoints must be finite");
@@ -216,259 +214,303 @@ double uplift_acceleration(const RockingBlock& block, bool linearised) {
 double rocking_energy(const RockingBlock& block, double theta, double theta_dot, bool linearised) {
   const double p2 = block.p * block.p;
   const double a = std::abs(theta);
-  const double potential = linearised ? p2 * (block.alpha * a - 0.5 * a * a)
-                                      : p2 * (std::cos(block.alpha - a) - std::cos(block.alpha));
+  const double potential =
+      linearised ? p2 * (block.alpha * a - 0.5 * a * a) : p2 * (std::cos(block.alpha - a) - std::cos(block.alpha));
   return 0.5 * theta_dot * theta_dot + potential;
 }
 
-RockingResult simulate(const RockingBlock& block, const GroundAcceleration& ground, double end_time,
-                       const RockingOptions& options, const InitialState& initial) {
-  validate_block(block);
-  require(std::isfinite(options.time_step) && options.time_step > 0.0,
-          "time_step must be finite and positive");
-  require(std::isfinite(options.overturn_angle) && options.overturn_angle >= 0.0 &&
-              options.overturn_angle <= 0.5 * kPi,
+namespace {
+
+void validate_run(const RockingOptions& options, const InitialState& initial, double end_time) {
+  require(std::isfinite(options.time_step) && options.time_step > 0.0, "time_step must be finite and positive");
+  require(std::isfinite(options.overturn_angle) && options.overturn_angle >= 0.0 && options.overturn_angle <= 0.5 * kPi,
           "overturn_angle must be in [0, pi/2] (0 selects alpha)");
   require(std::isfinite(options.rest_velocity_ratio) && options.rest_velocity_ratio >= 0.0,
           "rest_velocity_ratio must be finite and non-negative");
   require(std::isfinite(options.record_interval) && options.record_interval >= 0.0,
           "record_interval must be finite and non-negative");
-  require(std::isfinite(initial.time) && std::isfinite(initial.theta) &&
-              std::isfinite(initial.theta_dot),
+  require(std::isfinite(initial.time) && std::isfinite(initial.theta) && std::isfinite(initial.theta_dot),
           "initial state must be finite");
   require(std::isfinite(end_time) && end_time >= initial.time,
           "end_time must be finite and not before the initial time");
+}
 
-  const Rhs rhs(block, ground, options.linearised);
-  const double h_max = options.time_step;
-  const double theta_ov = options.overturn_angle > 0.0 ? options.overturn_angle : block.alpha;
-  const double r = block.restitution;
-  const double w_rest =
-      options.rest_velocity_ratio * std::sqrt(2.0 * barrier_energy(block, options.linearised));
-  // residuals for root finding: θ to near round-off, θ̇ loosely (θ is flat at a peak).
-  const double theta_tol = 1e-15 * std::max(1.0, theta_ov);
-  const double omega_tol = 1e-12 * block.p;
+// time tolerance for bisection and root brackets (unit: s).
+double ttol(double at) { return 1e-15 * std::max(1.0, std::abs(at)); }
 
-  RockingResult res;
-  double t = initial.time;
-  double th = initial.theta;
-  double w = initial.theta_dot;
-  // active pivot: +1 / −1 while rocking, 0 at rest.
-  double s = th > 0.0 ? 1.0 : th < 0.0 ? -1.0 : w > 0.0 ? 1.0 : w < 0.0 ? -1.0 : 0.0;
-  res.max_abs_theta = std::abs(th);
-
-  const bool rec = options.record_trajectory;
-  double last_step_record = -kInf;
-  auto record = [&](SampleKind kind) {
-    if (!rec) return;
-    res.trajectory.push_back({t, th, w, kind});
-  };
-  record(SampleKind::start);
-
-  if (std::abs(th) >= theta_ov) {
-    res.overturned = true;
-    res.failure_time = t;
-    res.stop = StopReason::overturned;
-    res.end_time = t;
-    record(SampleKind::overturn);
-    return res;
+// One run of the event-driven integration: the state (t, θ, θ̇, pivot s) and the result, with one
+// method per kind of step. Each step either advances t or changes the state at the same t.
+class Integration {
+ public:
+  Integration(const RockingBlock& block, const GroundAcceleration& ground, const RockingOptions& options,
+              const InitialState& initial)
+      : ground_(ground),
+        options_(options),
+        rhs_(block, ground, options.linearised),
+        theta_ov_(options.overturn_angle > 0.0 ? options.overturn_angle : block.alpha),
+        r_(block.restitution),
+        w_rest_(options.rest_velocity_ratio * std::sqrt(2.0 * barrier_energy(block, options.linearised))),
+        // residuals for root finding: θ to near round-off, θ̇ loosely (θ is flat at a peak).
+        theta_tol_(1e-15 * std::max(1.0, theta_ov_)),
+        omega_tol_(1e-12 * block.p),
+        t_(initial.time),
+        th_(initial.theta),
+        w_(initial.theta_dot),
+        // active pivot: +1 / −1 while rocking, 0 at rest.
+        s_(th_ > 0.0   ? 1.0
+           : th_ < 0.0 ? -1.0
+           : w_ > 0.0  ? 1.0
+           : w_ < 0.0  ? -1.0
+                       : 0.0) {
+    res_.max_abs_theta = std::abs(th_);
   }
 
-  // time tolerance for bisection and root brackets (unit: s).
-  auto ttol = [](double at) { return 1e-15 * std::max(1.0, std::abs(at)); };
+  RockingResult run(double end_time) {
+    record(SampleKind::start);
+    if (std::abs(th_) >= theta_ov_) {
+      res_.overturned = true;
+      res_.failure_time = t_;
+      res_.stop = StopReason::overturned;
+      res_.end_time = t_;
+      record(SampleKind::overturn);
+      return res_;
+    }
+    StopReason stop = StopReason::end_time;
+    // a long run of passes without progress would be a bug, not physics.
+    int stalled = 0;
+    double t_prev = t_;
+    while (t_ < end_time) {
+      stalled = (t_ > t_prev) ? 0 : stalled + 1;
+      t_prev = t_;
+      if (stalled > 1000) throw std::logic_error("rocking: simulation time does not advance");
+      const double t1 = step_end(end_time);
+      if (s_ == 0.0) {
+        if (t_ >= ground_.end_time()) {
+          stop = StopReason::at_rest;
+          break;
+        }
+        rest_step(t1);
+        continue;
+      }
+      const double h = t1 - t_;
+      const double a0 = rhs_.ground_after(t_);
+      const Phase y0{th_, w_};
+      const Phase y1 = rhs_.step(t_, y0, s_, h, a0);
+      if (overturn_within(y0, y1, a0, h, t1)) {
+        stop = StopReason::overturned;
+        break;
+      }
+      if (impact_within(y0, y1, a0, h, t1)) continue;
+      ordinary_step(t1, y1);
+    }
+    res_.stop = stop;
+    res_.end_time = t_;
+    record(SampleKind::end);
+    return res_;
+  }
+
+ private:
+  void record(SampleKind kind) {
+    if (!options_.record_trajectory) return;
+    res_.trajectory.push_back({t_, th_, w_, kind});
+  }
+  void record_step() {
+    if (options_.record_trajectory && t_ - last_step_record_ >= options_.record_interval) {
+      record(SampleKind::step);
+      last_step_record_ = t_;
+    }
+  }
+
+  // the end of a step that lands exactly on the next breakpoint (or on end_time).
+  double step_end(double end_time) const {
+    double seg_end = std::min(ground_.next_breakpoint(t_), end_time);
+    if (seg_end - t_ <= ttol(t_) && seg_end < end_time) {
+      seg_end = std::min(ground_.next_breakpoint(seg_end), end_time);
+    }
+    const double remaining = seg_end - t_;
+    const double n = std::max(1.0, std::ceil(remaining / options_.time_step * (1.0 - 1e-12)));
+    return n <= 1.0 ? seg_end : t_ + remaining / n;
+  }
 
   // state at t0 + tau on pivot s, re-integrated by one RK4 step from the step start (t0, y0).
-  auto state_at = [&](double t0, Phase y0, double a0, double tau) {
-    return tau > 0.0 ? rhs.step(t0, y0, s, tau, a0) : y0;
-  };
+  Phase state_at(double t0, Phase y0, double a0, double tau) const {
+    return tau > 0.0 ? rhs_.step(t0, y0, s_, tau, a0) : y0;
+  }
+
+  // at rest the block moves with the ground: nothing to integrate until the ground lifts it.
+  void rest_step(double t1) {
+    int side = rhs_.uplift_side(rhs_.ground_after(t_));
+    if (side == 0) {
+      side = rhs_.uplift_side(rhs_.ground_before(t1));
+      if (side == 0) {
+        t_ = t1;
+        record_step();
+        return;
+      }
+      // bisect the first instant in (t, t1] at which the ground exceeds the threshold.
+      double lo = t_;
+      double hi = t1;
+      while (hi - lo > ttol(hi)) {
+        const double mid = 0.5 * (lo + hi);
+        if (mid <= lo || mid >= hi) break;
+        const int side_mid = rhs_.uplift_side(rhs_.ground_at(mid));
+        if (side_mid != 0) {
+          hi = mid;
+          side = side_mid;
+        } else {
+          lo = mid;
+        }
+      }
+      t_ = hi;
+    }
+    s_ = static_cast<double>(side);
+    th_ = 0.0;
+    w_ = 0.0;
+    if (std::isnan(res_.uplift_time)) res_.uplift_time = t_;
+    record(SampleKind::uplift);
+  }
 
   // locate a peak of |θ| (θ̇ = 0) in (0, tau_end] of the step from (t0, y0), where s θ̇ goes from
   // positive to non-positive; update max|θ| and record it.
-  auto locate_peak = [&](double t0, Phase y0, double a0, Phase y_end, double tau_end) {
+  std::pair<double, Phase> locate_peak(double t0, Phase y0, double a0, Phase y_end, double tau_end) {
+    const double s = s_;
     const auto f = [&](double tau) {
       const Phase y = state_at(t0, y0, a0, tau);
-      return std::pair{s * y.omega, s * rhs.accel(y.theta, s, rhs.ground_at(t0 + tau))};
+      return std::pair{s * y.omega, s * rhs_.accel(y.theta, s, rhs_.ground_at(t0 + tau))};
     };
-    const double tau =
-        find_root(f, 0.0, s * y0.omega, tau_end, s * y_end.omega, omega_tol, ttol(t0 + tau_end));
+    const double tau = find_root(f, 0.0, s * y0.omega, tau_end, s * y_end.omega, omega_tol_, ttol(t0 + tau_end));
     const Phase y = state_at(t0, y0, a0, tau);
     // a peak beyond the overturn angle is an overturn, handled (and recorded) by the caller.
-    if (s * y.theta < theta_ov) {
-      res.max_abs_theta = std::max(res.max_abs_theta, std::abs(y.theta));
-      if (rec) res.trajectory.push_back({t0 + tau, y.theta, y.omega, SampleKind::peak});
+    if (s * y.theta < theta_ov_) {
+      res_.max_abs_theta = std::max(res_.max_abs_theta, std::abs(y.theta));
+      if (options_.record_trajectory) res_.trajectory.push_back({t0 + tau, y.theta, y.omega, SampleKind::peak});
     }
     return std::pair{tau, y};
-  };
-
-  StopReason stop = StopReason::end_time;
-  // every pass of the loop either advances t or changes the state at the same t (rest → uplift,
-  // impact → rest); a long run of passes without progress would be a bug, not physics.
-  int stalled = 0;
-  double t_prev = t;
-  while (t < end_time) {
-    stalled = (t > t_prev) ? 0 : stalled + 1;
-    t_prev = t;
-    if (stalled > 1000) throw std::logic_error("rocking: simulation time does not advance");
-    // plan a step that lands exactly on the next breakpoint (or on end_time).
-    double seg_end = std::min(ground.next_breakpoint(t), end_time);
-    if (seg_end - t <= ttol(t) && seg_end < end_time) {
-      seg_end = std::min(ground.next_breakpoint(seg_end), end_time);
-    }
-    const double remaining = seg_end - t;
-    const double n = std::max(1.0, std::ceil(remaining / h_max * (1.0 - 1e-12)));
-    const double t1 = n <= 1.0 ? seg_end : t + remaining / n;
-    const double h = t1 - t;
-
-    if (s == 0.0) {
-      // at rest the block moves with the ground: nothing to integrate until the ground lifts it.
-      if (t >= ground.end_time()) {
-        stop = StopReason::at_rest;
-        break;
-      }
-      int side = rhs.uplift_side(rhs.ground_after(t));
-      if (side == 0) {
-        side = rhs.uplift_side(rhs.ground_before(t1));
-        if (side == 0) {
-          t = t1;
-          if (rec && t - last_step_record >= options.record_interval) {
-            record(SampleKind::step);
-            last_step_record = t;
-          }
-          continue;
-        }
-        // bisect the first instant in (t, t1] at which the ground exceeds the threshold.
-        double lo = t;
-        double hi = t1;
-        while (hi - lo > ttol(hi)) {
-          const double mid = 0.5 * (lo + hi);
-          if (mid <= lo || mid >= hi) break;
-          const int side_mid = rhs.uplift_side(rhs.ground_at(mid));
-          if (side_mid != 0) {
-            hi = mid;
-            side = side_mid;
-          } else {
-            lo = mid;
-          }
-        }
-        t = hi;
-      }
-      s = static_cast<double>(side);
-      th = 0.0;
-      w = 0.0;
-      if (std::isnan(res.uplift_time)) res.uplift_time = t;
-      record(SampleKind::uplift);
-      continue;
-    }
-
-    const double a0 = rhs.ground_after(t);
-    const Phase y0{th, w};
-    const Phase y1 = rhs.step(t, y0, s, h, a0);
-    const double g0 = s * th;
-    const double g1 = s * y1.theta;
-
-    // overturning: s θ reaches the overturn angle within the step, either at its end or at a
-    // peak inside it (the ground can push the block past the angle and back within one step).
-    double tau_ov = (g1 >= theta_ov) ? h : -1.0;
-    if (tau_ov < 0.0 && s * w > 0.0 && s * y1.omega <= 0.0) {
-      const auto [tau_pk, y_pk] = locate_peak(t, y0, a0, y1, h);
-      if (s * y_pk.theta >= theta_ov) tau_ov = tau_pk;
-    }
-    if (tau_ov > 0.0) {
-      const Phase y_ov = state_at(t, y0, a0, tau_ov);
-      const auto f = [&](double tau) {
-        const Phase y = state_at(t, y0, a0, tau);
-        return std::pair{theta_ov - s * y.theta, -s * y.omega};
-      };
-      const double tau =
-          find_root(f, 0.0, theta_ov - g0, tau_ov, theta_ov - s * y_ov.theta, theta_tol, ttol(t1));
-      const Phase y = state_at(t, y0, a0, tau);
-      t += tau;
-      th = y.theta;
-      w = y.omega;
-      res.overturned = true;
-      res.failure_time = t;
-      res.max_abs_theta = std::max(res.max_abs_theta, theta_ov);
-      record(SampleKind::overturn);
-      stop = StopReason::overturned;
-      break;
-    }
-
-    // impact: s θ reaches zero within the step, either at its end or by dipping through zero
-    // and back inside it (a grazing return, caught where the linearly interpolated θ̇ vanishes).
-    double tau_hi = -1.0;
-    if (g1 <= 0.0) {
-      tau_hi = h;
-    } else if (s * w < 0.0 && s * y1.omega > 0.0) {
-      const double tau_m = h * (s * w) / (s * w - s * y1.omega);
-      if (s * state_at(t, y0, a0, tau_m).theta <= 0.0) tau_hi = tau_m;
-    }
-    if (tau_hi > 0.0) {
-      const Phase y_hi = state_at(t, y0, a0, tau_hi);
-      // a step starting on θ = 0 (after an impact or uplift) needs an interior point with
-      // s θ > 0 to bracket the return to zero: try the apex of the local parabola, then halve.
-      double tau_lo = 0.0;
-      double f_lo = g0;
-      if (!(g0 > 0.0)) {
-        const double acc0 = s * rhs.accel(th, s, a0);
-        double tau =
-            (s * w > 0.0 && acc0 < 0.0) ? std::min(-s * w / acc0, 0.5 * tau_hi) : 0.5 * tau_hi;
-        f_lo = 0.0;
-        for (int i = 0; i < 64 && !(f_lo > 0.0); ++i, tau *= 0.5) {
-          f_lo = s * state_at(t, y0, a0, tau).theta;
-          tau_lo = tau;
-        }
-      }
-      if (!(f_lo > 0.0)) {
-        // the excursion off the base is below resolution (the ground barely reached the uplift
-        // threshold): the block is back at rest; resume from the step end so time advances.
-        t = t1;
-        th = 0.0;
-        w = 0.0;
-        s = 0.0;
-        record(SampleKind::rest);
-        continue;
-      }
-      const auto f = [&](double tau) {
-        const Phase y = state_at(t, y0, a0, tau);
-        return std::pair{s * y.theta, s * y.omega};
-      };
-      const double tau = find_root(f, tau_lo, f_lo, tau_hi, s * y_hi.theta, theta_tol, ttol(t1));
-      const double w_minus = state_at(t, y0, a0, tau).omega;
-      t += tau;
-      th = 0.0;
-      w = w_minus;
-      record(SampleKind::impact_before);
-      ++res.impacts;
-      // Housner impact: angular momentum about the new pivot, θ̇⁺ = r θ̇⁻ (physics.md §2).
-      w = r * w_minus;
-      s = -s;
-      if (std::abs(w) <= w_rest) {
-        // a rebound this small would start a Zeno sequence of impacts; the rest state lifts the
-        // block again at once if the ground is strong enough.
-        w = 0.0;
-        s = 0.0;
-        record(SampleKind::rest);
-      } else {
-        record(SampleKind::impact_after);
-      }
-      continue;
-    }
-
-    // ordinary step.
-    t = t1;
-    th = y1.theta;
-    w = y1.omega;
-    res.max_abs_theta = std::max(res.max_abs_theta, std::abs(th));
-    if (rec && t - last_step_record >= options.record_interval) {
-      record(SampleKind::step);
-      last_step_record = t;
-    }
   }
 
-  res.stop = stop;
-  res.end_time = t;
-  record(SampleKind::end);
-  return res;
+  // overturning: s θ reaches the overturn angle within the step, either at its end or at a
+  // peak inside it (the ground can push the block past the angle and back within one step).
+  bool overturn_within(Phase y0, Phase y1, double a0, double h, double t1) {
+    const double s = s_;
+    const double t = t_;
+    double tau_ov = (s * y1.theta >= theta_ov_) ? h : -1.0;
+    if (tau_ov < 0.0 && s * w_ > 0.0 && s * y1.omega <= 0.0) {
+      const auto [tau_pk, y_pk] = locate_peak(t, y0, a0, y1, h);
+      if (s * y_pk.theta >= theta_ov_) tau_ov = tau_pk;
+    }
+    if (!(tau_ov > 0.0)) return false;
+    const Phase y_ov = state_at(t, y0, a0, tau_ov);
+    const auto f = [&](double tau) {
+      const Phase y = state_at(t, y0, a0, tau);
+      return std::pair{theta_ov_ - s * y.theta, -s * y.omega};
+    };
+    const double tau = find_root(f, 0.0, theta_ov_ - s * th_, tau_ov, theta_ov_ - s * y_ov.theta, theta_tol_, ttol(t1));
+    const Phase y = state_at(t, y0, a0, tau);
+    t_ += tau;
+    th_ = y.theta;
+    w_ = y.omega;
+    res_.overturned = true;
+    res_.failure_time = t_;
+    res_.max_abs_theta = std::max(res_.max_abs_theta, theta_ov_);
+    record(SampleKind::overturn);
+    return true;
+  }
+
+  // impact: s θ reaches zero within the step, either at its end or by dipping through zero
+  // and back inside it (a grazing return, caught where the linearly interpolated θ̇ vanishes).
+  bool impact_within(Phase y0, Phase y1, double a0, double h, double t1) {
+    const double s = s_;
+    const double t = t_;
+    const double g0 = s * th_;
+    double tau_hi = -1.0;
+    if (s * y1.theta <= 0.0) {
+      tau_hi = h;
+    } else if (s * w_ < 0.0 && s * y1.omega > 0.0) {
+      const double tau_m = h * (s * w_) / (s * w_ - s * y1.omega);
+      if (s * state_at(t, y0, a0, tau_m).theta <= 0.0) tau_hi = tau_m;
+    }
+    if (!(tau_hi > 0.0)) return false;
+    const Phase y_hi = state_at(t, y0, a0, tau_hi);
+    // a step starting on θ = 0 (after an impact or uplift) needs an interior point with
+    // s θ > 0 to bracket the return to zero: try the apex of the local parabola, then halve.
+    double tau_lo = 0.0;
+    double f_lo = g0;
+    if (!(g0 > 0.0)) {
+      const double acc0 = s * rhs_.accel(th_, s, a0);
+      double tau = (s * w_ > 0.0 && acc0 < 0.0) ? std::min(-s * w_ / acc0, 0.5 * tau_hi) : 0.5 * tau_hi;
+      f_lo = 0.0;
+      for (int i = 0; i < 64 && !(f_lo > 0.0); ++i, tau *= 0.5) {
+        f_lo = s * state_at(t, y0, a0, tau).theta;
+        tau_lo = tau;
+      }
+    }
+    if (!(f_lo > 0.0)) {
+      // the excursion off the base is below resolution (the ground barely reached the uplift
+      // threshold): the block is back at rest; resume from the step end so time advances.
+      t_ = t1;
+      th_ = 0.0;
+      w_ = 0.0;
+      s_ = 0.0;
+      record(SampleKind::rest);
+      return true;
+    }
+    const auto f = [&](double tau) {
+      const Phase y = state_at(t, y0, a0, tau);
+      return std::pair{s * y.theta, s * y.omega};
+    };
+    const double tau = find_root(f, tau_lo, f_lo, tau_hi, s * y_hi.theta, theta_tol_, ttol(t1));
+    const double w_minus = state_at(t, y0, a0, tau).omega;
+    t_ += tau;
+    th_ = 0.0;
+    w_ = w_minus;
+    record(SampleKind::impact_before);
+    ++res_.impacts;
+    // Housner impact: angular momentum about the new pivot, θ̇⁺ = r θ̇⁻ (physics.md §2).
+    w_ = r_ * w_minus;
+    s_ = -s_;
+    if (std::abs(w_) <= w_rest_) {
+      // a rebound this small would start a Zeno sequence of impacts; the rest state lifts the
+      // block again at once if the ground is strong enough.
+      w_ = 0.0;
+      s_ = 0.0;
+      record(SampleKind::rest);
+    } else {
+      record(SampleKind::impact_after);
+    }
+    return true;
+  }
+
+  void ordinary_step(double t1, Phase y1) {
+    t_ = t1;
+    th_ = y1.theta;
+    w_ = y1.omega;
+    res_.max_abs_theta = std::max(res_.max_abs_theta, std::abs(th_));
+    record_step();
+  }
+
+  const GroundAcceleration& ground_;
+  const RockingOptions& options_;
+  const Rhs rhs_;
+  const double theta_ov_;
+  const double r_;
+  const double w_rest_;
+  const double theta_tol_;
+  const double omega_tol_;
+  RockingResult res_;
+  double t_;
+  double th_;
+  double w_;
+  double s_;
+  double last_step_record_ = -kInf;
+};
+
+}  // namespace
+
+RockingResult simulate(const RockingBlock& block, const GroundAcceleration& ground, double end_time,
+                       const RockingOptions& options, const InitialState& initial) {
+  validate_block(block);
+  validate_run(options, initial, end_time);
+  return Integration(block, ground, options, initial).run(end_time);
 }
 
 GroundAcceleration make_pulse(PulseShape shape, double amplitude, double duration) {
@@ -495,8 +537,7 @@ double min_overturning_amplitude(const RockingBlock& block, PulseShape shape, do
                                  const RockingOptions& options, const ThresholdOptions& search) {
   validate_block(block);
   require(std::isfinite(duration) && duration > 0.0, "pulse duration must be finite and positive");
-  require(std::isfinite(search.free_time) && search.free_time >= 0.0,
-          "free_time must be finite and non-negative");
+  require(std::isfinite(search.free_time) && search.free_time >= 0.0, "free_time must be finite and non-negative");
   require(std::isfinite(search.relative_tolerance) && search.relative_tolerance > 0.0,
           "relative_tolerance must be finite and positive");
   require(std::isfinite(search.scan_ratio) && search.scan_ratio > 1.0, "scan_ratio must be > 1");
