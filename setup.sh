@@ -67,7 +67,7 @@ targets=()
 if [[ $action == sanitize ]]; then
   # -O2 with line tables only (-g1): reports still name file:line, and the build takes ~20 % less
   # than with -g. Not -O1: it halves the compile but the instrumented Eigen code then runs the
-  # stability suite ~18x slower than Release (22 min of CPU) and misses the hull timing bound
+  # stability suite ~18x slower than Release (22 min of CPU)
   build_dir=${BUILD_DIR:-build-sanitize}
   # NDEBUG is not defined, so the engine's invariant asserts run under the sanitizers too
   # (EIGEN_NO_DEBUG keeps Eigen's own per-access index checks out: they would double the time)
@@ -106,8 +106,7 @@ case "$action" in
     ;;
   sanitize)
     # the tests of the subset (label `sanitize`; the long runs never carry it, nor the 300 s and
-    # 10,000-facet stability runs and the hull wall-time bound: tests/labels.cmake says why; they
-    # run in the Release suite)
+    # 10,000-facet stability runs: tests/labels.cmake says why; they run in the Release suite)
     ctest --test-dir "$build_dir" --output-on-failure -j "$jobs" -L sanitize
     echo "setup: sanitize: ctest took $((SECONDS - start)) s"
     # the mesh readers under libFuzzer (clang, tests/fuzz): a fixed time each from the seed files

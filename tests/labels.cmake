@@ -18,12 +18,10 @@ set(rigid_long_tests
     [[^Periods/HousnerPulse\.OneSineThresholdWithinTenPercentOf2DModel/T500ms_K1e10( |$)]])
 
 # In the sanitizer subset's executables but not under the sanitizers (label `sanitize` withheld;
-# all still run in the Release suite): a wall-time bound, meaningless with ASan's 3-5x slowdown,
-# and the two stability cases that are longer runs of code the other eleven cover (the 300 s run:
-# the same stepping for longer; 10,000 facets: the hull and contact code of the sliver and
+# both still run in the Release suite): the two stability cases that are longer runs of code the
+# other eleven cover (the 300 s run: the same stepping for longer; 10,000 facets: the hull and contact code of the sliver and
 # nearly-coplanar cases, bigger). Under ASan+UBSan these two alone took 9 min of CPU here.
 set(rigid_unsanitized_tests
-    [[^ConvexHull\.HundredsOfPointsTakeUnderTenMilliseconds$]]
     [[^Stability\.(ThreeHundredSecondRun|DegenerateMeshTenThousandFacets)$]])
 
 # (CMake 3.25 keeps gtest's "  # GetParam() = ..." comment in the names of tests whose parameter
