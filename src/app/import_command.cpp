@@ -21,7 +21,9 @@
 #include "rigid/geometry/mesh_split.hpp"
 #include "rigid/io/json.hpp"
 #include "rigid/io/mesh_import.hpp"
+#include "rigid/io/output_file.hpp"
 #include "rigid/io/scene_file.hpp"
+#include "rigid/io/scene_writer.hpp"
 #include "rigid/io/stl.hpp"
 #include "rigid/repair/mesh_repair.hpp"
 #include "rigid/scenario/rocking_parameters.hpp"
@@ -45,15 +47,6 @@ geometry::TriangleSoup soup_of(const geometry::ClosedMesh& mesh) {
   soup.reserve(mesh.triangles.size());
   for (const auto& t : mesh.triangles) soup.push_back({mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]});
   return soup;
-}
-
-// Text output that fails loudly (a full disk or a vanished directory is an input problem).
-void write_text(const fs::path& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  if (!out) throw InputError(path.string(), 0, std::string("cannot open for writing: ") + std::strerror(errno));
-  out << text;
-  out.close();
-  if (!out) throw InputError(path.string(), 0, "write failed");
 }
 
 // The import writes into a private directory inside the output directory and moves its files
@@ -151,21 +144,19 @@ ContactReport contact_shape(const std::string& body, const geometry::ClosedMesh&
   return r;
 }
 
-// Writes a body's files (the mesh and its pieces) and returns its [[block]] table.
-std::string write_body(const fs::path& dir, const std::string& name, const std::string& body,
-                       const geometry::ClosedMesh& mesh, const ContactReport& report, bool fixed) {
-  const std::string mesh_file = name + "_" + body + ".stl";
-  io::write_stl_binary((dir / mesh_file).string(), soup_of(mesh));
-  std::string table = "[[block]]\nname = \"" + body + "\"\nstl = \"" + mesh_file +
-                      "\"\nfixed = " + (fixed ? "true" : "false") + "\ncontact = [";
+// Writes a body's files (the mesh and its pieces) and returns its block of the scene.
+io::SceneBlock write_body(const fs::path& dir, const std::string& name, const std::string& body,
+                          const geometry::ClosedMesh& mesh, const ContactReport& report, bool fixed) {
+  io::SceneBlock block{body, name + "_" + body + ".stl", fixed, {}};
+  io::write_stl_binary((dir / block.stl).string(), soup_of(mesh));
   for (std::size_t k = 0; k < report.pieces.size(); ++k) {
     char piece[64];
     std::snprintf(piece, sizeof piece, "%s_%s_c%03zu.stl", name.c_str(), body.c_str(), k);
     // ASCII: the shortest round-trip decimals keep every piece exactly convex
     io::write_stl_ascii((dir / piece).string(), report.pieces[k].soup, piece);
-    table += std::string(k ? ", " : "") + "\"" + piece + "\"";
+    block.contact.push_back(piece);
   }
-  return table + "]\n";
+  return block;
 }
 
 io::Json report_json(const ContactReport& r) {
@@ -393,16 +384,16 @@ void import_scan(const ImportOptions& o) {
 
   Staging staging(out.parent_path(), name);
   const fs::path& dir = staging.path();
-  std::string blocks;
+  io::SceneFile scene_file;
   std::vector<ContactReport> reports{rock_report};
   if (split_pedestal) {
     geometry::ClosedMesh& pedestal = *split_pedestal;
     for (Vec3& v : pedestal.vertices) v += shift;
     reports.push_back(contact_shape("pedestal", pedestal, o));
-    blocks += write_body(dir, name, "pedestal", pedestal, reports.back(), true) + "\n";
+    scene_file.blocks.push_back(write_body(dir, name, "pedestal", pedestal, reports.back(), true));
   } else if (pedestal_scan) {
     reports.push_back(contact_shape("pedestal", *pedestal_scan, o));
-    blocks += write_body(dir, name, "pedestal", *pedestal_scan, reports.back(), true) + "\n";
+    scene_file.blocks.push_back(write_body(dir, name, "pedestal", *pedestal_scan, reports.back(), true));
   } else {
     const double depth = std::max(0.2, 0.25 * (hi.z() - lo.z()));
     const Vec3 half = 0.5 * (hi - lo);
@@ -411,29 +402,23 @@ void import_scan(const ImportOptions& o) {
                         geometry::box_soup(Vec3(-half.x() - o.pedestal_margin, -half.y() - o.pedestal_margin, -depth),
                                            Vec3(half.x() + o.pedestal_margin, half.y() + o.pedestal_margin, 0)),
                         "pedestal");
-    blocks += "[[block]]\nname = \"pedestal\"\nstl = \"" + file + "\"\nfixed = true\n\n";
+    scene_file.blocks.push_back({"pedestal", file, true, {}});
   }
-  blocks += write_body(dir, name, "rock", rock, rock_report, false);
+  scene_file.blocks.push_back(write_body(dir, name, "rock", rock, rock_report, false));
 
   const fs::path scene_path = dir / (name + ".toml");
-  const std::string header = "# " + name + ": imported from " + o.scan + " by rigid model import (--scale " +
-                             std::to_string(o.scale) + " --up " + o.up + " --contact-shape " + o.contact_shape +
-                             "). The rock's mass properties come from " + name +
-                             "_rock.stl, its contact from the convex pieces listed with it.\n";
-  std::string physics = io::default_physics_table();
-  const std::string study_density = "density = 2600.0\n";
-  char density[64];
-  std::snprintf(density, sizeof density, "density = %.17g\n", o.density);
-  physics.replace(physics.find(study_density), study_density.size(), density);
-  const std::string failure =
-      o.tilt_deg > 0 ? "rule = \"tilt\"\ntilt_deg = " + std::to_string(o.tilt_deg) : "rule = \"below\"";
-  const std::string body = physics + "\n[failure]\n" + failure + "\n\n" + blocks;
-  write_text(scene_path, header + body);
+  scene_file.comments = {name + ": imported from " + o.scan + " by rigid model import (--scale " +
+                         std::to_string(o.scale) + " --up " + o.up + " --contact-shape " + o.contact_shape +
+                         "). The rock's mass properties come from " + name +
+                         "_rock.stl, its contact from the convex pieces listed with it."};
+  scene_file.density = o.density;
+  if (o.tilt_deg > 0) scene_file.tilt_rule_deg = o.tilt_deg;
+  io::write_scene(scene_path.string(), scene_file);
   // settle it on its pedestal: the campaigns start from this state, which must rest on it
   const scenario::Scene settled = settled_on_pedestal(scene_path, o, size);
-  const std::string state = name + ".state.toml";
-  io::save_state((dir / state).string(), settled);
-  write_text(scene_path, header + "state = \"" + state + "\"\n\n" + body);
+  scene_file.state = name + ".state.toml";
+  io::save_state((dir / scene_file.state).string(), settled);
+  io::write_scene(scene_path.string(), scene_file);
 
   io::Json report;
   report["scan"] = o.scan;
@@ -455,7 +440,8 @@ void import_scan(const ImportOptions& o) {
     report["alpha_rad"] = rocking->alpha;
     report["static_toppling_g"] = std::tan(rocking->alpha);
   }
-  write_text(dir / (name + ".import.json"), report.dump(2) + "\n");
+  io::write_output_file((dir / (name + ".import.json")).string(),
+                        [&](std::ostream& out) { out << report.dump(2) << "\n"; });
   staging.commit();
 
   print_summary(o, warnings, repairs, notes, scan_facets, reports, rocking);

@@ -14,6 +14,7 @@
 #include "commands.hpp"
 #include "rigid/core/error.hpp"
 #include "rigid/io/scene_file.hpp"
+#include "rigid/io/scene_writer.hpp"
 #include "rigid/io/stl.hpp"
 #include "rigid/scenario/rock_library.hpp"
 #include "rigid/scenario/tilt_test.hpp"
@@ -40,31 +41,25 @@ std::string fixed_text(double v, int digits) {
 void write_model(const scenario::LibraryModel& m, const fs::path& root) {
   const fs::path dir = root / m.name;
   fs::create_directories(dir);
-  std::ostringstream model;  // the original format: no comments, study defaults for the physics
+  std::vector<io::SceneBlock> blocks;  // the original model format: no comments, study defaults for the physics
   for (const auto& p : m.pieces) {
     io::write_stl_ascii((dir / (p.name + ".stl")).string(), p.soup, p.name);
-    model << "block " << p.name << ".stl\n" << (p.fixed ? 1 : 0) << " 0 0 0\n";
+    blocks.push_back({p.name, p.name + ".stl", p.fixed, {}});
   }
   const std::string model_path = (dir / (m.name + ".model")).string();
-  {
-    std::ofstream f(model_path);
-    f << model.str();
-    if (!f) throw InputError(model_path, 0, "cannot write the model file");
-  }
-  const bool tilt = m.failure.kind == scenario::FailureRule::Kind::tilt;
+  io::write_model_file(model_path, blocks);
   const std::string scene_path = (dir / (m.name + ".toml")).string();
-  {
-    std::ofstream f(scene_path);
-    f << "# " << m.description << ".\n"
-      << "# Failure rule " << m.failure_note << ".\n"
-      << "# Regenerate: rigid model library --out " << root.generic_string() << " --only " << m.name
-      << " (models/library/README.md)\n"
-      << "model = \"" << m.name << ".model\"\nstate = \"" << m.name << ".state.toml\"\n\n"
-      << io::default_physics_table() << "\n[failure]\nrule = \""
-      << (tilt ? "tilt" : "below") << "\"\n";
-    if (tilt) f << "tilt_deg = " << fixed_text(m.failure.tilt_angle * 180.0 / kPi, 1) << "\n";
-    if (!f) throw InputError(scene_path, 0, "cannot write the scene file");
+  io::SceneFile scene_file;
+  scene_file.comments = {m.description + ".", "Failure rule " + m.failure_note + ".",
+                         "Regenerate: rigid model library --out " + root.generic_string() + " --only " + m.name +
+                             " (models/library/README.md)"};
+  scene_file.model = m.name + ".model";
+  scene_file.state = m.name + ".state.toml";
+  if (m.failure.kind == scenario::FailureRule::Kind::tilt) {
+    // to a tenth of a degree, as the library states its rules
+    scene_file.tilt_rule_deg = std::round(m.failure.tilt_angle * 180.0 / kPi * 10.0) / 10.0;
   }
+  io::write_scene(scene_path, scene_file);
   // the equilibrium the shaking runs start from, computed from the files just written so that it
   // belongs to exactly these meshes
   scenario::Scene scene = io::load_scene(model_path);
@@ -76,8 +71,8 @@ void write_model(const scenario::LibraryModel& m, const fs::path& root) {
     moved = std::max(moved, (settled.bodies[i].position - scene.bodies[i].position).norm());
     turned = std::max(turned, scenario::tilt(scene.bodies[i].orientation, settled.bodies[i].orientation));
   }
-  std::printf("wrote %s: %zu blocks; settling moved them up to %.2f mm and %.3f deg\n",
-              dir.generic_string().c_str(), m.pieces.size(), 1e3 * moved, turned * 180.0 / kPi);
+  std::printf("wrote %s: %zu blocks; settling moved them up to %.2f mm and %.3f deg\n", dir.generic_string().c_str(),
+              m.pieces.size(), 1e3 * moved, turned * 180.0 / kPi);
   std::fflush(stdout);
 }
 
@@ -125,14 +120,16 @@ void print_card(const std::vector<scenario::LibraryModel>& models, const fs::pat
                    " | " + join(heights, ", ") + " | " + fixed_text(top - bottom, 2) + " | " + join(masses, ", ") +
                    " | **" + accel_text(survey.minimum) + "** | " +
                    fixed_text(survey.azimuth_of_minimum * 180.0 / kPi, 0) + " | " + worst.block + " | " + statics +
-                   " | " + (tilt ? "tilt " + fixed_text(m.failure.tilt_angle * 180.0 / kPi, 0) : std::string("below")) + " |");
+                   " | " + (tilt ? "tilt " + fixed_text(m.failure.tilt_angle * 180.0 / kPi, 0) : std::string("below")) +
+                   " |");
     std::string d = "| " + m.name + " |";
     for (const auto& r : survey.results) d += " " + accel_text(r.acceleration) + " |";
     detail.push_back(d);
   }
-  std::printf("| model | blocks (free + fixed) | free-block heights (m) | free height (m) | free-block masses (kg) | "
-              "toppling acceleration (g) | azimuth (deg) | first to go | rigid statics (g) | failure rule |\n"
-              "|---|---|---|---|---|---|---|---|---|---|\n");
+  std::printf(
+      "| model | blocks (free + fixed) | free-block heights (m) | free height (m) | free-block masses (kg) | "
+      "toppling acceleration (g) | azimuth (deg) | first to go | rigid statics (g) | failure rule |\n"
+      "|---|---|---|---|---|---|---|---|---|---|\n");
   for (const auto& r : rows) std::printf("%s\n", r.c_str());
   std::printf("\nPer azimuth of the ground acceleration (g; \"> 1\": stood 1 g):\n\n| model |");
   for (int j = 0; j < azimuths; ++j) std::printf(" %s deg |", fixed_text(360.0 * j / azimuths, 0).c_str());
@@ -148,7 +145,8 @@ void run_library(const LibraryOptions& o) {
   std::vector<std::string> known;
   for (auto& m : scenario::rock_library()) {
     known.push_back(m.name);
-    if (o.only.empty() || std::find(o.only.begin(), o.only.end(), m.name) != o.only.end()) models.push_back(std::move(m));
+    if (o.only.empty() || std::find(o.only.begin(), o.only.end(), m.name) != o.only.end())
+      models.push_back(std::move(m));
   }
   for (const auto& name : o.only) {
     if (std::find(known.begin(), known.end(), name) == known.end()) {
@@ -166,9 +164,10 @@ void run_library(const LibraryOptions& o) {
 
 void add_library_subcommand(CLI::App& model_command) {
   auto o = std::make_shared<LibraryOptions>();
-  CLI::App* lib = model_command.add_subcommand(
-      "library", "The rock library: rectangular blocks, geode and nine synthetic PBR analogues "
-                 "(STL, model file, TOML scene, equilibrated state per model)");
+  CLI::App* lib =
+      model_command.add_subcommand("library",
+                                   "The rock library: rectangular blocks, geode and nine synthetic PBR analogues "
+                                   "(STL, model file, TOML scene, equilibrated state per model)");
   lib->add_option("--out", o->out, "Output directory; one subdirectory per model")->capture_default_str();
   lib->add_option("--only", o->only, "Only these models (names, comma-separated)")->delimiter(',');
   lib->add_flag("--card", o->card,

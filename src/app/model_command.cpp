@@ -5,10 +5,12 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <sstream>
 
 #include "commands.hpp"
 #include "rigid/core/error.hpp"
 #include "rigid/io/scene_file.hpp"
+#include "rigid/io/scene_writer.hpp"
 #include "rigid/io/stl.hpp"
 #include "rigid/scenario/builders.hpp"
 
@@ -16,12 +18,12 @@ namespace rigid::app {
 namespace {
 
 struct BlockModelOptions {
-  double height = 1.0;         // m
-  double alpha = 0.2;          // rad
-  double depth = 0.5;          // m
+  double height = 1.0;            // m
+  double alpha = 0.2;             // rad
+  double depth = 0.5;             // m
   double pedestal_margin = 0.02;  // m
   double pedestal_height = 0.2;   // m
-  std::string out;             // DIR/NAME
+  std::string out;                // DIR/NAME
 };
 
 void write_block_model(const BlockModelOptions& o) {
@@ -37,29 +39,27 @@ void write_block_model(const BlockModelOptions& o) {
   const double h = 0.5 * o.height, b = h * std::tan(o.alpha), m = o.pedestal_margin;
   const std::string pedestal = name + "_pedestal.stl", block = name + "_block.stl";
   const auto dir = out.parent_path();
-  io::write_stl_ascii((dir / pedestal).string(),
-                      geometry::box_soup(Vec3(-b - m, -0.5 * o.depth - m, -o.pedestal_height),
-                                         Vec3(b + m, 0.5 * o.depth + m, 0)), "pedestal");
+  io::write_stl_ascii(
+      (dir / pedestal).string(),
+      geometry::box_soup(Vec3(-b - m, -0.5 * o.depth - m, -o.pedestal_height), Vec3(b + m, 0.5 * o.depth + m, 0)),
+      "pedestal");
   io::write_stl_ascii((dir / block).string(),
                       geometry::box_soup(Vec3(-b, -0.5 * o.depth, 0), Vec3(b, 0.5 * o.depth, o.height)), "block");
-  {
-    std::ofstream model(dir / (name + ".model"));
-    model << "block " << pedestal << "\n1 0 0 0\nblock " << block << "\n0 0 0 0\n";
-  }
-  {
-    std::ofstream scene(dir / (name + ".toml"));
-    scene << "# Rectangular block, height " << o.height << " m, alpha " << o.alpha
-          << " rad, depth " << o.depth << " m, on a pedestal it falls off when it topples.\n"
-          << "# Regenerate: rigid model block --height " << o.height << " --alpha " << o.alpha
-          << " --depth " << o.depth << " --out " << o.out << "\n"
-          << "model = \"" << name << ".model\"\nstate = \"" << name << ".state.toml\"\n\n"
-          << io::default_physics_table() << "\n[failure]\nrule = \"below\"\n";
-  }
+  const std::vector<io::SceneBlock> blocks{{"pedestal", pedestal, true, {}}, {"block", block, false, {}}};
+  io::write_model_file((dir / (name + ".model")).string(), blocks);
+  std::ostringstream description, regenerate;
+  description << "Rectangular block, height " << o.height << " m, alpha " << o.alpha << " rad, depth " << o.depth
+              << " m, on a pedestal it falls off when it topples.";
+  regenerate << "Regenerate: rigid model block --height " << o.height << " --alpha " << o.alpha << " --depth "
+             << o.depth << " --out " << o.out;
+  io::SceneFile scene_file;
+  scene_file.comments = {description.str(), regenerate.str()};
+  scene_file.model = name + ".model";
+  scene_file.state = name + ".state.toml";
+  io::write_scene((dir / (name + ".toml")).string(), scene_file);
   // the equilibrium the shaking runs start from
-  scenario::Scene scene = io::parse_model_text("block " + pedestal + "\n1 0 0 0\nblock " + block + "\n0 0 0 0\n",
-                                               dir.string(), o.out);
-  io::save_state((dir / (name + ".state.toml")).string(),
-                 scenario::equilibrate(scene, dynamics::StepSettings{}));
+  scenario::Scene scene = io::load_scene((dir / (name + ".model")).string());
+  io::save_state((dir / (name + ".state.toml")).string(), scenario::equilibrate(scene, dynamics::StepSettings{}));
   std::printf("wrote %s.{toml,model,state.toml} and its two STL meshes\n", o.out.c_str());
 }
 
@@ -75,7 +75,8 @@ void register_model_command(CLI::App& app) {
   block->add_option("--height", o->height, "Block height (m)")->capture_default_str();
   block->add_option("--alpha", o->alpha, "Slenderness angle atan(width/height) (rad)")->capture_default_str();
   block->add_option("--depth", o->depth, "Block depth (m)")->capture_default_str();
-  block->add_option("--pedestal-margin", o->pedestal_margin, "Pedestal overhang on each side (m)")->capture_default_str();
+  block->add_option("--pedestal-margin", o->pedestal_margin, "Pedestal overhang on each side (m)")
+      ->capture_default_str();
   block->add_option("--pedestal-height", o->pedestal_height, "Pedestal height (m)")->capture_default_str();
   block->add_option("--out", o->out, "Output DIR/NAME")->required();
   block->callback([o] { write_block_model(*o); });

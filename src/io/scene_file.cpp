@@ -487,14 +487,6 @@ scenario::Scene load_scene(const std::string& path) {
   return scene;
 }
 
-std::string default_physics_table() {
-  const contact::ContactLaw law;
-  return std::string("[physics]  # the default contact model; density and the penalty model's values are the study's "
-                     "(physics.md 11)\ncontact = \"") +
-         contact::contact_model_name(law.model) +
-         "\"\ndensity = 2600.0\nnormal_stiffness = 1e8\nshear_stiffness = 1e8\nfriction = 0.6\ndamping = 2.0\n";
-}
-
 void save_state(const std::string& path, const scenario::Scene& scene) {
   const std::string tmp = path + ".tmp";
   {

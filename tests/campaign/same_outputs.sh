@@ -29,8 +29,15 @@ if [[ ${1:-} == --compare ]]; then
       fi
     done
   done
+  # the JSON outputs name their cube: compared with each folder's path replaced by OUT
+  a=$(realpath "$2") b=$(realpath "$3")
   for t in "${texts[@]}"; do
-    if cmp -s "$2/$t" "$3/$t"; then echo "same: $t"; else echo "DIFFERENT: $t"; diff "$2/$t" "$3/$t" | head -n 12; status=1; fi
+    if diff <(sed "s|$a/|OUT/|g" "$a/$t") <(sed "s|$b/|OUT/|g" "$b/$t") >/tmp/same_outputs.diff.$$; then
+      echo "same: $t"
+    else
+      echo "DIFFERENT: $t"; head -n 12 /tmp/same_outputs.diff.$$; status=1
+    fi
+    rm -f /tmp/same_outputs.diff.$$
   done
   exit $status
 fi

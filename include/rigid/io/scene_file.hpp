@@ -18,10 +18,6 @@ scenario::Scene load_scene(const std::string& path);
 scenario::Scene parse_model_text(const std::string& text, const std::string& base_dir,
                                  const std::string& source, long first_line = 1);
 
-/// The `[physics]` table of a generated scene file: the default contact model, named, and the
-/// study's values for density and the penalty parameters (physics.md §11), one per line.
-std::string default_physics_table();
-
 /// What a scene changed after loading (a campaign variant's size_scale, density, physics) must
 /// still satisfy of the checks load_scene makes: a density of 1 to 1e5 kg/m^3, a positive normal
 /// and shear stiffness, a friction and damping >= 0, every block's radius 1 mm to 1 km. Returns
