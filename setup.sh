@@ -33,7 +33,7 @@ packages=(build-essential cmake git pkg-config
   nettle-dev zlib1g-dev nlohmann-json3-dev libspdlog-dev libassimp-dev
   googletest libgtest-dev libtomlplusplus-dev libbenchmark-dev libode-dev
   python3 python3-numpy python3-h5py python3-matplotlib python3-scipy
-  python3-xarray python3-h5netcdf python3-netcdf4 python3-pandas python3-statsmodels
+  python3-xarray python3-h5netcdf python3-netcdf4 python3-pandas python3-statsmodels python3-pytest
   slurm-wlm munge
   clang libclang-rt-dev libcgal-dev libgmp-dev libmpfr-dev)
 

@@ -14,7 +14,7 @@ void add_library_subcommand(CLI::App& model_command);
 void add_import_subcommand(CLI::App& model_command);
 void register_campaign_command(CLI::App& app);
 void register_plot_command(CLI::App& app);
-/// `rigid fragility` and `rigid hazard` (src/plot/rigid_fragility.py).
+/// `rigid fragility` and `rigid hazard` (src/python/rigid_fragility.py).
 void register_fragility_commands(CLI::App& app);
 void register_study_command(CLI::App& app);
 void register_export_command(CLI::App& app);

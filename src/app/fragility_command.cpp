@@ -1,7 +1,7 @@
 // `rigid fragility CUBE ...` and `rigid hazard CUBE --curve ... --age ...`: fitted fragilities
 // (per PGV/PGA bin and the vector fit, bootstrap intervals over records), their CSV and OpenQuake
 // NRML exports, and the toppling rate and survival probability of a rock under a PGA hazard curve.
-// The statistics live in src/plot/rigid_fragility.py (scipy, statsmodels, h5py: Debian packages of
+// The statistics live in src/python/rigid_fragility.py (scipy, statsmodels, h5py: Debian packages of
 // /usr/bin/python3); as with `rigid plot`, this command finds the script and replaces itself with
 // `PYTHON SCRIPT fragility|hazard ARGS...`, so output, signals and exit status (0 done, 2 bad
 // input, 1 internal error) are rigid's own. Every argument after the command name, --help
@@ -25,7 +25,7 @@ void register_fragility_script_command(CLI::App& app, const std::string& name, c
   cmd->set_help_flag();
   cmd->callback([cmd, name] {
     const std::string script = find_plot_helper(kScript);
-    if (script.empty()) throw InputError("", 0, std::string("cannot find ") + kScript + " (src/plot beside the build)");
+    if (script.empty()) throw InputError("", 0, std::string("cannot find ") + kScript + " (src/python beside the build)");
     std::vector<std::string> args{name};
     for (const std::string& a : cmd->remaining()) args.push_back(a);
     exec_python(script, args,

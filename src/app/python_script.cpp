@@ -46,12 +46,12 @@ std::string python_interpreter() {
 
 std::vector<std::string> plot_helper_candidates(const std::string& name) {
   std::vector<fs::path> candidates;
-  candidates.push_back(fs::path(__FILE__).parent_path().parent_path() / "plot" / name);
+  candidates.push_back(fs::path(__FILE__).parent_path().parent_path() / "python" / name);
   std::error_code ec;
   const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
   if (!ec) {
     const fs::path dir = exe.parent_path();
-    candidates.push_back(dir.parent_path().parent_path() / "src" / "plot" / name);
+    candidates.push_back(dir.parent_path().parent_path() / "src" / "python" / name);
     candidates.push_back(dir.parent_path() / "share" / "rigid" / name);
   }
   std::vector<std::string> out;

@@ -1,5 +1,5 @@
 #pragma once
-/// The one launcher of the Python helpers of src/plot (Debian's /usr/bin/python3 with numpy,
+/// The one launcher of the Python helpers of src/python (Debian's /usr/bin/python3 with numpy,
 /// h5py and matplotlib): finding a script, the interpreter, and running it either as a child
 /// process (commands that go on after the plot: `rigid study`) or in place of this process
 /// (`rigid plot`, plot_command.cpp).
@@ -11,9 +11,9 @@ namespace rigid::app {
 /// $RIGID_PYTHON, else /usr/bin/python3 (a `python3` first on PATH often lacks the packages).
 std::string python_interpreter();
 
-/// Where src/plot/NAME may be, in this order: the source tree this file was compiled from
+/// Where src/python/NAME may be, in this order: the source tree this file was compiled from
 /// (CMake compiles with absolute paths, so a build anywhere finds its checkout), then beside the
-/// executable (EXE_DIR/../../src/plot, a checkout's build/bin; EXE_DIR/../share/rigid, an
+/// executable (EXE_DIR/../../src/python, a checkout's build/bin; EXE_DIR/../share/rigid, an
 /// installed tree). Normalised paths; existence not checked.
 std::vector<std::string> plot_helper_candidates(const std::string& name);
 

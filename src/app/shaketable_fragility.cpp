@@ -2,7 +2,7 @@
 // outcomes give an empirical one (the project's probit fit per PGV/PGA bin on each test's measured
 // PGA); the calibrated model gives one from the same recorded motions scaled over a grid of PGAs
 // (a designed campaign over the calibration's ensemble). The fits, the table of medians and the
-// figure are src/plot/shaketable_fragility.py's, run once the campaign has ended
+// figure are src/python/shaketable_fragility.py's, run once the campaign has ended
 // (docs/validation-shaketable.md).
 #include <algorithm>
 #include <cmath>
@@ -220,7 +220,7 @@ void add_shaketable_fragility(CLI::App& parent) {
     if (!d.fitted) return;  // not rank 0
     // after MPI has ended: the fit replaces this process, its exit status is the command's
     const std::string script = find_plot_helper("shaketable_fragility.py");
-    if (script.empty()) throw InputError("", 0, "cannot find shaketable_fragility.py (src/plot beside the build)");
+    if (script.empty()) throw InputError("", 0, "cannot find shaketable_fragility.py (src/python beside the build)");
     std::vector<std::string> args{d.cube,
                                   "--lab", (d.work / "lab_tests.csv").string(),
                                   "--motions", (d.work / "motions.csv").string(),

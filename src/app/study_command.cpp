@@ -1,7 +1,7 @@
 // `rigid study accuracy`: what accuracy costs in time (docs/accuracy.md). Finds and reads
 // the real record, runs the study (rigid/study/accuracy_study.hpp: cases, oracles, sweep), writes
 // DIR/accuracy.csv, then DIR/accuracy_pareto.png and DIR/accuracy_table.md with
-// src/plot/accuracy_plot.py.
+// src/python/accuracy_plot.py.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -122,7 +122,7 @@ void study_accuracy(const StudyCommandOptions& options) {
   if (!options.plot) return;
   const std::string script = find_plot_helper("accuracy_plot.py");
   if (script.empty()) {
-    std::fprintf(stderr, "rigid study: warning: src/plot/accuracy_plot.py not found; no plot\n");
+    std::fprintf(stderr, "rigid study: warning: src/python/accuracy_plot.py not found; no plot\n");
     return;
   }
   const std::string png = (fs::path(options.out) / "accuracy_pareto.png").string();

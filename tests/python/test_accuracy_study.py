@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """`rigid study accuracy --quick` end to end (CTest `study_accuracy_quick`): the CSV has the
 expected columns and one row per (case, setting); every case's converged reference row has error
 zero; for at least one case the error against the converged reference falls as the time-step
@@ -6,13 +5,14 @@ safety factor falls (a property of the integrator, not a stored number); the Par
 markdown table are written. Also: an unknown --accuracy is refused by `run` and `campaign` with
 exit status 2 and one error line, and a campaign cube is resumed with its own preset only.
 
-    test_accuracy_study.py RIGID_EXE SOURCE_DIR
+    /usr/bin/python3 -m pytest tests/python/test_accuracy_study.py --rigid RIGID
 """
 import csv
 import os
 import subprocess
-import sys
 import tempfile
+
+import pytest
 
 EXPECTED_COLUMNS = [
     "scene", "motion", "axis", "setting", "contact", "preset", "safety", "integrator", "stiffness_n_m", "rest_speed",
@@ -24,8 +24,7 @@ QUICK_CASES = {("slender", "pulse"), ("stocky", "pulse"), ("sliding", "pulse"), 
 
 
 def fail(msg):
-    print(f"FAIL: {msg}")
-    sys.exit(1)
+    pytest.fail(msg, pytrace=False)
 
 
 def check_refused(exe, args, fragment):
@@ -37,8 +36,8 @@ def check_refused(exe, args, fragment):
         fail(f"{' '.join(args)}: expected one error line with '{fragment}', got:\n{p.stderr}")
 
 
-def main():
-    exe, source = sys.argv[1], sys.argv[2]
+def test_accuracy_study_quick(rigid, source_dir):
+    exe, source = rigid, source_dir
     with tempfile.TemporaryDirectory() as out:
         p = subprocess.run([exe, "study", "accuracy", "--quick", "--out", out], capture_output=True, text=True,
                            timeout=600)
@@ -114,8 +113,3 @@ def main():
                            capture_output=True, text=True, timeout=600)
         if p.returncode != 0:
             fail(f"resume with the same preset: exit {p.returncode}\n{p.stderr}")
-    print("ok")
-
-
-if __name__ == "__main__":
-    main()

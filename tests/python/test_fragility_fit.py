@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """Fragility fits against independent oracles (docs/hazard.md):
 
 1. Planted parameters: Bernoulli cells drawn from a known lognormal fragility (theta, beta) on a
@@ -8,30 +7,18 @@
 2. The scalar fit equals statsmodels' binomial GLM with a probit link to 1e-6 on the same data.
 3. The vector fit recovers a planted mu(x), sigma(x).
 
-Exit 77 (skipped) when numpy/scipy/statsmodels are missing.
+Skipped when numpy/scipy/statsmodels are missing.
 """
 import math
-import os
-import sys
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "src", "plot"))
-try:
-    import numpy as np
-    from scipy.special import ndtr
-    import statsmodels.api as sm
-    import fragility_fit as ff
-except ImportError as e:
-    print(f"skipped: {e} (install python3-numpy python3-scipy python3-statsmodels)")
-    sys.exit(77)
+import pytest
 
-FAILURES = []
+np = pytest.importorskip("numpy")
+sm = pytest.importorskip("statsmodels.api", reason="install python3-statsmodels")
+from scipy.special import ndtr  # noqa: E402
 
-
-def check(ok, what):
-    print(("ok   " if ok else "FAIL ") + what)
-    if not ok:
-        FAILURES.append(what)
-
+from rigidpy import fit as ff  # noqa: E402
+from rigidpy.outcomes import INFERRED, OVERTURNED, SURVIVED  # noqa: E402
 
 # A campaign's layout: 20 records, scales 0.1-2.0 g by 0.1 (the demo's), 4 rotations, the stop rule
 # (a record ends after STOP_AFTER scales whose rotations all overturned; the rest is inferred).
@@ -49,15 +36,15 @@ def planted_outcome(rng, theta, beta, record_sd=0.0):
         full = 0
         for s in range(len(SCALES)):
             if full >= STOP_AFTER:
-                out[r, s, :] = ff.INFERRED
+                out[r, s, :] = INFERRED
                 continue
             over = rng.random(ROTATIONS) < p[s]
-            out[r, s, :] = np.where(over, ff.OVERTURNED, ff.SURVIVED)
+            out[r, s, :] = np.where(over, OVERTURNED, SURVIVED)
             full = full + 1 if over.all() else 0
     return out
 
 
-def planted_recovery():
+def test_planted_recovery():
     theta, beta = 0.45, 0.40
     rng = np.random.default_rng(20261125)
     replicates, boot = 200, 200
@@ -75,23 +62,23 @@ def planted_recovery():
     bias_theta = (np.mean(est_theta) - theta) / theta
     print(f"planted theta {theta} g, beta {beta}: mean fit theta {np.mean(est_theta):.4f} g, beta "
           f"{np.mean(est_beta):.4f}; 90 % intervals cover theta {cover_theta}/{replicates}, beta {cover_beta}/{replicates}")
-    check(abs(bias_beta) < 0.05, f"bias of beta {100 * bias_beta:+.2f} % of beta (< 5 %)")
-    check(abs(bias_theta) < 0.05, f"bias of theta {100 * bias_theta:+.2f} % of theta (< 5 %)")
-    check(0.85 <= cover_theta / replicates <= 0.95, f"theta coverage {cover_theta / replicates:.3f} in [0.85, 0.95]")
-    check(0.85 <= cover_beta / replicates <= 0.95, f"beta coverage {cover_beta / replicates:.3f} in [0.85, 0.95]")
+    assert abs(bias_beta) < 0.05, f"bias of beta {100 * bias_beta:+.2f} % of beta (< 5 %)"
+    assert abs(bias_theta) < 0.05, f"bias of theta {100 * bias_theta:+.2f} % of theta (< 5 %)"
+    assert 0.85 <= cover_theta / replicates <= 0.95, f"theta coverage {cover_theta / replicates:.3f} in [0.85, 0.95]"
+    assert 0.85 <= cover_beta / replicates <= 0.95, f"beta coverage {cover_beta / replicates:.3f} in [0.85, 0.95]"
     # the inferred cells counted as overturned trials (the old fit's rule): the bias, printed
     rng = np.random.default_rng(7)
     biased = []
     for _ in range(50):
         out = planted_outcome(rng, theta, beta)
-        over = np.sum((out == ff.OVERTURNED) | (out == ff.INFERRED), axis=2).sum(axis=0)
-        known = over + np.sum(out == ff.SURVIVED, axis=2).sum(axis=0)
+        over = np.sum((out == OVERTURNED) | (out == INFERRED), axis=2).sum(axis=0)
+        known = over + np.sum(out == SURVIVED, axis=2).sum(axis=0)
         biased.append(ff.lognormal_fit(np.log(SCALES), over.astype(float), known.astype(float))["beta"])
     print(f"(for the record: counting inferred cells as overturned trials gives mean beta {np.mean(biased):.4f}, "
           f"truth {beta})")
 
 
-def statsmodels_agreement():
+def test_statsmodels_agreement():
     rng = np.random.default_rng(3)
     for theta, beta in ((0.3, 0.25), (0.6, 0.5), (1.1, 0.8)):
         cells = ff.Cells(planted_outcome(rng, theta, beta, record_sd=0.2), SCALES, np.full(RECORDS, 0.1))
@@ -103,11 +90,11 @@ def statsmodels_agreement():
         b0, b1 = glm.params
         theta_sm, beta_sm = math.exp(-b0 / b1), 1.0 / b1
         worst = max(abs(ours["theta_g"] / theta_sm - 1), abs(ours["beta"] / beta_sm - 1))
-        check(worst < 1e-6, f"theta {ours['theta_g']:.8f} vs statsmodels {theta_sm:.8f}, beta {ours['beta']:.8f} vs "
+        assert worst < 1e-6, (f"theta {ours['theta_g']:.8f} vs statsmodels {theta_sm:.8f}, beta {ours['beta']:.8f} vs "
                             f"{beta_sm:.8f}: relative difference {worst:.1e} < 1e-6")
 
 
-def vector_recovery():
+def test_vector_recovery():
     # P = Phi((u - m0 - m1 x) / exp(s0 + s1 x)) on 60 records spread in x, 20 scales, 8 rotations
     m0, m1, s0, s1 = -0.6, 0.5, math.log(0.35), 0.3
     rng = np.random.default_rng(11)
@@ -120,14 +107,5 @@ def vector_recovery():
     est = fit["mu_coefficients"] + fit["log_sigma_coefficients"]
     se = fit["mu_se"] + fit["log_sigma_se"]
     worst = max(abs(e - t) / s for e, t, s in zip(est, (m0, m1, s0, s1), se))
-    check(worst < 4, f"vector fit: planted (m0, m1, s0, s1) recovered within {worst:.2f} standard errors (< 4)")
+    assert worst < 4, f"vector fit: planted (m0, m1, s0, s1) recovered within {worst:.2f} standard errors (< 4)"
 
-
-if __name__ == "__main__":
-    statsmodels_agreement()
-    vector_recovery()
-    planted_recovery()
-    if FAILURES:
-        print(f"{len(FAILURES)} failed")
-        sys.exit(1)
-    print("all passed")

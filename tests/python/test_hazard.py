@@ -1,5 +1,4 @@
-#!/usr/bin/python3
-"""`rigid fragility` and `rigid hazard` (src/plot/rigid_fragility.py) against independent oracles:
+"""`rigid fragility` and `rigid hazard` (src/python/rigidpy/fragility.py) against independent oracles:
 
 1. Rate of toppling: a lognormal fragility under a power-law hazard H(a) = k0 a^-k has the closed
    form lambda = k0 theta^-k exp(k^2 beta^2 / 2); the integration matches within 0.5 % over k 1-4
@@ -16,53 +15,29 @@
    element (continuous, logncdf), and its mean/stddev give back theta, beta.
 5. Bad input: one stderr line naming the file (and the line), exit 2.
 
-    /usr/bin/python3 tests/python/test_hazard.py [RIGID]
+    /usr/bin/python3 -m pytest tests/python/test_hazard.py [--rigid RIGID]
 
-With RIGID (the built executable) the command-line cases go through `rigid fragility|hazard`;
-without it, through the script. Exit 0 success, 1 failure, 77 (skipped) without numpy, scipy,
-h5py or statsmodels.
+With --rigid (the built executable) the command-line cases go through `rigid fragility|hazard`;
+without it, through the package's launcher. Skipped without numpy, scipy, h5py or statsmodels.
 """
 import csv
 import json
 import math
 import os
-import shutil
-import subprocess
-import sys
-import tempfile
 import xml.etree.ElementTree as ET
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-PLOT_DIR = os.path.normpath(os.path.join(HERE, "..", "..", "src", "plot"))
-sys.path.insert(0, PLOT_DIR)
-sys.path.insert(0, HERE)
-try:
-    import h5py
-    import numpy as np
-    from scipy import integrate
-    from scipy.special import ndtr, ndtri
-    import statsmodels.api as sm
-    import hazard_curve as hc
-    import test_plot as tp  # the synthetic cube writer of the documented layout
-except ImportError as e:
-    print(f"skipped: {e} (install python3-numpy python3-scipy python3-h5py python3-statsmodels python3-matplotlib)")
-    sys.exit(77)
+import pytest
 
-SCRIPT = os.path.join(PLOT_DIR, "rigid_fragility.py")
-RIGID = os.path.abspath(sys.argv[1]) if len(sys.argv) > 1 else None
+np = pytest.importorskip("numpy")
+h5py = pytest.importorskip("h5py")
+sm = pytest.importorskip("statsmodels.api", reason="install python3-statsmodels")
+from scipy import integrate  # noqa: E402
+from scipy.special import ndtr  # noqa: E402
+
+import synthetic_cube as tp  # noqa: E402  (the synthetic cube writer of the documented layout)
+from rigidpy import hazard as hc  # noqa: E402
+
 NS = "{http://openquake.org/xmlns/nrml/0.5}"
-FAILURES = []
-
-
-def check(ok, what):
-    print(("ok   " if ok else "FAIL ") + what)
-    if not ok:
-        FAILURES.append(what)
-
-
-def tool(*args):
-    cmd = [RIGID, *args] if RIGID else [sys.executable, SCRIPT, *args]
-    return subprocess.run(cmd, capture_output=True, text=True)
 
 
 def write_two_column(path, a, h, header=True):
@@ -77,7 +52,7 @@ def write_two_column(path, a, h, header=True):
 # 1. the rate against closed forms and quadrature
 
 
-def closed_forms(tmp):
+def test_closed_forms(tmp):
     a = np.geomspace(0.005, 5.0, 30)
     worst, worst_s = 0.0, 0.0
     for k in (1.0, 1.5, 2.0, 2.5, 3.0, 3.5, 4.0):
@@ -92,9 +67,9 @@ def closed_forms(tmp):
                 worst = max(worst, abs(lam / exact - 1))
                 T = 0.2 / exact  # survival exp(-0.2) at the exact rate: a sensitive range
                 worst_s = max(worst_s, abs(hc.survival(lam, T) / math.exp(-exact * T) - 1))
-    check(worst < 0.005, f"power-law hazard: lambda = k0 theta^-k exp(k^2 beta^2/2) within 0.5 % over k 1-4, "
+    assert worst < 0.005, (f"power-law hazard: lambda = k0 theta^-k exp(k^2 beta^2/2) within 0.5 % over k 1-4, "
                          f"beta 0.1-0.8 (worst {100 * worst:.4f} %)")
-    check(worst_s < 0.005, f"survival exp(-lambda T) within 0.5 % of the closed form (worst {100 * worst_s:.4f} %)")
+    assert worst_s < 0.005, f"survival exp(-lambda T) within 0.5 % of the closed form (worst {100 * worst_s:.4f} %)"
 
     # a curve that bends in log-log: ln H = c0 + c1 ln a + c2 (ln a)^2, sampled at 40 points, against
     # scipy's quad of P(a) |dH/da| on the exact curve
@@ -114,7 +89,7 @@ def closed_forms(tmp):
         ref, _ = integrate.quad(integrand, math.log(0.02), math.log(100.0), limit=400, epsabs=0, epsrel=1e-10)
         lam, ext = hc.toppling_rate(curve, theta, beta)
         worst = max(worst, abs(lam / ref - 1))
-    check(worst < 0.005, f"log-quadratic hazard: rate within 0.5 % of quadrature of P(a)|H'(a)| on the exact curve "
+    assert worst < 0.005, (f"log-quadratic hazard: rate within 0.5 % of quadrature of P(a)|H'(a)| on the exact curve "
                          f"(worst {100 * worst:.3f} %)")
 
     # a curve that ends at rate 0 (nothing exceeds a_max): H = k0 a^-k up to a_max, 0 beyond, so
@@ -129,8 +104,7 @@ def closed_forms(tmp):
         exact = k0 * theta**-k * math.exp(0.5 * k * k * beta * beta) * float(ndtr(math.log(a_max / theta) / beta + k * beta))
         worst = max(worst, abs(hc.toppling_rate(curve, theta, beta)[0] / exact - 1))
     rate_factor, pga_factor = hc.ruling_factors(curve, [(1.0, 0.7, 0.5)], 1000.0, 0.95)
-    check(worst < 0.005 and math.isfinite(rate_factor) and pga_factor > 0,
-          f"curve ending at rate 0: lambda = closed form of the truncated power law (worst {100 * worst:.3f} %), "
+    assert worst < 0.005 and math.isfinite(rate_factor) and pga_factor > 0, (f"curve ending at rate 0: lambda = closed form of the truncated power law (worst {100 * worst:.3f} %), "
           f"ruling factors finite")
 
     # ruling out: PGA x f multiplies a power-law H by f^k, so the PGA factor is the rate factor^(1/k)
@@ -141,17 +115,15 @@ def closed_forms(tmp):
     rate_factor, pga_factor = hc.ruling_factors(curve, [(1.0, theta, beta)], years, conf)
     exact_rate = k0 * theta**-k * math.exp(0.5 * k * k * beta * beta)
     exact_factor = -math.log(1 - conf) / years / exact_rate
-    check(abs(rate_factor / exact_factor - 1) < 0.005,
-          f"rate factor to rule out {rate_factor:.4f} = -ln(1 - c)/(T lambda) {exact_factor:.4f}")
-    check(abs(pga_factor / exact_factor ** (1 / k) - 1) < 0.005,
-          f"PGA factor to rule out {pga_factor:.4f} = rate factor^(1/k) {exact_factor ** (1 / k):.4f}")
+    assert abs(rate_factor / exact_factor - 1) < 0.005, f"rate factor to rule out {rate_factor:.4f} = -ln(1 - c)/(T lambda) {exact_factor:.4f}"
+    assert abs(pga_factor / exact_factor ** (1 / k) - 1) < 0.005, f"PGA factor to rule out {pga_factor:.4f} = rate factor^(1/k) {exact_factor ** (1 / k):.4f}"
 
 
 # --------------------------------------------------------------------------------------------
 # 2. layouts
 
 
-def layouts(tmp):
+def test_layouts(tmp):
     imls = [0.005, 0.01, 0.02, 0.05, 0.1, 0.2, 0.5, 1.0, 2.0]
     poes = [0.9, 0.7, 0.45, 0.2, 0.08, 0.025, 0.004, 6e-4, 5e-5]
     oq = os.path.join(tmp, "hazard_curve-mean-PGA_27.csv")
@@ -162,8 +134,7 @@ def layouts(tmp):
         f.write("-117.1,34.2,0.0," + ",".join(repr(p) for p in poes) + "\n")
     c = hc.read_curve(oq)
     want = [-math.log(1 - p) / 50.0 for p in poes]
-    check(np.allclose(c.pga_g, imls) and np.allclose(c.rate, want, rtol=1e-12),
-          "OpenQuake poe-IML export: PGAs read, rates = -ln(1 - poe) / investigation_time")
+    assert np.allclose(c.pga_g, imls) and np.allclose(c.rate, want, rtol=1e-12), "OpenQuake poe-IML export: PGAs read, rates = -ln(1 - poe) / investigation_time"
 
     nshmp = os.path.join(tmp, "nshmp_curves.csv")
     with open(nshmp, "w") as f:
@@ -173,17 +144,16 @@ def layouts(tmp):
     c = hc.read_curve(nshmp, "Granite Dells")
     c1 = hc.read_curve(nshmp, "1")
     c0 = hc.read_curve(nshmp, "-117.83,34.59")
-    check(np.allclose(c.rate, want) and np.allclose(c1.rate, want) and np.allclose(c0.rate, 2 * np.array(want))
-          and c.site.startswith("Granite Dells"),
-          "nshmp-haz layout: a site chosen by name, lon,lat or index")
+    assert (np.allclose(c.rate, want) and np.allclose(c1.rate, want) and np.allclose(c0.rate, 2 * np.array(want))
+          and c.site.startswith("Granite Dells")), "nshmp-haz layout: a site chosen by name, lon,lat or index"
     try:
         hc.read_curve(nshmp)
-        check(False, "several sites without --site refused")
+        assert False, "several sites without --site refused"
     except hc.CurveError as e:
-        check("2 sites" in str(e) and nshmp in str(e), f"several sites without --site refused ({e})")
+        assert "2 sites" in str(e) and nshmp in str(e), f"several sites without --site refused ({e})"
     plain = os.path.join(tmp, "plain.txt")
     write_two_column(plain, imls, want, header=False)
-    check(np.allclose(hc.read_curve(plain).rate, want), "two columns without a header")
+    assert np.allclose(hc.read_curve(plain).rate, want), "two columns without a header"
 
 
 # --------------------------------------------------------------------------------------------
@@ -208,7 +178,7 @@ def statsmodels_lognormal(u, k, n):
     return math.exp(-b0 / b1), 1.0 / b1  # P = Phi(b0 + b1 ln a) = Phi(ln(a / theta) / beta)
 
 
-def end_to_end(tmp):
+def end_to_end(tmp, tool):
     rng = np.random.default_rng(20261125)
     pgv = np.exp(rng.uniform(math.log(0.035), math.log(0.5), tp.R))
     outcome = tp.planted_outcomes(rng, pgv, tp.MU0, tp.MU1, tp.SIGMA)
@@ -217,7 +187,7 @@ def end_to_end(tmp):
     tp.write_cube(cube, pgv, [("rock", outcome, {"alpha_rad": tp.ALPHA, "p_rad_s": tp.P}), ("stout", never, {})])
     out_csv, out_xml = os.path.join(tmp, "fits.csv"), os.path.join(tmp, "fits.xml")
     p = tool("fragility", cube, "--object", "rock", "--bootstrap", "60", "--csv", out_csv, "--nrml", out_xml, "--json")
-    check(p.returncode == 0, f"rigid fragility exit {p.returncode} {p.stderr.strip()}")
+    assert p.returncode == 0, f"rigid fragility exit {p.returncode} {p.stderr.strip()}"
     if p.returncode != 0:
         return
     doc = json.loads(p.stdout)
@@ -234,28 +204,26 @@ def end_to_end(tmp):
         fitted += 1
         if not (b["theta_interval_g"][0] < b["theta_g"] < b["theta_interval_g"][1]
                 and b["beta_interval"][0] < b["beta"] < b["beta_interval"][1]):
-            check(False, f"bin {b['bin']}: the estimate inside its interval")
+            assert False, f"bin {b['bin']}: the estimate inside its interval"
         if b["n_records"] != nrec or b["n_cells"] != int(n.sum()):
-            check(False, f"bin {b['bin']}: {b['n_records']} records, {b['n_cells']} cells; counted {nrec}, {int(n.sum())}")
-    check(fitted >= 8 and worst < 1e-6, f"{fitted} bins: theta, beta equal statsmodels' probit GLM on the cube's "
+            assert False, f"bin {b['bin']}: {b['n_records']} records, {b['n_cells']} cells; counted {nrec}, {int(n.sum())}"
+    assert fitted >= 8 and worst < 1e-6, (f"{fitted} bins: theta, beta equal statsmodels' probit GLM on the cube's "
                                         f"simulated cells (largest relative difference {worst:.1e})")
     inferred = int((outcome == 3).sum())
-    check(rock["inferred_cells_left_out"] == inferred, f"inferred cells reported left out ({inferred})")
+    assert rock["inferred_cells_left_out"] == inferred, f"inferred cells reported left out ({inferred})"
 
     # the planted model at the chosen PGV/PGA: u = ln PGA, mu = MU0 + MU1 ln s (un-normalised)
     pt = rock["vector"]["points"][0]
     planted_theta = math.exp(tp.MU0 + tp.MU1 * math.log(pt["pgv_pga_s"]))
-    check(abs(math.log(pt["theta_g"] / planted_theta)) < 0.08 and abs(pt["beta"] / tp.SIGMA - 1) < 0.15,
-          f"vector fit at PGV/PGA {pt['pgv_pga_s']:.3f} s: theta {pt['theta_g']:.3f} g (planted {planted_theta:.3f}), "
+    assert abs(math.log(pt["theta_g"] / planted_theta)) < 0.08 and abs(pt["beta"] / tp.SIGMA - 1) < 0.15, (f"vector fit at PGV/PGA {pt['pgv_pga_s']:.3f} s: theta {pt['theta_g']:.3f} g (planted {planted_theta:.3f}), "
           f"beta {pt['beta']:.3f} (planted {tp.SIGMA})")
 
     with open(out_csv, newline="") as fh:
         rows = list(csv.DictReader(fh))
     bins = [b for b in rock["bins"] if b["n_records"] > 0]
-    check(len(rows) == len(bins) + 1 and all(r["object"] == "rock" for r in rows)
+    assert (len(rows) == len(bins) + 1 and all(r["object"] == "rock" for r in rows)
           and all(abs(float(r["theta_g"]) - b["theta_g"]) < 1e-12 for r, b in zip(rows, bins) if "theta_g" in b)
-          and {"theta_lower_g", "theta_upper_g", "beta_lower", "beta_upper", "n_records", "n_cells"} <= set(rows[0]),
-          f"CSV: one row per bin and the vector fit, with intervals and counts ({len(rows)} rows)")
+          and {"theta_lower_g", "theta_upper_g", "beta_lower", "beta_upper", "n_records", "n_cells"} <= set(rows[0])), f"CSV: one row per bin and the vector fit, with intervals and counts ({len(rows)} rows)"
 
     nrml_check(out_xml, bins, float(tp.SCALES.min()), float(tp.SCALES.max()))
 
@@ -263,16 +231,15 @@ def end_to_end(tmp):
         g = f["fragility/rock"]
         stored = g["theta_g"][...]
         want = np.array([b.get("theta_g", np.nan) or np.nan for b in rock["bins"]], float)
-        check(np.allclose(stored, want, equal_nan=True) and np.allclose(
+        assert (np.allclose(stored, want, equal_nan=True) and np.allclose(
             g["beta"][...], [b.get("beta", np.nan) or np.nan for b in rock["bins"]], equal_nan=True)
               and "method" in f["fragility"].attrs and g.attrs["fitted_cells_sha256"] is not None
-              and np.array_equal(f["objects/rock/outcome"][...], outcome),
-              "cube: /fragility/rock holds the printed fits and the method; the cells untouched")
+              and np.array_equal(f["objects/rock/outcome"][...], outcome)), "cube: /fragility/rock holds the printed fits and the method; the cells untouched"
     with open(cube, "rb") as fh:
         before = fh.read()
     p = tool("fragility", cube, "--object", "rock", "--bootstrap", "20", "--no-store")
     with open(cube, "rb") as fh:
-        check(p.returncode == 0 and fh.read() == before, "--no-store leaves the cube's bytes as they were")
+        assert p.returncode == 0 and fh.read() == before, "--no-store leaves the cube's bytes as they were"
 
     # hazard: the reported lognormal under a power-law curve gives the closed-form rate
     k, k0, years = 2.8, 3e-6, 15000.0
@@ -282,26 +249,24 @@ def end_to_end(tmp):
     plot = os.path.join(tmp, "hazard.png")
     p = tool("hazard", cube, "--object", "rock", "--curve", curve, "--age", str(years), "--bootstrap", "60",
              "--json", "--plot", plot)
-    check(p.returncode == 0, f"rigid hazard exit {p.returncode} {p.stderr.strip()}")
+    assert p.returncode == 0, f"rigid hazard exit {p.returncode} {p.stderr.strip()}"
     if p.returncode == 0:
         r = json.loads(p.stdout)
         f0 = r["fragility"][0]
         exact = k0 * f0["theta_g"] ** -k * math.exp(0.5 * k * k * f0["beta"] ** 2)
         lo, hi = r["annual_toppling_rate_interval"]
-        check(abs(r["annual_toppling_rate"] / exact - 1) < 0.005 and lo < r["annual_toppling_rate"] < hi,
-              f"hazard: rate {r['annual_toppling_rate']:.4e} = closed form {exact:.4e} of the reported lognormal, "
+        assert abs(r["annual_toppling_rate"] / exact - 1) < 0.005 and lo < r["annual_toppling_rate"] < hi, (f"hazard: rate {r['annual_toppling_rate']:.4e} = closed form {exact:.4e} of the reported lognormal, "
               f"inside its interval [{lo:.3e}, {hi:.3e}]")
-        check(abs(r["survival_probability"] - math.exp(-exact * years)) < 1e-4
-              and r["survival_probability_interval"][0] <= r["survival_probability"] <= r["survival_probability_interval"][1],
-              f"survival {r['survival_probability']:.4f} = exp(-lambda T) {math.exp(-exact * years):.4f}")
-        check(r["ruled_out"] == (r["survival_probability"] < 0.05), "ruled out exactly when survival < 1 - confidence")
+        assert (abs(r["survival_probability"] - math.exp(-exact * years)) < 1e-4
+              and r["survival_probability_interval"][0] <= r["survival_probability"] <= r["survival_probability_interval"][1]), f"survival {r['survival_probability']:.4f} = exp(-lambda T) {math.exp(-exact * years):.4f}"
+        assert r["ruled_out"] == (r["survival_probability"] < 0.05), "ruled out exactly when survival < 1 - confidence"
         with open(plot, "rb") as fh:
-            check(fh.read(8) == b"\x89PNG\r\n\x1a\n", "hazard plot written (PNG)")
+            assert fh.read(8) == b"\x89PNG\r\n\x1a\n", "hazard plot written (PNG)"
 
     # an object that never overturned has no fragility: one line, exit 2
-    bad_input_case("object with no overturned cell", ["hazard", cube, "--object", "stout", "--curve", curve, "--age", "1000"],
+    bad_input_case(tool, "object with no overturned cell", ["hazard", cube, "--object", "stout", "--curve", curve, "--age", "1000"],
                    [cube, "stout", "no overturned cell"])
-    bad_input_case("fragility of an object with no overturned cell", ["fragility", cube, "--object", "stout", "--no-store"],
+    bad_input_case(tool, "fragility of an object with no overturned cell", ["fragility", cube, "--object", "stout", "--no-store"],
                    [cube, "no overturned cell"])
 
     # two records: a fit, but no interval (resampling two records shows nothing of other records)
@@ -311,10 +276,9 @@ def end_to_end(tmp):
     p = tool("fragility", few, "--json", "--no-store")
     if p.returncode == 0:
         b = [b for b in json.loads(p.stdout)["objects"][0]["bins"] if b["n_records"] > 0][0]
-        check(b["theta_g"] > 0 and b["theta_interval_g"] == [None, None] and "interval_note" in b,
-              f"2 records: theta {b['theta_g']:.3f} g, no interval ({b.get('interval_note')})")
+        assert b["theta_g"] > 0 and b["theta_interval_g"] == [None, None] and "interval_note" in b, f"2 records: theta {b['theta_g']:.3f} g, no interval ({b.get('interval_note')})"
     else:
-        check(False, f"fragility of a 2-record cube: exit {p.returncode} {p.stderr.strip()}")
+        assert False, f"fragility of a 2-record cube: exit {p.returncode} {p.stderr.strip()}"
     return cube, curve
 
 
@@ -326,26 +290,24 @@ def nrml_check(path, bins, min_iml, max_iml):
     try:
         root = ET.parse(path).getroot()
     except ET.ParseError as e:
-        check(False, f"NRML well formed ({e})")
+        assert False, f"NRML well formed ({e})"
         return
-    check(root.tag == NS + "nrml", "NRML: root <nrml> in the NRML 0.5 namespace")
+    assert root.tag == NS + "nrml", "NRML: root <nrml> in the NRML 0.5 namespace"
     models = list(root)
-    check(len(models) == 1 and models[0].tag == NS + "fragilityModel"
+    assert (len(models) == 1 and models[0].tag == NS + "fragilityModel"
           and set(models[0].attrib) == {"id", "assetCategory", "lossCategory"}
-          and models[0].get("assetCategory") == "buildings" and models[0].get("lossCategory") == "structural",
-          "NRML: one <fragilityModel id assetCategory lossCategory>")
+          and models[0].get("assetCategory") == "buildings" and models[0].get("lossCategory") == "structural"), "NRML: one <fragilityModel id assetCategory lossCategory>"
     model = models[0]
     children = list(model)
     tags = [c.tag.replace(NS, "") for c in children]
-    check(tags[:2] == ["description", "limitStates"] and all(t == "fragilityFunction" for t in tags[2:]),
-          "NRML: <description>, <limitStates>, then the <fragilityFunction>s (the documentation's order)")
+    assert tags[:2] == ["description", "limitStates"] and all(t == "fragilityFunction" for t in tags[2:]), "NRML: <description>, <limitStates>, then the <fragilityFunction>s (the documentation's order)"
     limit_states = children[1].text.split()
-    check(limit_states == ["overturned"], f"NRML: limit states {limit_states}")
+    assert limit_states == ["overturned"], f"NRML: limit states {limit_states}"
     functions = children[2:]
     fitted = [b for b in bins if "theta_g" in b]
-    check(len(functions) == len(fitted), f"NRML: one function per fitted PGV/PGA bin ({len(functions)})")
+    assert len(functions) == len(fitted), f"NRML: one function per fitted PGV/PGA bin ({len(functions)})"
     ids = [fn.get("id") for fn in functions]
-    check(len(set(ids)) == len(ids), "NRML: function ids unique")
+    assert len(set(ids)) == len(ids), "NRML: function ids unique"
     worst = 0.0
     for fn, b in zip(functions, fitted):
         ok = (fn.attrib == {"id": fn.get("id"), "format": "continuous", "shape": "logncdf"}
@@ -355,7 +317,7 @@ def nrml_check(path, bins, min_iml, max_iml):
         ok = ok and set(params.attrib) == {"ls", "mean", "stddev"} and params.get("ls") == "overturned"
         ok = ok and abs(float(imls.get("minIML")) - min_iml) < 1e-12 and abs(float(imls.get("maxIML")) - max_iml) < 1e-12
         if not ok:
-            check(False, f"NRML function {fn.get('id')}: the documentation's continuous-function structure")
+            assert False, f"NRML function {fn.get('id')}: the documentation's continuous-function structure"
             continue
         # linear moments of the lognormal capacity back to its median and dispersion
         mean, sd = float(params.get("mean")), float(params.get("stddev"))
@@ -365,7 +327,7 @@ def nrml_check(path, bins, min_iml, max_iml):
         ndl = float(imls.get("noDamageLimit"))
         p_ndl = float(ndtr(math.log(ndl / b["theta_g"]) / b["beta"]))
         worst = max(worst, abs(p_ndl / 1e-4 - 1) * 1e-6)
-    check(worst < 1e-9, f"NRML: mean, stddev (linear) give back theta, beta; noDamageLimit at P = 1e-4 "
+    assert worst < 1e-9, (f"NRML: mean, stddev (linear) give back theta, beta; noDamageLimit at P = 1e-4 "
                         f"(worst {worst:.1e})")
 
 
@@ -373,15 +335,15 @@ def nrml_check(path, bins, min_iml, max_iml):
 # 5. bad input
 
 
-def bad_input_case(name, args, fragments):
+def bad_input_case(tool, name, args, fragments):
     p = tool(*args)
     lines = [ln for ln in p.stderr.splitlines() if ln.strip()]
     ok = p.returncode == 2 and len(lines) == 1 and "error" in lines[0] and all(f in lines[0] for f in fragments)
-    check(ok, f"bad input, {name}: exit {p.returncode}, {len(lines)} stderr line(s): "
+    assert ok, (f"bad input, {name}: exit {p.returncode}, {len(lines)} stderr line(s): "
               f"{lines[0] if lines else ''}")
 
 
-def bad_inputs(tmp, cube, good_curve):
+def bad_inputs(tool, tmp, cube, good_curve):
     def curve(name, text):
         path = os.path.join(tmp, name)
         with open(path, "w") as f:
@@ -407,34 +369,18 @@ def bad_inputs(tmp, cube, good_curve):
         ("missing curve", os.path.join(tmp, "absent.csv"), ["absent.csv", "no such file"]),
     ]
     for name, path, fragments in cases:
-        bad_input_case(name, hazard(path), fragments)
-    bad_input_case("negative age", ["hazard", cube, "--object", "rock", "--curve", good_curve, "--age", "-5"], ["--age"])
-    bad_input_case("age NaN", ["hazard", cube, "--object", "rock", "--curve", good_curve, "--age", "nan"], ["--age"])
-    bad_input_case("no --object with two objects", ["hazard", cube, "--curve", good_curve, "--age", "100"], ["--object"])
-    bad_input_case("unknown object", ["fragility", cube, "--object", "nope", "--no-store"], ["nope"])
-    bad_input_case("missing cube", ["fragility", os.path.join(tmp, "none.h5")], ["none.h5"])
+        bad_input_case(tool, name, hazard(path), fragments)
+    bad_input_case(tool, "negative age", ["hazard", cube, "--object", "rock", "--curve", good_curve, "--age", "-5"], ["--age"])
+    bad_input_case(tool, "age NaN", ["hazard", cube, "--object", "rock", "--curve", good_curve, "--age", "nan"], ["--age"])
+    bad_input_case(tool, "no --object with two objects", ["hazard", cube, "--curve", good_curve, "--age", "100"], ["--object"])
+    bad_input_case(tool, "unknown object", ["fragility", cube, "--object", "nope", "--no-store"], ["nope"])
+    bad_input_case(tool, "missing cube", ["fragility", os.path.join(tmp, "none.h5")], ["none.h5"])
     not_hdf5 = curve("text.h5", "not a cube\n")
-    bad_input_case("not an HDF5 file", ["fragility", not_hdf5], ["text.h5"])
-    bad_input_case("unknown option", ["fragility", cube, "--frobnicate"], ["--frobnicate"])
-    bad_input_case("bad PGV/PGA distribution", hazard(good_curve) + ["--pgv-pga-dist", "gamma:1,2"], ["--pgv-pga-dist"])
+    bad_input_case(tool, "not an HDF5 file", ["fragility", not_hdf5], ["text.h5"])
+    bad_input_case(tool, "unknown option", ["fragility", cube, "--frobnicate"], ["--frobnicate"])
+    bad_input_case(tool, "bad PGV/PGA distribution", hazard(good_curve) + ["--pgv-pga-dist", "gamma:1,2"], ["--pgv-pga-dist"])
 
 
-def main():
-    tmp = tempfile.mkdtemp(prefix="rigid_hazard_test_")
-    try:
-        closed_forms(tmp)
-        layouts(tmp)
-        result = end_to_end(tmp)
-        if result:
-            bad_inputs(tmp, *result)
-    finally:
-        shutil.rmtree(tmp, ignore_errors=True)
-    if FAILURES:
-        print(f"{len(FAILURES)} check(s) failed")
-        return 1
-    print("all checks passed")
-    return 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())
+def test_end_to_end_and_bad_inputs(tmp, tool):
+    cube, curve = end_to_end(tmp, tool)
+    bad_inputs(tool, tmp, cube, curve)

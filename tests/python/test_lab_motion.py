@@ -1,4 +1,3 @@
-#!/usr/bin/env python3
 """CTest `lab_motion_python`: lab (shake-table) recordings through `rigid motion info --lab`.
 
 - The reader on files this test writes: gzip and plain text give the same motion; columns by
@@ -21,8 +20,9 @@
   difference < 10 %); the few beyond are tests where it overturned, whose peaks come with the
   fall.
 
-usage: test_lab_motion.py RIGID SHARED_DIR [--all]
-exit 77 (skipped) when numpy or scipy is missing.
+    /usr/bin/python3 -m pytest tests/python/test_lab_motion.py --rigid RIGID [--shared DIR] [--all-recordings]
+
+Skipped when numpy or scipy is missing.
 """
 import csv
 import gzip
@@ -30,32 +30,25 @@ import json
 import math
 import os
 import subprocess
-import sys
 import tempfile
 
-try:
-    import numpy as np
-    import scipy.signal as signal
-except ImportError as e:  # pragma: no cover
-    print("skipped: %s" % e)
-    sys.exit(77)
+import pytest
 
-RIGID = os.path.abspath(sys.argv[1])
-SHARED = os.path.abspath(sys.argv[2]) if len(sys.argv) > 2 else ""
-# the real recordings compared with the scipy chain: every fourth test of tests.csv, or all of them
-REAL_STRIDE = 1 if "--all" in sys.argv[3:] else 4
+np = pytest.importorskip("numpy")
+signal = pytest.importorskip("scipy.signal")
+
+RIGID = None  # the executable, bound by the fixture below for the helpers
 G = 9.80665
 DT = 1.0 / 800.0
-failures = []
 
 
-def check(ok, what):
-    print("%-4s %s" % ("ok" if ok else "FAIL", what))
-    if not ok:
-        failures.append(what)
+@pytest.fixture(autouse=True)
+def _bind_executable(rigid):
+    global RIGID
+    RIGID = rigid
 
 
-def rigid(*args):
+def run_rigid(*args):
     p = subprocess.run([RIGID] + list(args), capture_output=True, text=True, timeout=120)
     return p.returncode, p.stdout, p.stderr
 
@@ -68,7 +61,7 @@ def info(path, *flags, dump=None, default_channel=False):
     args = ["motion", "info", "--json", "--lab", path] + flags
     if dump:
         args += ["--dump", dump]
-    status, out, err = rigid(*args)
+    status, out, err = run_rigid(*args)
     if status != 0:
         raise RuntimeError("rigid %s: exit %d: %s" % (" ".join(args), status, err.strip()))
     return json.loads(out)
@@ -106,44 +99,45 @@ def signals(n=16000, seed=3):
 
 
 def expect_error(d, name, path, fragments, *flags):
-    status, _, err = rigid("motion", "info", "--lab", path, *flags)
+    status, _, err = run_rigid("motion", "info", "--lab", path, *flags)
     lines = err.splitlines()
     ok = status == 2 and len(lines) == 1 and lines[0].startswith("rigid: error: ")
     missing = [f for f in fragments if f not in err]
-    check(ok and not missing, "%s: exit %d, %s%s" % (name, status, (lines[0] if lines else "")[:140],
+    assert ok and not missing, ("%s: exit %d, %s%s" % (name, status, (lines[0] if lines else "")[:140],
                                                     " (missing %s)" % missing if missing else ""))
 
 
-def reader_cases(d):
+def test_reader_cases(tmp):
+    d = tmp
     t, acc, disp = signals()
     plain = write(d, "plain.txt", table(t, acc, disp))
     packed = write(d, "packed.txt.gz", table(t, acc, disp), compress=True)
     a = info(plain, dump=os.path.join(d, "a.csv"))
     b = info(packed, dump=os.path.join(d, "b.csv"))
     xa, xb = read_dump(os.path.join(d, "a.csv")), read_dump(os.path.join(d, "b.csv"))
-    check(np.array_equal(xa, xb) and b["name"] == "packed", "gzip and plain text give the same motion (name %s)" % b["name"])
-    check(abs(a["dt_s"] - DT) < 1e-12 and a["npts"] == len(t), "dt %.9g s and %d samples from the time column" % (a["dt_s"], a["npts"]))
+    assert np.array_equal(xa, xb) and b["name"] == "packed", "gzip and plain text give the same motion (name %s)" % b["name"]
+    assert abs(a["dt_s"] - DT) < 1e-12 and a["npts"] == len(t), "dt %.9g s and %d samples from the time column" % (a["dt_s"], a["npts"])
 
     # columns by header name, comma and whitespace delimiters, other units
     by_name = info(plain, "--lab-acceleration-column", "Acceleration [g]", dump=os.path.join(d, "c.csv"))
-    check(np.array_equal(read_dump(os.path.join(d, "c.csv")), xa) and by_name["pga_g"] == a["pga_g"], "column by header name")
+    assert np.array_equal(read_dump(os.path.join(d, "c.csv")), xa) and by_name["pga_g"] == a["pga_g"], "column by header name"
     comma = write(d, "comma.csv", table(t, acc, disp, sep=","))
     info(comma, "--lab-delimiter", "comma", dump=os.path.join(d, "d.csv"))
-    check(np.allclose(read_dump(os.path.join(d, "d.csv")), xa, rtol=0, atol=1e-12), "comma delimiter")
+    assert np.allclose(read_dump(os.path.join(d, "d.csv")), xa, rtol=0, atol=1e-12), "comma delimiter"
     spaced = write(d, "spaced.dat", table(t, acc, disp, sep="   ", header="time  acc  disp"))
     info(spaced, "--lab-delimiter", "whitespace", dump=os.path.join(d, "e.csv"))
-    check(np.allclose(read_dump(os.path.join(d, "e.csv")), xa, rtol=0, atol=1e-12), "whitespace delimiter, header without units")
+    assert np.allclose(read_dump(os.path.join(d, "e.csv")), xa, rtol=0, atol=1e-12), "whitespace delimiter, header without units"
     si = write(d, "si.txt", table(t, acc * G, disp, header="t\tacc [m/s^2]\td [V]"))
     info(si, "--lab-acceleration-unit", "m/s^2", dump=os.path.join(d, "f.csv"))
-    check(np.allclose(read_dump(os.path.join(d, "f.csv")), xa, rtol=0, atol=1e-9), "acceleration in m/s^2")
+    assert np.allclose(read_dump(os.path.join(d, "f.csv")), xa, rtol=0, atol=1e-9), "acceleration in m/s^2"
     gal = write(d, "gal.txt", table(t, acc * G * 100, disp, header="t\tacc (cm/s^2)\td"))
     info(gal, "--lab-acceleration-unit", "cm/s^2", dump=os.path.join(d, "g.csv"))
-    check(np.allclose(read_dump(os.path.join(d, "g.csv")), xa, rtol=0, atol=1e-9), "acceleration in cm/s^2")
+    assert np.allclose(read_dump(os.path.join(d, "g.csv")), xa, rtol=0, atol=1e-9), "acceleration in cm/s^2"
     # no header, time in column 3, acceleration in column 1, scale 2
     cols = write(d, "cols.txt", "\n".join("%.10g\t%.10g\t%.10g" % (x, y, z) for x, y, z in zip(acc, disp, t)) + "\n")
     info(cols, "--lab-header-lines", "0", "--lab-time-column", "3", "--lab-acceleration-column", "1", "--lab-scale", "2",
          dump=os.path.join(d, "h.csv"))
-    check(np.allclose(read_dump(os.path.join(d, "h.csv")), 2 * xa, rtol=0, atol=1e-12), "no header, columns moved, scale 2")
+    assert np.allclose(read_dump(os.path.join(d, "h.csv")), 2 * xa, rtol=0, atol=1e-12), "no header, columns moved, scale 2"
 
     # displacement: volts x factor in inches, and the same in mm; d2/dt2 of 0.5 in sin(w t) = -w^2 x
     w = 2 * np.pi * 1.5
@@ -152,17 +146,17 @@ def reader_cases(d):
     x_v = read_dump(os.path.join(d, "i.csv"))
     mid = slice(len(t) // 4, 3 * len(t) // 4)
     err = np.abs(x_v[mid] - expected[mid]).max() / np.abs(expected).max()
-    check(err < 2e-3, "displacement channel (V x 5.9797e-4 in) differentiated twice: -w^2 x to %.2g" % err)
+    assert err < 2e-3, "displacement channel (V x 5.9797e-4 in) differentiated twice: -w^2 x to %.2g" % err
     # combined: the same displacement below 2 Hz, the accelerometer above (here both hold the same
     # motion, so the merge is that motion)
     acc_same = -w * w * 0.5 * 0.0254 * np.sin(w * t) / G
     same = write(d, "same.txt", table(t, acc_same, disp))
     info(same, "--lab-channel", "combined", dump=os.path.join(d, "k.csv"))
     err = np.abs(read_dump(os.path.join(d, "k.csv"))[mid] - expected[mid]).max() / np.abs(expected).max()
-    check(err < 2e-3, "combined channel of two channels holding one motion: that motion to %.2g" % err)
+    assert err < 2e-3, "combined channel of two channels holding one motion: that motion to %.2g" % err
     mm = write(d, "mm.txt", table(t, acc, disp * 5.9797e-4 * 25.4, header="t\ta [g]\td [mm]"))
     info(mm, "--lab-channel", "displacement", "--lab-displacement-unit", "mm", dump=os.path.join(d, "j.csv"))
-    check(np.allclose(read_dump(os.path.join(d, "j.csv")), x_v, rtol=0, atol=1e-5 * np.abs(x_v).max()), "displacement in mm")
+    assert np.allclose(read_dump(os.path.join(d, "j.csv")), x_v, rtol=0, atol=1e-5 * np.abs(x_v).max()), "displacement in mm"
 
     # bad files: one line naming the file and the line
     good = table(t[:200], acc[:200], disp[:200]).splitlines()
@@ -196,8 +190,8 @@ def reader_cases(d):
     expect_error(d, "bad band", plain, ["--lab-band-hz"], "--lab-band-hz", "25,0.1")
     toml = write(d, "fmt.toml", '[lab]\nchannel = "acceleration"\nacceleration_unit = "furlong"\n')
     expect_error(d, "bad [lab] table", plain, ["fmt.toml:1:", "acceleration_unit"], "--lab-format", toml)
-    status, _, err = rigid("motion", "info", "--lab-channel", "displacement", "x.AT2")
-    check(status == 2 and "--lab" in err, "a --lab-* flag without --lab is refused: %s" % err.strip()[:100])
+    status, _, err = run_rigid("motion", "info", "--lab-channel", "displacement", "x.AT2")
+    assert status == 2 and "--lab" in err, "a --lab-* flag without --lab is refused: %s" % err.strip()[:100]
 
 
 VOLTS_TO_M = 5.9797e-4 * 0.0254  # the lab's notes: 5.9797e-4 inch per volt
@@ -285,7 +279,8 @@ DESIGNS = [(800, 4, (0.1, 25.0), 2.0), (800, 3, (0.1, 25.0), 0.15), (200, 4, (0.
            (100, 2, (0.5, 45.0), 20.0), (800, 7, (0.3, 12.0), 0.4)]
 
 
-def filter_cases(d):
+def test_filter_cases(tmp):
+    d = tmp
     worst_sections, worst_series = 0.0, 0.0
     for k, (fs, order, band, crossover) in enumerate(DESIGNS):
         n = int(60 * fs)
@@ -299,10 +294,10 @@ def filter_cases(d):
         errors = [section_error(j.get(key, []), signal.butter(order, wn, kind, fs=fs, output="sos"))
                   for key, wn, kind in (("filter_sos", band, "bandpass"), ("crossover_lowpass_sos", crossover, "lowpass"),
                                         ("crossover_highpass_sos", crossover, "highpass"))]
-        check(max(errors) < 1e-9, "%s: band-pass, low-pass, high-pass sections = scipy.signal.butter's to %s" %
+        assert max(errors) < 1e-9, ("%s: band-pass, low-pass, high-pass sections = scipy.signal.butter's to %s" %
               (what, ", ".join("%.2g" % e for e in errors)))
         e = peak_relative(read_dump_fast(dump), scipy_chain(t, acc, disp, "combined", band, order, crossover))
-        check(e < 1e-6, "%s: the combined channel = the scipy chain to %.2g of the peak" % (what, e))
+        assert e < 1e-6, "%s: the combined channel = the scipy chain to %.2g of the peak" % (what, e)
         worst_sections, worst_series = max([worst_sections] + errors), max(worst_series, e)
     print("     (worst: sections %.2g, combined channel %.2g of the peak)" % (worst_sections, worst_series))
 
@@ -314,24 +309,25 @@ def filter_cases(d):
         dump = os.path.join(d, channel + ".csv")
         info(path, "--lab-channel", channel, dump=dump)
         e = peak_relative(read_dump_fast(dump), scipy_chain(t, acc, disp, channel))
-        check(e < 1e-6, "the %s channel = the scipy chain to %.2g of the peak" % (channel, e))
+        assert e < 1e-6, "the %s channel = the scipy chain to %.2g of the peak" % (channel, e)
     dump = os.path.join(d, "linear.csv")
     j = info(path, "--lab-band-hz", "0.5,10", "--lab-filter-order", "2", "--lab-baseline", "linear", dump=dump)
     ours = read_dump_fast(dump)
     e = peak_relative(ours, scipy_chain(t, acc, disp, "acceleration", (0.5, 10.0), 2, baseline="linear"))
-    check(e < 1e-6, "band 0.5-10 Hz order 2 with a linear baseline = scipy (detrend + butter + sosfiltfilt): %.2g" % e)
+    assert e < 1e-6, "band 0.5-10 Hz order 2 with a linear baseline = scipy (detrend + butter + sosfiltfilt): %.2g" % e
     # the filtering alone, on rigid's own coefficients: sosfiltfilt's padding and initial states
     x = signal.detrend(acc * G, type="linear")
     e = peak_relative(ours, signal.sosfiltfilt(np.array(j["filter_sos"]), x))
-    check(e < 1e-6, "the zero-phase filter = scipy.signal.sosfiltfilt on the same coefficients: %.2g of the peak" % e)
+    assert e < 1e-6, "the zero-phase filter = scipy.signal.sosfiltfilt on the same coefficients: %.2g of the peak" % e
 
 
-def real_data_cases():
-    root = os.path.join(SHARED, "shaketable")
+def test_real_recordings(shared_dir, request):
+    # the real recordings compared with the scipy chain: every fourth test of tests.csv, or all of them
+    stride = 1 if request.config.getoption("--all-recordings") else 4
+    root = os.path.join(shared_dir, "shaketable")
     sheet = os.path.join(root, "tests.csv")
-    if not SHARED or not os.path.exists(sheet):
-        print("skipped: the real recordings (%s absent)" % sheet)
-        return
+    if not os.path.exists(sheet):
+        pytest.skip("the real recordings (%s absent)" % sheet)
     with open(sheet) as f:
         rows = list(csv.DictReader(f))
     ratios, combined_errors, acc_errors = [], [], []
@@ -339,7 +335,7 @@ def real_data_cases():
         dump = os.path.join(d, "x.csv")
         for i, row in enumerate(rows):
             path = os.path.join(root, row["file"])
-            compare = i % REAL_STRIDE == 0
+            compare = i % stride == 0
             j = info(path, default_channel=True, dump=dump if compare else None)
             ratios.append(j["pga_g"] / float(row["pga_g"]))
             if compare:
@@ -348,31 +344,17 @@ def real_data_cases():
                 info(path, dump=dump)
                 acc_errors.append(peak_relative(read_dump_fast(dump), scipy_chain(t, acc, disp, "acceleration")))
     for name, errors in (("combined", combined_errors), ("accelerometer", acc_errors)):
-        check(max(errors) < 1e-6, "the %s channel of %d recordings (every %stest) = the scipy chain: max %.2g, median %.2g of the peak" %
-              (name, len(errors), "" if REAL_STRIDE == 1 else "%dth " % REAL_STRIDE, max(errors), np.median(errors)))
+        assert max(errors) < 1e-6, ("the %s channel of %d recordings (every %stest) = the scipy chain: max %.2g, median %.2g of the peak" %
+              (name, len(errors), "" if stride == 1 else "%dth " % stride, max(errors), np.median(errors)))
     ratios = np.array(ratios)
     fell = np.array([row["overturned"] == "1" for row in rows])
     far = np.abs(ratios - 1) > 0.5
-    check(len(rows) == 161, "all %d recordings read" % len(rows))
-    check(np.median(np.abs(ratios - 1)) < 0.10,
-          "the default (combined) channel's PGA / sheet's pga_g: median %.3f, median |diff| %.3f" % (np.median(ratios), np.median(np.abs(ratios - 1))))
+    assert len(rows) == 161, "all %d recordings read" % len(rows)
+    assert np.median(np.abs(ratios - 1)) < 0.10, "the default (combined) channel's PGA / sheet's pga_g: median %.3f, median |diff| %.3f" % (np.median(ratios), np.median(np.abs(ratios - 1)))
     # a specimen that falls hits the table: the largest accelerations of those few tests come at
     # the fall, not from the drive; every test it survived must stay within 50 % of the sheet
     standing = [rows[i]["test_no"] for i in np.flatnonzero(far & ~fell)]
-    check(not standing, "every test without an overturn within 50 %% of the sheet's PGA%s" %
+    assert not standing, ("every test without an overturn within 50 %% of the sheet's PGA%s" %
           (" (beyond: %s)" % standing if standing else ""))
     fallen = ["%s (x%.2f)" % (rows[i]["test_no"], ratios[i]) for i in np.flatnonzero(far & fell)]
-    check(len(fallen) <= 8, "overturned tests beyond 50 %%: %d of %d: %s" % (len(fallen), fell.sum(), ", ".join(fallen)))
-
-
-def main():
-    with tempfile.TemporaryDirectory(prefix="rigid_lab_") as d:
-        reader_cases(d)
-        filter_cases(d)
-    real_data_cases()
-    print("%d failed" % len(failures))
-    return 1 if failures else 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())
+    assert len(fallen) <= 8, "overturned tests beyond 50 %%: %d of %d: %s" % (len(fallen), fell.sum(), ", ".join(fallen))

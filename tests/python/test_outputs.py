@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """What `rigid fragility`, `rigid hazard` and `rigid plot` print and draw says what it means, checked
 against independent oracles on synthetic cubes with planted probit outcomes (test_plot.py's writer):
 
@@ -18,9 +17,9 @@ against independent oracles on synthetic cubes with planted probit outcomes (tes
 7. `rigid plot maps`: one panel per bin with records (no empty panel), alpha to 3 significant
    digits, --format pdf and svg files; the hazard plot's legend off both panels.
 
-    /usr/bin/python3 tests/python/test_outputs.py
+    /usr/bin/python3 -m pytest tests/python/test_outputs.py
 
-Exit 0 success, 1 failure, 77 (skipped) without numpy, scipy, h5py or matplotlib.
+Skipped without numpy, scipy, h5py or matplotlib.
 """
 import csv
 import io
@@ -28,39 +27,27 @@ import json
 import math
 import os
 import re
-import shutil
 import subprocess
 import sys
-import tempfile
 import xml.etree.ElementTree as ET
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-PLOT_DIR = os.path.normpath(os.path.join(HERE, "..", "..", "src", "plot"))
-sys.path.insert(0, PLOT_DIR)
-sys.path.insert(0, HERE)
-try:
-    import numpy as np
-    from scipy import stats
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.figure
-    import test_plot as tp  # the synthetic cube writer of the documented layout
-    import rigid_fragility as rf
-    import progress
-except ImportError as e:
-    print(f"skipped: {e} (install python3-numpy python3-scipy python3-h5py python3-matplotlib)")
-    sys.exit(77)
+import pytest
 
-FRAGILITY = os.path.join(PLOT_DIR, "rigid_fragility.py")
-PLOT = os.path.join(PLOT_DIR, "rigid_plot.py")
+np = pytest.importorskip("numpy")
+matplotlib = pytest.importorskip("matplotlib")
+matplotlib.use("Agg")
+import matplotlib.figure  # noqa: E402
+from scipy import stats  # noqa: E402
+
+import synthetic_cube as tp  # noqa: E402  (the synthetic cube writer of the documented layout)
+from rigidpy import fragility as rf  # noqa: E402
+from rigidpy import plot as rp  # noqa: E402
+from rigidpy import progress  # noqa: E402
+
+PYTHON_DIR = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "src", "python"))
+FRAGILITY = os.path.join(PYTHON_DIR, "rigid_fragility.py")
+PLOT = os.path.join(PYTHON_DIR, "rigid_plot.py")
 NS = "{http://openquake.org/xmlns/nrml/0.5}"
-FAILURES = []
-
-
-def check(ok, what):
-    print(("ok   " if ok else "FAIL ") + what)
-    if not ok:
-        FAILURES.append(what)
 
 
 def run(script, *args):
@@ -84,12 +71,10 @@ def test_scientific_notation():
         log10 = float(stats.norm.logsf(z)) / math.log(10)
         text = rf.fmt_probability(p)
         m = re.fullmatch(r"(\d\.\d+)e([+-]\d+)", text)
-        check(m is not None and int(m.group(2)) == math.floor(log10)
-              and abs(float(m.group(1)) - 10 ** (log10 - math.floor(log10))) < 1e-3,
-              f"P = Phi(-{z:g}) prints as {text}: exponent {math.floor(log10)} from norm.logsf")
-    check(rf.fmt_probability(0.4321) == "0.4321" and rf.fmt_probability(0.0) == "0",
-          "ordinary probabilities stay fixed-point (0.4321), zero prints as 0")
-    check(rf.fmt_probability(0.0049) == "4.900e-03", "0.0049 keeps its two significant digits (4.900e-03)")
+        assert (m is not None and int(m.group(2)) == math.floor(log10)
+              and abs(float(m.group(1)) - 10 ** (log10 - math.floor(log10))) < 1e-3), f"P = Phi(-{z:g}) prints as {text}: exponent {math.floor(log10)} from norm.logsf"
+    assert rf.fmt_probability(0.4321) == "0.4321" and rf.fmt_probability(0.0) == "0", "ordinary probabilities stay fixed-point (0.4321), zero prints as 0"
+    assert rf.fmt_probability(0.0049) == "4.900e-03", "0.0049 keeps its two significant digits (4.900e-03)"
 
 
 def planted_cube(path, rng, mu0, two_record_bin=True):
@@ -106,11 +91,23 @@ def planted_cube(path, rng, mu0, two_record_bin=True):
 # 2., 1. (end to end) the hazard report
 
 
-def test_hazard_report(tmp, cube):
+@pytest.fixture(scope="module")
+def planted(tmp_path_factory):
+    """(directory, cube, records' PGV/PGA) shared by the tests below."""
+    tmp = str(tmp_path_factory.mktemp("outputs"))
+    rng = np.random.default_rng(20261126)
+    cube = os.path.join(tmp, "planted.h5")
+    # mu0 -1.2: theta 0.95 g at PGV/PGA 0.1 s, whose P = 0.99 lies beyond the top scale of 2 g
+    pgv = planted_cube(cube, rng, -1.2)
+    return tmp, cube, pgv
+
+
+def test_hazard_report(planted):
+    tmp, cube, _ = planted
     flat = os.path.join(tmp, "flat.csv")
     write_curve(flat, [0.001, 100.0], [1e-2, 1e-12])  # any curve: the fit is what --json reports
     r = run(FRAGILITY, "hazard", cube, "--curve", flat, "--age", "1000", "--json", "--bootstrap", "20")
-    check(r.returncode == 0, f"hazard --json runs ({r.stderr.strip()[:200]})")
+    assert r.returncode == 0, f"hazard --json runs ({r.stderr.strip()[:200]})"
     if r.returncode:
         return
     fit = json.loads(r.stdout)["fragility"][0]
@@ -124,10 +121,9 @@ def test_hazard_report(tmp, cube):
     r = run(FRAGILITY, "hazard", cube, "--curve", steep, "--age", f"{years:g}", "--bootstrap", "20")
     m = re.search(r"P\(survives 1000 years\) = exp\(-lambda T\) = (\S+)", r.stdout)
     printed = m.group(1) if m else ""
-    check(r.returncode == 0 and re.fullmatch(r"\d\.\d{3}e-10", printed) is not None
-          and abs(float(printed) / math.exp(-21) - 1) < 0.01,
-          f"survival exp(-21) = {math.exp(-21):.4g} prints as {printed!r} (scientific, exponent -10)")
-    check("0.0000 [" not in r.stdout and " inf" not in r.stdout, "no 0.0000 interval, no inf in the report")
+    assert (r.returncode == 0 and re.fullmatch(r"\d\.\d{3}e-10", printed) is not None
+          and abs(float(printed) / math.exp(-21) - 1) < 0.01), f"survival exp(-21) = {math.exp(-21):.4g} prints as {printed!r} (scientific, exponent -10)"
+    assert "0.0000 [" not in r.stdout and " inf" not in r.stdout, "no 0.0000 interval, no inf in the report"
 
     # a curve that ends (rate 0) at 0.03 g, far below a fragility of ~0.5 g
     short = os.path.join(tmp, "short.csv")
@@ -135,23 +131,20 @@ def test_hazard_report(tmp, cube):
     r = run(FRAGILITY, "hazard", cube, "--curve", short, "--age", "1000", "--bootstrap", "20")
     p_end = stats.norm.cdf(math.log(0.025 / theta) / beta)
     m = re.search(r"warning: the hazard curve ends at 0\.025 g, where P\(topple \| PGA\) is only (\S+):", r.stdout)
-    check(r.returncode == 0 and m is not None and abs(float(m.group(1)) / p_end - 1) < 0.01,
-          f"a curve ending at 0.025 g warns, P(topple) there {m.group(1) if m else None} = Phi(ln(0.025/theta)/beta) "
+    assert r.returncode == 0 and m is not None and abs(float(m.group(1)) / p_end - 1) < 0.01, (f"a curve ending at 0.025 g warns, P(topple) there {m.group(1) if m else None} = Phi(ln(0.025/theta)/beta) "
           f"= {p_end:.3e}")
-    check(not re.search(r"\binf\b|x 0(\.0+)?\b|\bx nan\b", r.stdout),
-          "no 'inf', 'x 0' or 'x nan' factor when the rate is 0")
-    check("no factor on its rates rules it out" in r.stdout, "rate 0 said in words")
+    assert not re.search(r"\binf\b|x 0(\.0+)?\b|\bx nan\b", r.stdout), "no 'inf', 'x 0' or 'x nan' factor when the rate is 0"
+    assert "no factor on its rates rules it out" in r.stdout, "rate 0 said in words"
 
     # the same curve extended by its power law: the share of the rate from beyond is warned about
     open_end = os.path.join(tmp, "open.csv")
     write_curve(open_end, [0.005, 0.01, 0.025], [1e-1, 1e-2, 1e-3])
     r = run(FRAGILITY, "hazard", cube, "--curve", open_end, "--age", "1000", "--bootstrap", "20")
-    check("warning: the hazard curve ends at 0.025 g" in r.stdout and "power-law extension" in r.stdout
-          and re.search(r"warning: 100\.0 % of the rate comes from PGAs outside", r.stdout) is not None,
-          "an extended curve: both warnings (ends below the fragility, 100 % of the rate extrapolated)")
+    assert ("warning: the hazard curve ends at 0.025 g" in r.stdout and "power-law extension" in r.stdout
+          and re.search(r"warning: 100\.0 % of the rate comes from PGAs outside", r.stdout) is not None), "an extended curve: both warnings (ends below the fragility, 100 % of the rate extrapolated)"
     # a curve covering the fragility: no warning
     r = run(FRAGILITY, "hazard", cube, "--curve", steep, "--age", "1000", "--bootstrap", "20")
-    check("warning" not in r.stdout, "a curve covering the fragility: no warning")
+    assert "warning" not in r.stdout, "a curve covering the fragility: no warning"
 
 
 # --------------------------------------------------------------------------------------------
@@ -163,18 +156,18 @@ def lognormal_of(mean, stddev):
     return mean * math.exp(-beta * beta / 2), beta
 
 
-def test_nrml_and_flags(tmp, cube):
+def test_nrml_and_flags(planted):
+    tmp, cube, _ = planted
     top = float(tp.SCALES.max())
     xml = os.path.join(tmp, "f.xml")
     out_csv = os.path.join(tmp, "f.csv")
     r = run(FRAGILITY, "fragility", cube, "--nrml", xml, "--csv", out_csv, "--no-store", "--bootstrap", "20",
             "--nrml-id", "sp1_overturning", "--nrml-asset-category", "pbr", "--nrml-loss-category", "rock")
-    check(r.returncode == 0, f"fragility --nrml runs ({r.stderr.strip()[:200]})")
+    assert r.returncode == 0, f"fragility --nrml runs ({r.stderr.strip()[:200]})"
     if r.returncode:
         return
     model = ET.parse(xml).getroot().find(f"{NS}fragilityModel")
-    check((model.get("id"), model.get("assetCategory"), model.get("lossCategory")) == ("sp1_overturning", "pbr", "rock"),
-          "NRML id, assetCategory, lossCategory from the options")
+    assert (model.get("id"), model.get("assetCategory"), model.get("lossCategory")) == ("sp1_overturning", "pbr", "rock"), "NRML id, assetCategory, lossCategory from the options"
     beyond = 0
     ok = True
     functions = model.findall(f"{NS}fragilityFunction")
@@ -186,29 +179,27 @@ def test_nrml_and_flags(tmp, cube):
         got = float(imls.get("maxIML"))
         ok &= abs(got / want - 1) < 1e-9 and stats.norm.cdf(math.log(got / theta) / beta) >= 0.99 - 1e-9
         beyond += got > top * (1 + 1e-9)
-    check(ok and functions, f"maxIML of all {len(functions)} functions = max(theta exp(beta Phi^-1(0.99)), top scale)")
-    check(beyond > 0, f"{beyond} function(s) carried beyond the campaign's top scale {top:g} g to P = 0.99")
+    assert ok and functions, f"maxIML of all {len(functions)} functions = max(theta exp(beta Phi^-1(0.99)), top scale)"
+    assert beyond > 0, f"{beyond} function(s) carried beyond the campaign's top scale {top:g} g to P = 0.99"
     r = run(FRAGILITY, "fragility", cube, "--nrml", xml, "--no-store", "--bootstrap", "20", "--nrml-max-probability", "0")
     tops = {float(fn.find(f"{NS}imls").get("maxIML")) for fn in ET.parse(xml).getroot().iter(f"{NS}fragilityFunction")}
-    check(r.returncode == 0 and tops == {top}, "--nrml-max-probability 0: maxIML is the campaign's top scale")
+    assert r.returncode == 0 and tops == {top}, "--nrml-max-probability 0: maxIML is the campaign's top scale"
 
     # the 0.06-0.08 s bin holds 2 records: flagged in the table and the CSV, left out by --nrml-min-records 3
     few = [line for line in r.stdout.splitlines() if line.strip().startswith("0.06-0.08")]
-    check(len(few) == 1 and "fewer than 3" in few[0], f"table flags the 2-record bin: {few[0].strip() if few else None}")
+    assert len(few) == 1 and "fewer than 3" in few[0], f"table flags the 2-record bin: {few[0].strip() if few else None}"
     with open(out_csv) as fh:
         rows = [row for row in csv.DictReader(fh) if row["fit"] == "bin"]
     flagged = {row["pgv_pga_lower_s"] for row in rows if "fewer than 3" in row["note"]}
-    check(flagged == {"0.06"}, f"CSV note flags exactly the bins with < 3 records ({sorted(flagged)})")
+    assert flagged == {"0.06"}, f"CSV note flags exactly the bins with < 3 records ({sorted(flagged)})"
     r = run(FRAGILITY, "fragility", cube, "--nrml", xml, "--no-store", "--bootstrap", "20", "--nrml-min-records", "3")
     ids = [fn.get("id") for fn in ET.parse(xml).getroot().iter(f"{NS}fragilityFunction")]
-    check(r.returncode == 0 and not any("0.06-0.08" in i for i in ids) and len(ids) == len(functions) - 1
-          and "rock_pgv_pga_0.06-0.08s (2 record(s))" in r.stdout,
-          "--nrml-min-records 3 leaves the 2-record bin out of the NRML, and says so")
+    assert (r.returncode == 0 and not any("0.06-0.08" in i for i in ids) and len(ids) == len(functions) - 1
+          and "rock_pgv_pga_0.06-0.08s (2 record(s))" in r.stdout), "--nrml-min-records 3 leaves the 2-record bin out of the NRML, and says so"
     for bad in (["--nrml-id", ""], ["--nrml-asset-category", "a<b"], ["--nrml-max-probability", "0.3"],
                 ["--nrml-min-records", "-1"]):
         r = run(FRAGILITY, "fragility", cube, "--no-store", *bad)
-        check(r.returncode == 2 and len(r.stderr.splitlines()) == 1 and bad[0] in r.stderr,
-              f"{' '.join(bad) or repr('')}: one line naming the option, exit 2")
+        assert r.returncode == 2 and len(r.stderr.splitlines()) == 1 and bad[0] in r.stderr, f"{' '.join(bad) or repr('')}: one line naming the option, exit 2"
 
 
 # --------------------------------------------------------------------------------------------
@@ -217,13 +208,10 @@ def test_nrml_and_flags(tmp, cube):
 
 def test_interval_flag_and_progress():
     scales = (0.1, 2.0)
-    check(rf.fmt_interval(0.3, 0.05, 0.56, scale_range_g=scales).endswith(rf.BEYOND_MARK),
-          "theta interval [0.05, 0.56] with scales from 0.1 g: flagged")
-    check(rf.fmt_interval(0.3, 0.2, 2.5, scale_range_g=scales).endswith(rf.BEYOND_MARK),
-          "theta interval reaching 2.5 g over scales up to 2.0 g: flagged")
-    check(not rf.fmt_interval(0.3, 0.2, 0.5, scale_range_g=scales).endswith(rf.BEYOND_MARK),
-          "an interval inside the scales: not flagged")
-    check(rf.fmt_interval(0.3, 0.0001, 0.5) == "0.300 [1.00e-04, 0.500]", "a lower end of 1e-4 is not 0.000")
+    assert rf.fmt_interval(0.3, 0.05, 0.56, scale_range_g=scales).endswith(rf.BEYOND_MARK), "theta interval [0.05, 0.56] with scales from 0.1 g: flagged"
+    assert rf.fmt_interval(0.3, 0.2, 2.5, scale_range_g=scales).endswith(rf.BEYOND_MARK), "theta interval reaching 2.5 g over scales up to 2.0 g: flagged"
+    assert not rf.fmt_interval(0.3, 0.2, 0.5, scale_range_g=scales).endswith(rf.BEYOND_MARK), "an interval inside the scales: not flagged"
+    assert rf.fmt_interval(0.3, 0.0001, 0.5) == "0.300 [1.00e-04, 0.500]", "a lower end of 1e-4 is not 0.000"
 
     now = [0.0]
     out = io.StringIO()
@@ -238,26 +226,24 @@ def test_interval_flag_and_progress():
     lines = out.getvalue().splitlines()
     denominators = {re.search(r"/(\d+) fits", ln).group(1) for ln in lines}
     times = [float(re.search(r"(\d+):(\d+) elapsed", ln).group(2)) for ln in lines[:-1]]
-    check(denominators == {"12"} and len(lines) >= 3, f"{len(lines)} progress lines, every one out of 12 fits")
-    check(times and times[0] >= 5 and all(b - a >= 5 - 1e-9 for a, b in zip(times, times[1:])),
-          f"first line after 5 s, then every 5 s ({times})")
+    assert denominators == {"12"} and len(lines) >= 3, f"{len(lines)} progress lines, every one out of 12 fits"
+    assert times and times[0] >= 5 and all(b - a >= 5 - 1e-9 for a, b in zip(times, times[1:])), f"first line after 5 s, then every 5 s ({times})"
     m = re.search(r"ETA (\d+):(\d+)", lines[0])
     done = float(re.search(r"([\d.]+)/12 fits", lines[0]).group(1))
-    check(m is not None and abs(int(m.group(1)) * 60 + int(m.group(2)) - (12 - done)) <= 1,
-          f"ETA at 1 s per fit: {12 - done:.0f} s left ({lines[0]})")
-    check("done in" in lines[-1], f"a closing line: {lines[-1]}")
+    assert m is not None and abs(int(m.group(1)) * 60 + int(m.group(2)) - (12 - done)) <= 1, f"ETA at 1 s per fit: {12 - done:.0f} s left ({lines[0]})"
+    assert "done in" in lines[-1], f"a closing line: {lines[-1]}"
     quiet = io.StringIO()
     q = progress.FitProgress(3, "x", stream=quiet, clock=lambda: 0.0)
     q.fit_done(), q.finish()
-    check(quiet.getvalue() == "", "work under 5 s prints nothing")
+    assert quiet.getvalue() == "", "work under 5 s prints nothing"
 
 
 # --------------------------------------------------------------------------------------------
 # 7. figures
 
 
-def test_figures(tmp, cube, pgv):
-    import rigid_plot as rp
+def test_figures(planted):
+    tmp, cube, pgv = planted  # steep.csv: written by test_hazard_report, which runs first
     captured = []
     original = matplotlib.figure.Figure.savefig
 
@@ -273,51 +259,27 @@ def test_figures(tmp, cube, pgv):
                  "--plot", os.path.join(tmp, "hazard.svg")])
     finally:
         matplotlib.figure.Figure.savefig = original
-    check(len(captured) == 3, f"maps drew 2 figures and hazard 1 ({len(captured)})")
+    assert len(captured) == 3, f"maps drew 2 figures and hazard 1 ({len(captured)})"
     if len(captured) != 3:
         return
     mapfig, records, hazard = captured
     with_records = {tp.bin_of(v) for v in pgv}
     panels = [ax for ax in records.axes if ax.get_visible() and ax.get_title().startswith("PGV/PGA")]
     texts = [t.get_text() for ax in records.axes for t in ax.texts if ax.get_visible()]
-    check(len(panels) == len(with_records) and "no records" not in texts,
-          f"records figure: {len(panels)} panels for the {len(with_records)} bins with records, none empty")
+    assert len(panels) == len(with_records) and "no records" not in texts, f"records figure: {len(panels)} panels for the {len(with_records)} bins with records, none empty"
     title = mapfig.axes[0].get_title()
-    check("alpha = 0.123 rad" in title, f"alpha to 3 digits in the map's title ({title.splitlines()[0]})")
+    assert "alpha = 0.123 rad" in title, f"alpha to 3 digits in the map's title ({title.splitlines()[0]})"
     records.canvas.draw()
     hazard.canvas.draw()
     legend = hazard.legends[0].get_window_extent() if hazard.legends else None
     clear = legend is not None and all(not legend.overlaps(ax.get_window_extent()) for ax in hazard.axes)
-    check(clear, "hazard plot: the legend is off both panels")
-    check(os.path.getsize(os.path.join(tmp, "hazard.svg")) > 0, "hazard --plot x.svg writes SVG")
+    assert clear, "hazard plot: the legend is off both panels"
+    assert os.path.getsize(os.path.join(tmp, "hazard.svg")) > 0, "hazard --plot x.svg writes SVG"
     for fmt, magic in (("pdf", b"%PDF"), ("svg", b"<?xml")):
         d = os.path.join(tmp, fmt)
         r = run(PLOT, "maps", cube, "--out", d, "--format", fmt)
         files = sorted(os.listdir(d)) if os.path.isdir(d) else []
         heads = [open(os.path.join(d, f), "rb").read(5) for f in files if f.endswith("." + fmt)]
-        check(r.returncode == 0 and len(heads) == 2 and all(h.startswith(magic) for h in heads),
-              f"maps --format {fmt}: {[f for f in files if f.endswith(fmt)]}")
+        assert r.returncode == 0 and len(heads) == 2 and all(h.startswith(magic) for h in heads), f"maps --format {fmt}: {[f for f in files if f.endswith(fmt)]}"
     r = run(PLOT, "maps", cube, "--out", os.path.join(tmp, "x"), "--format", "gif")
-    check(r.returncode == 2 and len(r.stderr.splitlines()) == 1, "--format gif: one line, exit 2")
-
-
-def main():
-    tmp = tempfile.mkdtemp(prefix="rigid_outputs_")
-    try:
-        rng = np.random.default_rng(20261126)
-        cube = os.path.join(tmp, "planted.h5")
-        # mu0 -1.2: theta 0.95 g at PGV/PGA 0.1 s, whose P = 0.99 lies beyond the top scale of 2 g
-        pgv = planted_cube(cube, rng, -1.2)
-        test_scientific_notation()
-        test_interval_flag_and_progress()
-        test_hazard_report(tmp, cube)
-        test_nrml_and_flags(tmp, cube)
-        test_figures(tmp, cube, pgv)
-    finally:
-        shutil.rmtree(tmp)
-    print(f"{len(FAILURES)} failure(s)" if FAILURES else "all passed")
-    return 1 if FAILURES else 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())
+    assert r.returncode == 2 and len(r.stderr.splitlines()) == 1, "--format gif: one line, exit 2"

@@ -1,14 +1,13 @@
-#!/usr/bin/python3
-"""Checks src/plot/rigid_plot.py (`rigid plot`) on synthetic cubes written here with h5py in the
-documented layout (docs/cube.md), with outcomes drawn from a KNOWN probit
-model, so the planted parameters are an independent oracle for the maximum-likelihood fit.
+"""Checks `rigid plot` (src/python/rigidpy/plot.py, through its launcher src/python/rigid_plot.py)
+on synthetic cubes written with h5py in the documented layout (docs/cube.md, synthetic_cube.py),
+with outcomes drawn from a KNOWN probit model, so the planted parameters are an independent oracle
+for the maximum-likelihood fit.
 
-    /usr/bin/python3 tests/python/test_plot.py [PATH/rigid_plot.py]
+    /usr/bin/python3 -m pytest tests/python/test_plot.py
 
-Exit 0 success, 1 failure, 77 (CTest: skipped) when numpy, h5py or matplotlib is missing.
+Skipped when numpy, h5py or matplotlib is missing.
 """
 import csv
-import importlib.util
 import json
 import math
 import os
@@ -16,106 +15,19 @@ import re
 import shutil
 import subprocess
 import sys
-import tempfile
-import unittest
 
-try:
-    import h5py
-    import numpy as np
-    import matplotlib  # noqa: F401  (the tool needs it)
-except ImportError as e:  # pragma: no cover
-    print(f"skipped: {e} (install python3-h5py python3-numpy python3-matplotlib for {sys.executable})")
-    sys.exit(77)
+import pytest
+
+h5py = pytest.importorskip("h5py")
+np = pytest.importorskip("numpy")
+pytest.importorskip("matplotlib")  # the tool needs it
+
+from synthetic_cube import (A, ALPHA, EDGES, MU0, MU1, P, R, SCALES, SIGMA, bin_of,  # noqa: E402
+                            derived, phi, planted_outcomes, write_cube)
+from rigidpy import checksums as cube_checksums  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-SCRIPT = os.path.normpath(os.path.join(HERE, "..", "..", "src", "plot", "rigid_plot.py"))
-sys.path.insert(0, os.path.dirname(SCRIPT))
-import cube_checksums  # noqa: E402  (synthetic cubes carry the checksums of the current schema)
-
-EDGES = [0.0, 0.06, 0.08, 0.10, 0.12, 0.15, 0.20, 0.25, 0.35, math.inf]
-SCALES = np.round(np.arange(1, 21) * 0.1, 10)       # 0.1 .. 2.0 g
-R, A = 80, 4
-# planted model in un-normalised variables: u = ln(PGA/g), x = ln(PGV/PGA / 1 s)
-MU0, MU1, SIGMA = -1.8, -0.5, 0.35
-ALPHA, P = 0.2, 2.2                                  # attributes of the normalised copy
-
-
-def phi(z):
-    return 0.5 * math.erfc(-z / math.sqrt(2.0))
-
-
-def bin_of(v, edges=None):
-    edges = EDGES if edges is None else edges
-    for i in range(len(edges) - 1):
-        if edges[i] <= v < edges[i + 1]:
-            return i
-    return -1
-
-
-def derived(outcome, pgv_pga, edges=None):
-    """Independent re-implementation of the cube's probability and fragility."""
-    over = ((outcome == 2) | (outcome == 3)).sum(axis=2)
-    known = over + (outcome == 1).sum(axis=2)
-    prob = np.full(known.shape, np.nan)
-    prob[known > 0] = over[known > 0] / known[known > 0]
-    B = len(EDGES) - 1
-    frag = np.full((len(SCALES), B), np.nan)
-    count = np.zeros((len(SCALES), B), dtype=np.int32)
-    for s in range(len(SCALES)):
-        for b in range(B):
-            vals = [prob[r, s] for r in range(len(pgv_pga)) if bin_of(pgv_pga[r], edges) == b and not np.isnan(prob[r, s])]
-            if vals:
-                frag[s, b] = sum(vals) / len(vals)
-                count[s, b] = len(vals)
-    return prob, frag, count
-
-
-def planted_outcomes(rng, pgv_pga, mu0, mu1, sigma, extras=True):
-    out = np.zeros((len(pgv_pga), len(SCALES), A), dtype=np.int8)
-    for r, v in enumerate(pgv_pga):
-        mu = mu0 + mu1 * math.log(v)
-        for s, g in enumerate(SCALES):
-            p = phi((math.log(g) - mu) / sigma)
-            out[r, s, :] = np.where(rng.random(A) < p, 2, 1)
-    if extras:  # relabel some overturned as inferred and lose some cells: neither biases the fit
-        out[(out == 2) & (rng.random(out.shape) < 0.2)] = 3
-        out[rng.random(out.shape) < 0.03] = 4
-        out[rng.random(out.shape) < 0.02] = 0
-    return out
-
-
-def write_cube(path, pgv_pga, objects, root_attrs=None):
-    """objects: list of (name, outcome [R,S,A], attrs dict)."""
-    str_t = h5py.string_dtype("utf-8")
-    names = [f"rec{r:03d}" for r in range(len(pgv_pga))]
-    with h5py.File(path, "w") as f:
-        f.attrs["schema_version"] = np.int32(1)
-        f.attrs["units"] = "SI unless the name says otherwise"
-        for k, v in (root_attrs or {}).items():
-            f.attrs[k] = v
-        ax = f.create_group("axes")
-        ax.create_dataset("record", data=np.array(names, dtype=object), dtype=str_t)
-        ax.create_dataset("scale_g", data=SCALES.astype(float))
-        ax.create_dataset("rotation", data=np.arange(A, dtype=np.int32))
-        ax.create_dataset("pgv_pga_bin", data=np.arange(len(EDGES) - 1, dtype=np.int32))
-        ax.create_dataset("pgv_pga_edges_s", data=np.array(EDGES, float))
-        rec = f.create_group("records")
-        rec.create_dataset("name", data=np.array(names, dtype=object), dtype=str_t)
-        rec.create_dataset("pgv_pga_s", data=np.asarray(pgv_pga, float))
-        rec.create_dataset("gmroti_pga_g", data=np.full(len(pgv_pga), 0.3))
-        objs = f.create_group("objects")
-        for i, (name, outcome, attrs) in enumerate(objects):
-            g = objs.create_group(name)
-            g.attrs["index"] = np.int32(i)
-            g.attrs["scene"] = f"{name}.toml"
-            for k, v in attrs.items():
-                g.attrs[k] = v
-            prob, frag, count = derived(outcome, pgv_pga)
-            g.create_dataset("outcome", data=outcome)
-            g.create_dataset("probability", data=prob)
-            g.create_dataset("fragility", data=frag)
-            g.create_dataset("fragility_count", data=count)
-        cube_checksums.seal(f)
+SCRIPT = os.path.normpath(os.path.join(HERE, "..", "..", "src", "python", "rigid_plot.py"))
 
 
 def run_tool(*args, expect=0):
@@ -124,14 +36,6 @@ def run_tool(*args, expect=0):
         raise AssertionError(f"rigid_plot.py {' '.join(args)}: exit {p.returncode}, expected {expect}\n"
                              f"stdout:\n{p.stdout}\nstderr:\n{p.stderr}")
     return p
-
-
-def load_module():
-    sys.path.insert(0, os.path.dirname(SCRIPT))  # rigid_plot imports fragility_fit beside it
-    spec = importlib.util.spec_from_file_location("rigid_plot", SCRIPT)
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
 
 
 def read(path):
@@ -149,10 +53,11 @@ def is_png(path):
         return fh.read(8) == b"\x89PNG\r\n\x1a\n" and os.path.getsize(path) > 5000
 
 
-class RigidPlot(unittest.TestCase):
-    @classmethod
-    def setUpClass(cls):
-        cls.tmp = tempfile.mkdtemp(prefix="rigid_plot_test_")
+class TestRigidPlot:
+    @pytest.fixture(autouse=True, scope="class")
+    def _cubes(self, request, tmp_path_factory):
+        cls = request.cls
+        cls.tmp = str(tmp_path_factory.mktemp("plot"))
         rng = np.random.default_rng(20261122)
         cls.pgv_pga = np.exp(rng.uniform(math.log(0.035), math.log(0.5), R))
         cls.planted = planted_outcomes(rng, cls.pgv_pga, MU0, MU1, SIGMA)
@@ -173,36 +78,31 @@ class RigidPlot(unittest.TestCase):
         with open(os.path.join(cls.maps_dir, "fit.json")) as fh:
             cls.fit = {o["object"]: o for o in json.load(fh)["objects"]}
 
-    @classmethod
-    def tearDownClass(cls):
-        shutil.rmtree(cls.tmp, ignore_errors=True)
-
     # -- numerics against known values ------------------------------------------------------
     # -- the fit recovers the planted model ---------------------------------------------------
     def test_fit_recovers_planted_parameters(self):
         o = self.fit["rock_plain"]
         f = o["fit"]
-        self.assertIsNotNone(f, o.get("reason"))
-        self.assertTrue(f["converged"])
-        self.assertFalse(f["separated"])
+        assert f is not None, o.get("reason")
+        assert f["converged"]
+        assert not f["separated"]
         (m0, m1), (s0,) = f["mu_coefficients"], f["log_sigma_coefficients"]
         (e0, e1), (es,) = f["mu_se"], f["log_sigma_se"]
         # 4 standard errors (statistical tolerance) and loose absolute bounds (in case the SE is wrong)
-        self.assertLess(abs(m0 - MU0), 4 * e0, (m0, e0))
-        self.assertLess(abs(m1 - MU1), 4 * e1, (m1, e1))
-        self.assertLess(abs(s0 - math.log(SIGMA)), 4 * es, (math.exp(s0), es))
-        self.assertLess(abs(m0 - MU0), 0.25)
-        self.assertLess(abs(m1 - MU1), 0.12)
-        self.assertLess(abs(math.exp(s0) - SIGMA), 0.05)
-        self.assertGreater(f["log_likelihood"], f["null_log_likelihood"])
+        assert abs(m0 - MU0) < 4 * e0, (m0, e0)
+        assert abs(m1 - MU1) < 4 * e1, (m1, e1)
+        assert abs(s0 - math.log(SIGMA)) < 4 * es, (math.exp(s0), es)
+        assert abs(m0 - MU0) < 0.25
+        assert abs(m1 - MU1) < 0.12
+        assert abs(math.exp(s0) - SIGMA) < 0.05
+        assert f["log_likelihood"] > f["null_log_likelihood"]
         # the fit's cells: the simulated ones (survived, overturned), not the inferred ones
-        self.assertEqual(o["n_cells"], int(np.isin(self.planted, (1, 2)).sum()))
-        self.assertEqual(o["n_overturned"], int((self.planted == 2).sum()))
-        self.assertEqual(o["alpha_source"], "unknown")
+        assert o["n_cells"] == int(np.isin(self.planted, (1, 2)).sum())
+        assert o["n_overturned"] == int((self.planted == 2).sum())
+        assert o["alpha_source"] == "unknown"
 
     def test_fit_is_a_likelihood_maximum(self):
-        load_module()
-        import fragility_fit  # beside rigid_plot.py (load_module puts it on the path)
+        from rigidpy import fit as fragility_fit
         known = np.isin(self.planted, (1, 2))
         k = (self.planted == 2).sum(axis=2).ravel().astype(float)
         n = known.sum(axis=2).ravel().astype(float)
@@ -212,55 +112,55 @@ class RigidPlot(unittest.TestCase):
         f = self.fit["rock_plain"]["fit"]
         theta = np.array(f["mu_coefficients"] + f["log_sigma_coefficients"])
         ll = fragility_fit.probit_derivatives(theta, u[ok], x[ok], k[ok], n[ok], 1, 0)[0]
-        self.assertAlmostEqual(ll, f["log_likelihood"], places=6)
+        assert round(abs(f["log_likelihood"] - ll), 6) == 0
         for i in range(3):
             for h in (1e-3, -1e-3):
                 t = theta.copy()
                 t[i] += h
-                self.assertLess(fragility_fit.probit_derivatives(t, u[ok], x[ok], k[ok], n[ok], 1, 0)[0], ll)
+                assert fragility_fit.probit_derivatives(t, u[ok], x[ok], k[ok], n[ok], 1, 0)[0] < ll
 
     def test_normalisation_shifts_coefficients_not_contours(self):
         a, b = self.fit["rock_plain"], self.fit["rock_norm"]
-        self.assertEqual(b["alpha_rad"], ALPHA)
-        self.assertEqual(b["p_rad_s"], P)
-        self.assertIn("object attribute", b["alpha_source"])
+        assert b["alpha_rad"] == ALPHA
+        assert b["p_rad_s"] == P
+        assert "object attribute" in b["alpha_source"]
         # u' = u - ln tan(alpha), x' = x + ln(p/alpha): mu'(x') = mu(x) - ln tan(alpha)
         c = math.log(P / ALPHA)
         m0, m1 = a["fit"]["mu_coefficients"]
         n0, n1 = b["fit"]["mu_coefficients"]
-        self.assertAlmostEqual(n1, m1, places=5)
-        self.assertAlmostEqual(n0, m0 - math.log(math.tan(ALPHA)) - m1 * c, places=5)
+        assert round(abs(m1 - n1), 5) == 0
+        assert round(abs(m0 - math.log(math.tan(ALPHA)) - m1 * c - n0), 5) == 0
         for ra, rb in zip(a["contours_at_bin_median_pgv_pga"], b["contours_at_bin_median_pgv_pga"]):
             for lev in (1, 50, 99):
-                self.assertAlmostEqual(ra[f"pga_g_{lev}pct"], rb[f"pga_g_{lev}pct"], places=6)
+                assert round(abs(rb[f"pga_g_{lev}pct"] - ra[f"pga_g_{lev}pct"]), 6) == 0
         # the 50 % contour is the planted median where the data are
         for row in a["contours_at_bin_median_pgv_pga"]:
             planted = math.exp(MU0 + MU1 * math.log(row["pgv_pga_s"]))
-            self.assertLess(abs(math.log(row["pga_g_50pct"] / planted)), 0.12, row)
+            assert abs(math.log(row["pga_g_50pct"] / planted)) < 0.12, row
 
     def test_command_line_alpha_overrides(self):
         out = os.path.join(self.tmp, "maps_cli")
         run_tool("maps", self.cube, "--out", out, "--object", "rock_norm", "--alpha", "rock_norm=0.3", "--p", "2.0")
         with open(os.path.join(out, "fit.json")) as fh:
             o = json.load(fh)["objects"]
-        self.assertEqual([x["object"] for x in o], ["rock_norm"])
-        self.assertEqual((o[0]["alpha_rad"], o[0]["alpha_source"]), (0.3, "command line"))
-        self.assertEqual(o[0]["p_rad_s"], 2.0)
+        assert [x["object"] for x in o] == ["rock_norm"]
+        assert (o[0]["alpha_rad"], o[0]["alpha_source"]) == (0.3, "command line")
+        assert o[0]["p_rad_s"] == 2.0
 
     def test_separated_outcomes_give_no_contours(self):
         o = self.fit["rock_separated"]
-        self.assertIn("separated", o["reason"])
-        self.assertNotIn("contours_at_bin_median_pgv_pga", o)
+        assert "separated" in o["reason"]
+        assert "contours_at_bin_median_pgv_pga" not in o
 
     # -- maps -------------------------------------------------------------------------------
     def test_maps_write_pngs(self):
         for name in ("rock_plain", "rock_norm", "rock_separated"):
             for kind in ("map", "records"):
-                self.assertTrue(is_png(os.path.join(self.maps_dir, f"{name}_{kind}.png")), (name, kind))
+                assert is_png(os.path.join(self.maps_dir, f"{name}_{kind}.png")), (name, kind)
         # the fit said as a median PGA and a dispersion, its coefficients with what they multiply
-        self.assertRegex(self.maps.stdout, r"rock_plain: \d+ cells \(\d+ overturned\) of 80 records; .*median PGA "
-                                           r"[\d.]+ g, dispersion sigma [\d.]+ \(of ln PGA\)\n  fit P = Phi")
-        self.assertIn("rock_separated: 6400 cells, no fit: ", self.maps.stdout)
+        assert (re.search((r"rock_plain: \d+ cells \(\d+ overturned\) of 80 records; .*median PGA "
+                                           r"[\d.]+ g, dispersion sigma [\d.]+ \(of ln PGA\)\n  fit P = Phi"), self.maps.stdout))
+        assert "rock_separated: 6400 cells, no fit: " in self.maps.stdout
 
     # -- diff -------------------------------------------------------------------------------
     def read_mismatch(self, out):
@@ -270,30 +170,30 @@ class RigidPlot(unittest.TestCase):
         out = os.path.join(self.tmp, "diff_self")
         p = run_tool("diff", self.cube, self.cube, "--out", out)
         rows = self.read_mismatch(out)
-        self.assertEqual([r["object"] for r in rows], ["rock_plain", "rock_norm", "rock_separated"])
+        assert [r["object"] for r in rows] == ["rock_plain", "rock_norm", "rock_separated"]
         for r in rows:
-            self.assertGreater(int(r["n_cells"]), 100)
-            self.assertEqual(float(r["mean_3D_minus_2D"]), 0.0)
-            self.assertEqual(float(r["sd"]), 0.0)
-            self.assertTrue(is_png(os.path.join(out, f"{r['object']}_diff.png")))
-        self.assertIn("sign convention: difference = 3D \u2212 2D", p.stdout)
+            assert int(r["n_cells"]) > 100
+            assert float(r["mean_3D_minus_2D"]) == 0.0
+            assert float(r["sd"]) == 0.0
+            assert is_png(os.path.join(out, f"{r['object']}_diff.png"))
+        assert "sign convention: difference = 3D \u2212 2D" in p.stdout
         with open(os.path.join(out, "mismatch.md")) as fh:
-            self.assertIn("0.000 \u00b1 0.000", fh.read())
+            assert "0.000 \u00b1 0.000" in fh.read()
 
     def test_diff_sign_and_values(self):
         out = os.path.join(self.tmp, "diff_ab")
         run_tool("diff", self.cube_b, self.cube, "--out", out, "--label-a", "fragile", "--label-b", "planted")
         rows = self.read_mismatch(out)
-        self.assertEqual([r["object"] for r in rows], ["rock_plain"])  # matched by name only
+        assert [r["object"] for r in rows] == ["rock_plain"]  # matched by name only
         _, fa, _ = derived(self.fragile, self.pgv_pga)
         _, fb, _ = derived(self.planted, self.pgv_pga)
         d = (fa - fb)[np.isfinite(fa - fb)]
         r = rows[0]
-        self.assertEqual(int(r["n_cells"]), d.size)
-        self.assertAlmostEqual(float(r["mean_fragile_minus_planted"]), d.mean(), places=5)
-        self.assertAlmostEqual(float(r["sd"]), d.std(ddof=1), places=5)
-        self.assertAlmostEqual(float(r["mean_planted_minus_fragile"]), -d.mean(), places=5)
-        self.assertGreater(d.mean(), 0.02)  # the more fragile cube is A: positive A - B
+        assert int(r["n_cells"]) == d.size
+        assert round(abs(d.mean() - float(r["mean_fragile_minus_planted"])), 5) == 0
+        assert round(abs(d.std(ddof=1) - float(r["sd"])), 5) == 0
+        assert round(abs((-d.mean()) - float(r["mean_planted_minus_fragile"])), 5) == 0
+        assert d.mean() > 0.02  # the more fragile cube is A: positive A - B
 
     def test_diff_rejects_other_bins(self):
         other = os.path.join(self.tmp, "other_bins.h5")
@@ -309,43 +209,43 @@ class RigidPlot(unittest.TestCase):
                 g["fragility_count"][...] = count
             cube_checksums.seal(f)
         p = run_tool("diff", self.cube, other, "--out", os.path.join(self.tmp, "bad"), expect=2)
-        self.assertIn("different PGV/PGA bin edges", p.stderr)
+        assert "different PGV/PGA bin edges" in p.stderr
 
     # -- table ------------------------------------------------------------------------------
     def test_table(self):
         md = os.path.join(self.tmp, "table", "scenarios.md")
         run_tool("table", self.cube, "--out", md, "--layout", "objects")
         text = read(md)
-        self.assertGreater(len(text), 200)
+        assert len(text) > 200
         lines = [l for l in text.splitlines() if l.startswith("| rock_plain |")]
-        self.assertEqual(len(lines), 1)
+        assert len(lines) == 1
         cells = [c.strip() for c in lines[0].strip("|").split("|")]
-        self.assertEqual(len(cells), 1 + R + 1)
+        assert len(cells) == 1 + R + 1
         o = self.planted
         over, known = np.isin(o, (2, 3)), np.isin(o, (1, 2, 3))
         for r in (0, 17, R - 1):
-            self.assertEqual(cells[1 + r].rstrip("\u2020"), f"{over[r].sum() / known[r].sum():.2f}")
-        self.assertEqual(cells[-1].rstrip("\u2020"), f"{over.sum() / known.sum():.2f}")
+            assert cells[1 + r].rstrip("\u2020") == f"{over[r].sum() / known[r].sum():.2f}"
+        assert cells[-1].rstrip("\u2020") == f"{over.sum() / known.sum():.2f}"
         # the long CSV beside it, and one scale
         rows = read_csv(os.path.splitext(md)[0] + ".csv")
-        self.assertEqual(len(rows), 3 * (R + 1))
+        assert len(rows) == 3 * (R + 1)
         s = 6  # 0.7 g
         md2 = os.path.join(self.tmp, "table", "at07.md")
         run_tool("table", self.cube, self.cube_b, "--out", md2, "--scale", "0.7", "--counts")
         rows = read_csv(os.path.splitext(md2)[0] + ".csv")
         row = [x for x in rows if x["cube"] == "planted" and x["object"] == "rock_plain" and x["record"] == "all"][0]
-        self.assertEqual(int(row["known"]), int(known[:, s].sum()))
-        self.assertAlmostEqual(float(row["overturn_fraction"]), over[:, s].sum() / known[:, s].sum(), places=5)
+        assert int(row["known"]) == int(known[:, s].sum())
+        assert round(abs(over[:, s].sum() / known[:, s].sum() - float(row["overturn_fraction"])), 5) == 0
         text = read(md2)
-        self.assertIn("| **all** |", text)  # 80 records: records as rows
-        self.assertIn("planted: rock_plain", text)
+        assert "| **all** |" in text  # 80 records: records as rows
+        assert "planted: rock_plain" in text
         run_tool("table", self.cube, "--out", md2, "--scale", "0.75", expect=2)
 
     def test_bad_input(self):
         p = run_tool("maps", os.path.join(self.tmp, "missing.h5"), "--out", self.tmp, expect=2)
-        self.assertIn("no such file", p.stderr)
+        assert "no such file" in p.stderr
         p = run_tool("maps", self.cube, "--out", self.tmp, "--object", "nope", expect=2)
-        self.assertIn("no object 'nope'", p.stderr)
+        assert "no object 'nope'" in p.stderr
 
 
 # --------------------------------------------------------------------------------------------
@@ -406,17 +306,18 @@ def legend_overlaps(fig):
     return hits
 
 
-class Figures(unittest.TestCase):
+class TestFigures:
     """A cube whose records fill bins 1, 2, 5 and 7 of EDGES only (3 bins without records between
     them), two of them with few enough records to be named in a legend."""
     HELD = {1: 20, 2: 5, 5: 20, 7: 6}
 
-    @classmethod
-    def setUpClass(cls):
+    @pytest.fixture(autouse=True, scope="class")
+    def _figures(self, request, tmp_path_factory):
         import matplotlib
         matplotlib.use("Agg")
         import matplotlib.figure
-        cls.tmp = tempfile.mkdtemp(prefix="rigid_plot_figures_")
+        cls = request.cls
+        cls.tmp = str(tmp_path_factory.mktemp("figures"))
         rng = np.random.default_rng(20261126)
         pgv = []
         for b, n in cls.HELD.items():
@@ -438,10 +339,12 @@ class Figures(unittest.TestCase):
         accuracy_csv = os.path.join(cls.tmp, "accuracy.csv")
         write_accuracy_rows(accuracy_csv)
 
-        rp = load_module()
-        import rigid_fragility
-        import accuracy_plot
-        import fragility_fit
+        from rigidpy import accuracy as accuracy_plot
+        from rigidpy import fit as fragility_fit
+        from rigidpy import fragility as rigid_fragility
+        from rigidpy import plot as rp
+        from rigidpy.cube import Cube
+        from rigidpy.figures import plot_variant_band
         cls.figures = {}
         original = matplotlib.figure.Figure.savefig
 
@@ -457,8 +360,8 @@ class Figures(unittest.TestCase):
             grid = np.geomspace(0.05, 5.0, 200)
             lognormals = [(0.4, 0.3), (0.6, 0.4), (0.9, 0.35)]
             pooled = fragility_fit.pooled_fragility(lognormals, grid)
-            rp.plot_variant_band(rp.Cube(cls.cube), "rock", [(k, (t, b, "fit")) for k, (t, b) in enumerate(lognormals)],
-                                 pooled, 0.15, os.path.join(cls.tmp, "rock_variants.png"))
+            plot_variant_band(Cube(cls.cube), "rock", [(k, (t, b, "fit")) for k, (t, b) in enumerate(lognormals)],
+                              pooled, 0.15, os.path.join(cls.tmp, "rock_variants.png"))
             cls.assert_zero(rigid_fragility.main(["hazard", cls.cube, "--curve", curve, "--age", "1000",
                                                   "--bootstrap", "20", "--plot", os.path.join(cls.tmp, "hazard.png")]),
                             "hazard --plot")
@@ -472,13 +375,9 @@ class Figures(unittest.TestCase):
         if code not in (0, None):
             raise AssertionError(f"{what}: exit {code}")
 
-    @classmethod
-    def tearDownClass(cls):
-        shutil.rmtree(cls.tmp, ignore_errors=True)
-
     def figure(self, suffix):
         found = [f for name, f in self.figures.items() if name.endswith(suffix)]
-        self.assertEqual(len(found), 1, (suffix, sorted(self.figures)))
+        assert len(found) == 1, (suffix, sorted(self.figures))
         return found[0]
 
     @staticmethod
@@ -490,23 +389,23 @@ class Figures(unittest.TestCase):
     def test_map_rows_are_the_bins_with_records(self):
         import matplotlib.collections
         held = sorted({bin_of(v) for v in self.pgv_pga})
-        self.assertEqual(held, sorted(self.HELD))  # the fixture itself
+        assert held == sorted(self.HELD)  # the fixture itself
         for suffix, panels in (("rock_map.png", 1), ("rock_diff.png", 3)):
             fig = self.figure(suffix)
             fig.canvas.draw()
             # the map panels: a mesh and a title (a colour bar's axes has a mesh, no title)
             maps = [ax for ax in fig.axes if ax.get_title()
                     and any(isinstance(c, matplotlib.collections.QuadMesh) for c in ax.collections)]
-            self.assertEqual(len(maps), panels, suffix)
+            assert len(maps) == panels, suffix
             for ax in maps:
                 mesh = [c for c in ax.collections if isinstance(c, matplotlib.collections.QuadMesh)][0]
                 rows, cols = np.array(mesh.get_coordinates().shape[:2]) - 1
-                self.assertEqual((rows, cols), (len(held), len(SCALES)), suffix)
+                assert (rows, cols) == (len(held), len(SCALES)), suffix
                 positions = list(ax.get_yticks())  # the labels as the formatter writes them (hidden on shared axes)
                 ticks = [ax.yaxis.get_major_formatter()(y, i) for i, y in enumerate(positions)]
                 lo, hi = sorted(ax.get_ylim())
                 shown = [t for t, y in zip(ticks, positions) if lo <= y <= hi]
-                self.assertEqual(shown, [self.bin_label(b) for b in held], suffix)
+                assert shown == [self.bin_label(b) for b in held], suffix
         # the map's cells are the cube's fragility of the bins with records, in order
         fig = self.figure("rock_map.png")
         mesh = [c for c in fig.axes[0].collections if isinstance(c, matplotlib.collections.QuadMesh)][0]
@@ -517,11 +416,10 @@ class Figures(unittest.TestCase):
     def test_records_panels_only_for_bins_with_records(self):
         fig = self.figure("rock_records.png")
         panels = [ax for ax in fig.axes if ax.get_visible() and ax.get_title().startswith("PGV/PGA")]
-        self.assertEqual([ax.get_title().split(" (")[0] for ax in panels],
-                         [f"PGV/PGA {self.bin_label(b)} s" for b in sorted(self.HELD)])
-        self.assertNotIn("no records", [t.get_text() for ax in fig.axes for t in ax.texts])
+        assert [ax.get_title().split(" (")[0] for ax in panels] == [f"PGV/PGA {self.bin_label(b)} s" for b in sorted(self.HELD)]
+        assert "no records" not in [t.get_text() for ax in fig.axes for t in ax.texts]
         named = [ax for ax in panels if ax.get_legend() is not None]
-        self.assertEqual(len(named), 2)  # the panels of 5 and 6 records name them
+        assert len(named) == 2  # the panels of 5 and 6 records name them
 
     def test_legends_off_the_data(self):
         expected = ("rock_map.png", "rock_records.png", "rock_diff.png", "rock_variants.png", "hazard.png",
@@ -530,9 +428,9 @@ class Figures(unittest.TestCase):
             fig = self.figure(suffix)
             fig.canvas.draw()
             legends = list(fig.legends) + [ax.get_legend() for ax in fig.axes if ax.get_legend() is not None]
-            self.assertTrue(legends, f"{suffix}: no legend drawn")
+            assert legends, f"{suffix}: no legend drawn"
             hits = legend_overlaps(fig)
-            self.assertEqual([], [(suffix, type(a).__name__, a.get_label()) for _, _, a in hits])
+            assert [] == [(suffix, type(a).__name__, a.get_label()) for _, _, a in hits]
 
     def test_overlap_oracle_finds_a_covered_curve(self):
         """The oracle itself: a legend put on a curve is found, one beside the axes is not."""
@@ -541,28 +439,28 @@ class Figures(unittest.TestCase):
         x = np.linspace(0, 1, 50)
         ax.plot(x, x, label="diagonal")
         ax.legend(loc="center")
-        self.assertEqual(len(legend_overlaps(fig)), 1)
+        assert len(legend_overlaps(fig)) == 1
         ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0))
-        self.assertEqual(legend_overlaps(fig), [])
+        assert legend_overlaps(fig) == []
         ax.fill_between(x, 0, 1, alpha=0.2)
         ax.legend(loc="center")  # inside a filled band: covered, though no vertex lies in the legend
-        self.assertGreaterEqual(len(legend_overlaps(fig)), 1)
+        assert len(legend_overlaps(fig)) >= 1
         plt.close(fig)
         fig, ax = plt.subplots()
         ax.scatter([0.5], [0.5], label="one point")  # a scatter marker under the legend
         ax.set_xlim(0, 1)
         ax.set_ylim(0, 1)
         ax.legend(loc="center")
-        self.assertEqual(len(legend_overlaps(fig)), 1)
+        assert len(legend_overlaps(fig)) == 1
         ax.legend(loc="upper left")
-        self.assertEqual(legend_overlaps(fig), [])
+        assert legend_overlaps(fig) == []
         plt.close(fig)
 
 
 def draw_shaketable_fragility(rng, path):
     """`rigid shaketable fragility`'s figure on planted lab tests: two PGV/PGA bins of 3 motions,
     12 PGAs each, outcomes from a probit of median 0.5 g, the model's share and both fits."""
-    import shaketable_fragility as sf
+    from rigidpy import shaketable as sf
     scales = np.linspace(0.1, 1.2, 12)
     p = np.array([phi(math.log(a / 0.5) / 0.3) for a in scales])
     k = (rng.random((6, 12)) < p).astype(float)
@@ -612,9 +510,3 @@ def write_accuracy_rows(path):
         w.writeheader()
         w.writerows(rows)
 
-
-if __name__ == "__main__":
-    if len(sys.argv) > 1 and sys.argv[1].endswith(".py"):
-        SCRIPT = os.path.abspath(sys.argv.pop(1))
-    result = unittest.main(exit=False, verbosity=2).result
-    sys.exit(0 if result.wasSuccessful() else 1)

@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """Sensitivity oracle of uncertainty campaigns (docs/uncertainty.md), end to end through `rigid campaign` and
 `rigid fragility`.
 
@@ -16,36 +15,21 @@ parameter is the physics':
    (rank correlation and partial rank correlation near 1) and friction near zero;
 3. with mu < tan alpha for every variant (sliding), friction first and alpha near zero.
 
-    /usr/bin/python3 tests/python/test_sensitivity_oracle.py RIGID SOURCE_DIR
+    /usr/bin/python3 -m pytest tests/python/test_sensitivity_oracle.py --rigid RIGID
 """
 import json
 import math
 import os
-import shutil
 import subprocess
-import sys
-import tempfile
 
-try:
-    import h5py
-    import numpy as np
-except ImportError as e:
-    print(f"skipped: {e}")
-    sys.exit(77)
+import pytest
 
-RIGID = os.path.abspath(sys.argv[1])
-SOURCE = os.path.abspath(sys.argv[2])
-FAILURES = []
+h5py = pytest.importorskip("h5py")
+pytest.importorskip("numpy")
 
 B, H = 0.5 * math.tan(0.4), 0.5   # block_a04: half-width b, centroid height h (models/library/README.md)
 OFFSETS = [-0.08, -0.0533, -0.0267, 0.0]  # d along +x: the ground accelerates +x, the block leans over its -x edge
 SCALE_STEP = 0.01
-
-
-def check(ok, what):
-    print(("ok   " if ok else "FAIL ") + what)
-    if not ok:
-        FAILURES.append(what)
 
 
 def write_ramp(path, rise_s=3.0, hold_s=5.0, dt=0.005):
@@ -59,8 +43,8 @@ def write_ramp(path, rise_s=3.0, hold_s=5.0, dt=0.005):
             f.write("".join(f"{v:15.6E}" for v in a[i:i + 5]) + "\n")
 
 
-def write_job(d, name, frictions):
-    scene = os.path.join(SOURCE, "models", "library", "block_a04", "block_a04.toml")
+def write_job(source, d, name, frictions):
+    scene = os.path.join(source, "models", "library", "block_a04", "block_a04.toml")
     text = f"""[campaign]
 seed = 3
 output = "{name}.h5"
@@ -115,59 +99,43 @@ def thresholds(cube_path):
     return out
 
 
-def sensitivity_rows(d, cube):
-    p = run([RIGID, "fragility", cube, "--json", "--no-store"], d)
-    check(p.returncode == 0, f"rigid fragility {cube} exits 0")
+def sensitivity_rows(rigid, d, cube):
+    p = run([rigid, "fragility", cube, "--json", "--no-store"], d)
+    assert p.returncode == 0, f"rigid fragility {cube} exits 0"
     if p.returncode != 0:
         return {}
     rows = json.loads(p.stdout)["variant_analysis"][0]["sensitivity"]
     return {r["parameter"]: r for r in rows}
 
 
-def main():
-    d = tempfile.mkdtemp(prefix="rigid_sensitivity_")
-    try:
-        write_ramp(os.path.join(d, "ramp-X.AT2"))
-        regimes = [("rocking", [0.6, 0.8, 1.0], "alpha_rad", "friction"),
-                   ("sliding", [0.1, 0.15, 0.2], "friction", "alpha_rad")]
-        for name, frictions, first, last in regimes:
-            job = write_job(d, name, frictions)
-            p = run(["mpirun", "--oversubscribe", "-np", "2", RIGID, "campaign", job, "--progress", "none"], d)
-            check(p.returncode == 0, f"{name}: the campaign completes")
-            if p.returncode != 0:
-                continue
-            cube = os.path.join(d, name + ".h5")
-            worst, outside = 0.0, 0
-            for mu, off, low, high in thresholds(cube):
-                statics = min(mu, (B + off) / H)
-                # the bracket (highest survived, lowest failed] is one scale step and holds statics (1 % slack)
-                inside = low <= statics * 1.01 and statics * 0.99 <= high and high - low <= SCALE_STEP + 1e-9
-                worst = max(worst, abs(0.5 * (low + high) - statics))
-                if not inside:
-                    outside += 1
-                    print(f"     mu {mu:.3f}, d {off:+.4f}: threshold in ({low:.2f}, {high:.2f}] g, statics {statics:.4f} g")
-            check(outside == 0, f"{name}: every variant's threshold brackets g min(mu, tan alpha) (midpoints within "
-                                f"{worst:.4f} g of statics, scale step {SCALE_STEP} g)")
-            rows = sensitivity_rows(d, cube)
-            if not rows:
-                continue
-            # alpha is a function of the offset alone, so the two rank together; friction is the other
-            same = {"alpha_rad": ("alpha_rad", "com_offset_x_m"), "friction": ("friction",)}
-            table = ", ".join(f"{k} {r['rho_theta']:+.2f}" for k, r in rows.items())
-            top = max(rows.values(), key=lambda r: abs(r["rho_theta"]))["parameter"]
-            check(top in same[first], f"{name}: rank correlation ranks {first} first ({table})")
-            check(abs(rows[first]["rho_theta"]) > 0.9, f"{name}: rho(theta) of {first} {rows[first]['rho_theta']:+.2f} > 0.9")
-            check(abs(rows[last]["rho_theta"]) < 0.3, f"{name}: rho(theta) of {last} {rows[last]['rho_theta']:+.2f} near zero")
-            lo, hi = rows[last]["rho_theta_interval"]
-            check(lo <= 0 <= hi, f"{name}: the interval of rho(theta) of {last} [{lo:+.2f}, {hi:+.2f}] covers 0")
-    finally:
-        shutil.rmtree(d, ignore_errors=True)
-    if FAILURES:
-        print(f"{len(FAILURES)} failed")
-        return 1
-    print("all passed")
-    return 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())
+@pytest.mark.parametrize("name, frictions, first, last", [
+    ("rocking", [0.6, 0.8, 1.0], "alpha_rad", "friction"),
+    ("sliding", [0.1, 0.15, 0.2], "friction", "alpha_rad")])
+def test_sensitivity_ranks_the_governing_parameter_first(name, frictions, first, last, rigid, source_dir, tmp):
+    d = tmp
+    write_ramp(os.path.join(d, "ramp-X.AT2"))
+    job = write_job(source_dir, d, name, frictions)
+    p = run(["mpirun", "--oversubscribe", "-np", "2", rigid, "campaign", job, "--progress", "none"], d)
+    assert p.returncode == 0, f"{name}: the campaign completes"
+    cube = os.path.join(d, name + ".h5")
+    worst, outside = 0.0, 0
+    for mu, off, low, high in thresholds(cube):
+        statics = min(mu, (B + off) / H)
+        # the bracket (highest survived, lowest failed] is one scale step and holds statics (1 % slack)
+        inside = low <= statics * 1.01 and statics * 0.99 <= high and high - low <= SCALE_STEP + 1e-9
+        worst = max(worst, abs(0.5 * (low + high) - statics))
+        if not inside:
+            outside += 1
+            print(f"     mu {mu:.3f}, d {off:+.4f}: threshold in ({low:.2f}, {high:.2f}] g, statics {statics:.4f} g")
+    assert outside == 0, (f"{name}: every variant's threshold brackets g min(mu, tan alpha) (midpoints within "
+                        f"{worst:.4f} g of statics, scale step {SCALE_STEP} g)")
+    rows = sensitivity_rows(rigid, d, cube)
+    # alpha is a function of the offset alone, so the two rank together; friction is the other
+    same = {"alpha_rad": ("alpha_rad", "com_offset_x_m"), "friction": ("friction",)}
+    table = ", ".join(f"{k} {r['rho_theta']:+.2f}" for k, r in rows.items())
+    top = max(rows.values(), key=lambda r: abs(r["rho_theta"]))["parameter"]
+    assert top in same[first], f"{name}: rank correlation ranks {first} first ({table})"
+    assert abs(rows[first]["rho_theta"]) > 0.9, f"{name}: rho(theta) of {first} {rows[first]['rho_theta']:+.2f} > 0.9"
+    assert abs(rows[last]["rho_theta"]) < 0.3, f"{name}: rho(theta) of {last} {rows[last]['rho_theta']:+.2f} near zero"
+    lo, hi = rows[last]["rho_theta_interval"]
+    assert lo <= 0 <= hi, f"{name}: the interval of rho(theta) of {last} [{lo:+.2f}, {hi:+.2f}] covers 0"

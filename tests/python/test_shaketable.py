@@ -1,4 +1,3 @@
-#!/usr/bin/env python3
 """CTest `shaketable_python`: `rigid shaketable calibrate` and `predict` on a synthetic lab whose
 outcomes the model itself generated, so the truth is known.
 
@@ -17,7 +16,7 @@ outcomes the model itself generated, so the truth is known.
   recovers a planted probit (theta, beta) from Bernoulli outcomes drawn with it.
 - Bad test lists and scans: one line naming the file (and line), exit 2.
 
-usage: test_shaketable.py RIGID
+    /usr/bin/python3 -m pytest tests/python/test_shaketable.py --rigid RIGID
 """
 import csv
 import gzip
@@ -26,22 +25,14 @@ import math
 import os
 import random
 import subprocess
-import sys
-import tempfile
 
-RIGID = os.path.abspath(sys.argv[1])
+import pytest
+
 ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
-failures = []
-passes = []
 
 
-def check(ok, what):
-    print(("ok    " if ok else "FAIL  ") + what, flush=True)
-    (passes if ok else failures).append(what)
-
-
-def run(*args, cwd=None):
-    return subprocess.run([RIGID, *args], capture_output=True, text=True, env=ENV, cwd=cwd, timeout=900)
+def run(rigid, *args, cwd=None):
+    return subprocess.run([rigid, *args], capture_output=True, text=True, env=ENV, cwd=cwd, timeout=900)
 
 
 def write_prism(path, tilt_x=0.0):
@@ -104,17 +95,16 @@ def check_fragility_thresholds(work, rows):
         high = over[0] if over else math.inf
         if not over:
             continue
-        check(low / ratio < first <= high * ratio, "%s: the model first overturns at %.2f g, the lab between %.3f and %.3f g" % (record, first, low, high))
+        assert low / ratio < first <= high * ratio, "%s: the model first overturns at %.2f g, the lab between %.3f and %.3f g" % (record, first, low, high)
 
 
-def planted_lab_fit():
+def test_planted_lab_fit():
     """The lab fit on outcomes drawn from a known probit: 20 planted labs of 25 motions x 8 tests
     at PGAs spread around the median. The fit must find theta and beta, and its 90 % interval must
     cover theta in about 90 % of the labs (at least 16 of 20)."""
-    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "src", "plot"))
-    import numpy as np
-    import fragility_fit as ff
-    import shaketable_fragility as sf
+    np = pytest.importorskip("numpy")
+    from rigidpy import fit as ff
+    from rigidpy import shaketable as sf
     theta, beta = 0.4, 0.35
     errors, betas, covered = [], [], 0
     for lab in range(20):
@@ -130,21 +120,19 @@ def planted_lab_fit():
         errors.append(abs(math.log(r["theta_g"] / theta)))
         betas.append(r["beta"])
         covered += lo <= theta <= hi
-    check(float(np.median(errors)) < 0.1 and 0.25 < float(np.median(betas)) < 0.45 and covered >= 16,
-          "lab fit recovers planted probits: median |ln theta/0.4| %.3f, median beta %.2f (0.35), 90 %% interval "
+    assert float(np.median(errors)) < 0.1 and 0.25 < float(np.median(betas)) < 0.45 and covered >= 16, ("lab fit recovers planted probits: median |ln theta/0.4| %.3f, median beta %.2f (0.35), 90 %% interval "
           "covers theta in %d of 20" % (float(np.median(errors)), float(np.median(betas)), covered))
 
 
-def main():
-    tmp = tempfile.mkdtemp(prefix="rigid_shaketable_")
+def test_calibrate_predict_and_fragility(rigid, tmp):
     scan = os.path.join(tmp, "prism.obj")
     write_prism(scan)
     os.makedirs(os.path.join(tmp, "motions"))
     # the planted model: the imported prism, rigid contact, tilt rule, on a wide table
     planted = os.path.join(tmp, "planted", "prism")
-    r = run("model", "import", scan, "--out", planted, "--pedestal-margin", "0.5", "--tilt-rule", "30",
+    r = run(rigid, "model", "import", scan, "--out", planted, "--pedestal-margin", "0.5", "--tilt-rule", "30",
             "--max-vertices", "64")
-    check(r.returncode == 0, "planted model imports (%s)" % r.stderr.strip()[:200])
+    assert r.returncode == 0, "planted model imports (%s)" % r.stderr.strip()[:200]
     rows = []
     number = 1
     for freq, amps in ((0.8, (0.08, 0.12, 0.16, 0.2, 0.25, 0.3)), (1.6, (0.1, 0.15, 0.2, 0.3, 0.4, 0.5)),
@@ -152,14 +140,14 @@ def main():
         for amp in amps:
             name = "Test%03d.txt.gz" % number
             write_motion(os.path.join(tmp, "motions", name), freq, amp)
-            out = run("run", planted + ".toml", "--lab", os.path.join(tmp, "motions", name), "--rotation", "60",
+            out = run(rigid, "run", planted + ".toml", "--lab", os.path.join(tmp, "motions", name), "--rotation", "60",
                       "--json")
             over = json.loads(out.stdout)["overturned"] if out.returncode == 0 else None
             rows.append({"test_no": number, "record": "sine_%gHz" % freq, "pgv_over_pga_s": "", "pga_g": amp,
                          "file": "motions/" + name, "overturned": int(bool(over))})
             number += 1
     overturned = sum(r["overturned"] for r in rows)
-    check(0 < overturned < len(rows), "planted outcomes mixed: %d of %d overturned" % (overturned, len(rows)))
+    assert 0 < overturned < len(rows), "planted outcomes mixed: %d of %d overturned" % (overturned, len(rows))
     columns = ["test_no", "record", "pgv_over_pga_s", "pga_g", "file", "overturned"]
     tests = os.path.join(tmp, "tests.csv")
     write_tests(tests, rows, columns)
@@ -167,22 +155,22 @@ def main():
     out = os.path.join(tmp, "cal", "prism")
     # relative paths, run from the lab's folder: the designed jobs in the work folder must still
     # find the scan's scenes and the recordings
-    r = run("shaketable", "calibrate", "prism.obj", "--tests", "tests.csv", "--out", "cal/prism", "--flatten-mm", "0",
+    r = run(rigid, "shaketable", "calibrate", "prism.obj", "--tests", "tests.csv", "--out", "cal/prism", "--flatten-mm", "0",
             "--contact-models", "rigid", "--restitution", "0", "--friction", "0.6", "--headings", "12",
             "--refine-step", "10", "--progress", "none", cwd=tmp)
-    check(r.returncode == 0, "calibrate runs (%s)" % r.stderr.strip()[-300:])
+    assert r.returncode == 0, "calibrate runs (%s)" % r.stderr.strip()[-300:]
     if r.returncode == 0:
         with open(out + ".calibration.json") as f:
             cal = json.load(f)
         h = cal["parameters"]["heading_deg"]["value"]
         off = abs(math.remainder(h - 60.0, 180.0))
-        check(off <= 10.0 + 1e-9, "heading recovered: %.1f deg (planted 60, modulo 180)" % h)
-        check(cal["in_sample"]["accuracy"] == 1.0, "in-sample accuracy %.3f on outcomes the model made" %
+        assert off <= 10.0 + 1e-9, "heading recovered: %.1f deg (planted 60, modulo 180)" % h
+        assert cal["in_sample"]["accuracy"] == 1.0, ("in-sample accuracy %.3f on outcomes the model made" %
               cal["in_sample"]["accuracy"])
-        check(cal["cross_validated"]["tests"] == len(rows), "cross-validation covers every test")
-        check(len(cal["stages"]) == 2 and len(cal["stages"][0]["parameter_sets"]) == 1, "both stages reported")
-        rr = run("run", out + ".toml", "--lab", os.path.join(tmp, "motions", "Test001.txt.gz"))
-        check(rr.returncode == 0, "the calibrated scene runs (%s)" % rr.stderr.strip()[:200])
+        assert cal["cross_validated"]["tests"] == len(rows), "cross-validation covers every test"
+        assert len(cal["stages"]) == 2 and len(cal["stages"][0]["parameter_sets"]) == 1, "both stages reported"
+        rr = run(rigid, "run", out + ".toml", "--lab", os.path.join(tmp, "motions", "Test001.txt.gz"))
+        assert rr.returncode == 0, "the calibrated scene runs (%s)" % rr.stderr.strip()[:200]
 
         # predict: the outcome column is never read
         preds = []
@@ -199,21 +187,19 @@ def main():
                     x["overturned"] = y
             write_tests(t, rs, cols)
             p = os.path.join(tmp, "pred_%s.csv" % variant)
-            rp = run("shaketable", "predict", out + ".toml", "--tests", t, "--out", p, "--progress", "none")
-            check(rp.returncode == 0, "predict (%s outcomes) runs (%s)" % (variant, rp.stderr.strip()[-200:]))
+            rp = run(rigid, "shaketable", "predict", out + ".toml", "--tests", t, "--out", p, "--progress", "none")
+            assert rp.returncode == 0, "predict (%s outcomes) runs (%s)" % (variant, rp.stderr.strip()[-200:])
             preds.append(open(p).read() if rp.returncode == 0 else None)
             if variant == "with":
-                check("accuracy" in rp.stdout, "predict scores against the outcomes it has")
+                assert "accuracy" in rp.stdout, "predict scores against the outcomes it has"
             if variant == "without":
-                check("accuracy" not in rp.stdout, "predict without outcomes prints no score")
-        check(preds[0] is not None and preds[0] == preds[1] == preds[2],
-              "predictions identical with the outcomes kept, removed and shuffled")
+                assert "accuracy" not in rp.stdout, "predict without outcomes prints no score"
+        assert preds[0] is not None and preds[0] == preds[1] == preds[2], "predictions identical with the outcomes kept, removed and shuffled"
         # the calibrated scene turns the rock instead of the motion: the same physics, other round-off,
         # so a test at the rock's very threshold may go the other way
         got = [int(l.split(",")[-1]) for l in preds[0].strip().splitlines()[1:]] if preds[0] else []
         agree = sum(int(a == b["overturned"]) for a, b in zip(got, rows))
-        check(len(got) == len(rows) and agree >= len(rows) - 1,
-              "predict reproduces the planted outcomes: %d of %d" % (agree, len(rows)))
+        assert len(got) == len(rows) and agree >= len(rows) - 1, "predict reproduces the planted outcomes: %d of %d" % (agree, len(rows))
 
         # fragility: the lab's outcomes came from the model, so where a motion both stood and
         # overturned in the lab, its threshold there (between its strongest test below the first
@@ -221,33 +207,29 @@ def main():
         # recording over the grid, first overturns with P >= 0.5 (a motion that never overturned
         # says nothing: rocking is not monotonic in amplitude, the model may overturn between tests)
         fo = os.path.join(tmp, "frag", "prism")
-        rf = run("shaketable", "fragility", "cal/prism.toml", "--tests", "tests.csv", "--out", "frag/prism",
+        rf = run(rigid, "shaketable", "fragility", "cal/prism.toml", "--tests", "tests.csv", "--out", "frag/prism",
                  "--max-pga", "1.0", "--bootstrap", "100", "--progress", "none", cwd=tmp)
-        check(rf.returncode == 0, "fragility runs (%s)" % rf.stderr.strip()[-300:])
+        assert rf.returncode == 0, "fragility runs (%s)" % rf.stderr.strip()[-300:]
         if rf.returncode == 0:
             check_fragility_thresholds(fo + ".fragility.work", rows)
             with open(fo + ".fragility.csv") as f:
                 table = {(x["pgv_pga_bin"], x["source"]): x for x in csv.DictReader(f)}
-            check(all(("all motions", s) in table for s in ("lab", "model")) and len(table) == 8,
-                  "the table has lab and model rows for 3 bins and all motions")
-            check(os.path.getsize(fo + ".fragility.png") > 10000, "the figure is written")
+            assert all(("all motions", s) in table for s in ("lab", "model")) and len(table) == 8, "the table has lab and model rows for 3 bins and all motions"
+            assert os.path.getsize(fo + ".fragility.png") > 10000, "the figure is written"
         t = os.path.join(tmp, "tests_without.csv")
-        rf = run("shaketable", "fragility", out + ".toml", "--tests", t, "--out", fo + "_x", "--progress", "none")
+        rf = run(rigid, "shaketable", "fragility", out + ".toml", "--tests", t, "--out", fo + "_x", "--progress", "none")
         lines = rf.stderr.strip().splitlines()
-        check(rf.returncode == 2 and len(lines) == 1 and "overturned" in lines[0],
-              "fragility without outcomes: one line, exit 2 (%s)" % lines)
+        assert rf.returncode == 2 and len(lines) == 1 and "overturned" in lines[0], "fragility without outcomes: one line, exit 2 (%s)" % lines
 
-    planted_lab_fit()
 
     # bad input: one line naming the file, exit 2
     def bad(name, text, expect, extra=()):
         t = os.path.join(tmp, name)
         with open(t, "w") as f:
             f.write(text)
-        r = run("shaketable", "calibrate", scan, "--tests", t, "--out", os.path.join(tmp, "bad", name), *extra)
+        r = run(rigid, "shaketable", "calibrate", scan, "--tests", t, "--out", os.path.join(tmp, "bad", name), *extra)
         lines = r.stderr.strip().splitlines()
-        check(r.returncode == 2 and len(lines) == 1 and expect in lines[0] and name in lines[0],
-              "%s: exit %d, %s" % (name, r.returncode, lines))
+        assert r.returncode == 2 and len(lines) == 1 and expect in lines[0] and name in lines[0], "%s: exit %d, %s" % (name, r.returncode, lines)
 
     head = "test_no,record,pgv_over_pga_s,pga_g,file,overturned\n"
     bad("no_file_column.csv", "test_no,record,overturned\n1,a,0\n", "no 'file' column")
@@ -258,21 +240,14 @@ def main():
     bad("all_equal.csv", head + "1,a,,0.1,motions/Test001.txt.gz,1\n2,a,,0.1,motions/Test002.txt.gz,1\n",
         "cannot identify")
     bad("bad_outcome.csv", head + "1,a,,0.1,motions/Test001.txt.gz,yes\n", "not 0 or 1")
-    r = run("shaketable", "predict", os.path.join(tmp, "planted", "prism.toml"), "--tests", tests, "--out", tests)
+    r = run(rigid, "shaketable", "predict", os.path.join(tmp, "planted", "prism.toml"), "--tests", tests, "--out", tests)
     lines = r.stderr.strip().splitlines()
-    check(r.returncode == 2 and len(lines) == 1 and "tests.csv" in lines[0] and os.path.getsize(tests) > 0,
-          "predict --out over its test list refused, the list intact: %s" % lines)
+    assert r.returncode == 2 and len(lines) == 1 and "tests.csv" in lines[0] and os.path.getsize(tests) > 0, "predict --out over its test list refused, the list intact: %s" % lines
     # a scan that will not stand: the prism leaning beyond its base
     leaning = os.path.join(tmp, "leaning.obj")
     write_prism(leaning, tilt_x=0.6)
-    r = run("shaketable", "calibrate", leaning, "--tests", tests, "--out", os.path.join(tmp, "lean", "x"),
+    r = run(rigid, "shaketable", "calibrate", leaning, "--tests", tests, "--out", os.path.join(tmp, "lean", "x"),
             "--flatten-mm", "0", "--contact-models", "rigid", "--progress", "none")
     lines = r.stderr.strip().splitlines()
-    check(r.returncode == 2 and len(lines) == 1 and "leaning.obj" in lines[0], "a scan that cannot stand: %s" % lines)
+    assert r.returncode == 2 and len(lines) == 1 and "leaning.obj" in lines[0], "a scan that cannot stand: %s" % lines
 
-    print("%d passed, %d failed" % (len(passes), len(failures)))
-    sys.exit(1 if failures else 0)
-
-
-if __name__ == "__main__":
-    main()

@@ -1,25 +1,20 @@
-#!/usr/bin/python3
 """`rigid run --trajectory`: the XDMF file is well-formed, every DataItem it references exists in
 the HDF5 file with the stated shape, frames advance in time, and the pedestal stays a rigid box
 (its vertex distances do not change). With ParaView's pvpython present it also opens the file.
-Usage: test_trajectory.py RIGID SOURCE_DIR. Exit 77 = skipped (no h5py)."""
+Run: /usr/bin/python3 -m pytest tests/python/test_trajectory.py --rigid RIGID (skipped without h5py)."""
 import os
 import shutil
 import subprocess
-import sys
-import tempfile
 import xml.etree.ElementTree as ET
 
-try:
-    import h5py
-    import numpy as np
-except ImportError:
-    print("SKIP: h5py/numpy not available")
-    sys.exit(77)
+import pytest
 
-rigid, src = sys.argv[1], sys.argv[2]
-tmp = tempfile.mkdtemp()
-try:
+h5py = pytest.importorskip("h5py")
+np = pytest.importorskip("numpy")
+
+
+def test_trajectory_xdmf(rigid, source_dir, tmp):
+    src = source_dir
     xdmf = os.path.join(tmp, "run.xdmf")
     subprocess.run([rigid, "run", os.path.join(src, "models/demo/block_a02.toml"),
                     "--motion", os.path.join(src, "waveforms/demo/pulse_sine_0p5s-X.AT2"),
@@ -53,5 +48,3 @@ try:
         print(out.stdout.strip(), out.stderr.strip()[-500:])
         assert out.returncode == 0 and ("paraview frames %d" % len(times)) in out.stdout
     print("ok: %d data items, %d frames%s" % (items, len(times), ", opened by pvpython" if pvpython else ""))
-finally:
-    shutil.rmtree(tmp)

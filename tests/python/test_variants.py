@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """Campaigns with a variant axis (epistemic uncertainty) on the Python side, against independent
 oracles, on cubes written here with h5py in the layout documented at the top of src/io/cube.cpp:
 
@@ -18,58 +17,31 @@ d. The reader: one ObjectData per (object, variant), per-variant attributes, Cub
 e. Bad input: --variant out of range, --variant on a cube without variants: one stderr line naming
    the cube and the problem, exit 2.
 
-    /usr/bin/python3 tests/python/test_variants.py [RIGID]
+    /usr/bin/python3 -m pytest tests/python/test_variants.py [--rigid RIGID]
 
-With RIGID (the built executable) `rigid fragility|hazard|plot` go through it, else through the
-scripts. Exit 0 success, 1 failure, 77 (skipped) without numpy, scipy, h5py or matplotlib.
+With --rigid (the built executable) `rigid fragility|hazard|plot` go through it, else through the
+package's launchers. Skipped without numpy, scipy, h5py or matplotlib.
 """
 import csv
 import json
 import math
 import os
-import shutil
-import subprocess
-import sys
-import tempfile
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-PLOT_DIR = os.path.normpath(os.path.join(HERE, "..", "..", "src", "plot"))
-sys.path.insert(0, PLOT_DIR)
-sys.path.insert(0, HERE)
-try:
-    import h5py
-    import numpy as np
-    from scipy import stats
-    from scipy.special import ndtr
-    import test_plot as tp  # the axes of the synthetic cubes and the cube-derived datasets
-    import rigid_plot
-    import cube_checksums
-    import fragility_fit as ff
-except ImportError as e:
-    print(f"skipped: {e} (install python3-numpy python3-scipy python3-h5py python3-matplotlib)")
-    sys.exit(77)
+import pytest
 
-RIGID = os.path.abspath(sys.argv[1]) if len(sys.argv) > 1 else None
-FAILURES = []
+np = pytest.importorskip("numpy")
+h5py = pytest.importorskip("h5py")
+pytest.importorskip("matplotlib")
+from scipy import stats  # noqa: E402
+from scipy.special import ndtr  # noqa: E402
+
+import synthetic_cube as tp  # noqa: E402  (the axes of the synthetic cubes and the cube-derived datasets)
+from rigidpy import checksums as cube_checksums  # noqa: E402
+from rigidpy import fit as ff  # noqa: E402
+from rigidpy.cube import Cube  # noqa: E402
+
 RECORDS = 20
 PGV_PGA = 0.15  # every record: the vector fit reduces to the scalar lognormal (one PGV/PGA)
-
-
-def check(ok, what):
-    print(("ok   " if ok else "FAIL ") + what)
-    if not ok:
-        FAILURES.append(what)
-
-
-def tool(*args):
-    """rigid fragility|hazard|plot ARGS through the executable, else the script."""
-    if RIGID:
-        cmd = [RIGID, *args]
-    elif args[0] == "plot":
-        cmd = [sys.executable, os.path.join(PLOT_DIR, "rigid_plot.py"), *args[1:]]
-    else:
-        cmd = [sys.executable, os.path.join(PLOT_DIR, "rigid_fragility.py"), *args]
-    return subprocess.run(cmd, capture_output=True, text=True)
 
 
 # --------------------------------------------------------------------------------------------
@@ -152,10 +124,10 @@ def lhs(rng, n, lo, hi):
     return lo + (hi - lo) * (rng.permutation(n) + rng.random(n)) / n
 
 
-def fragility_json(cube, *extra):
+def fragility_json(tool, cube, *extra):
     p = tool("fragility", cube, "--json", *extra)
     if p.returncode != 0:
-        check(False, f"rigid fragility {cube} {' '.join(extra)}: exit {p.returncode} {p.stderr.strip()}")
+        assert False, f"rigid fragility {cube} {' '.join(extra)}: exit {p.returncode} {p.stderr.strip()}"
         return None
     return json.loads(p.stdout)
 
@@ -164,7 +136,7 @@ def fragility_json(cube, *extra):
 # a. planted per-variant lognormals, the pooled mixture
 
 
-def planted(tmp):
+def planted(tmp, tool):
     rng = np.random.default_rng(20261125)
     V = 12
     theta = lhs(rng, V, 0.3, 1.1)
@@ -175,90 +147,80 @@ def planted(tmp):
     write_variant_cube(cube, [("rock", outcome, {"alpha_rad": alpha, "p_rad_s": np.full(V, 2.0)})],
                        [("friction", "1", lhs(rng, V, 0.4, 0.9)), ("contact", "", ["rigid", "penalty"] * (V // 2))])
 
-    c = rigid_plot.Cube(cube)
-    check(c.variants is not None and c.variants.count == V and c.variants.method == "lhs" and c.variants.seed == 7
+    c = Cube(cube)
+    assert (c.variants is not None and c.variants.count == V and c.variants.method == "lhs" and c.variants.seed == 7
           and [p[0] for p in c.variants.parameters] == ["friction", "contact"]
-          and c.variants.parameters[1][2][:2] == ["rigid", "penalty"],
-          "reader: Cube.variants (count, method, seed, parameters with numbers and text)")
-    check(len(c.objects) == V and [o.variant for o in c.objects] == list(range(V))
+          and c.variants.parameters[1][2][:2] == ["rigid", "penalty"]), "reader: Cube.variants (count, method, seed, parameters with numbers and text)"
+    assert (len(c.objects) == V and [o.variant for o in c.objects] == list(range(V))
           and all(o.name == "rock" for o in c.objects) and c.objects[3].label == "rock [v3]"
           and all(abs(o.attrs["alpha_rad"] - alpha[o.variant]) < 1e-15 for o in c.objects)
           and np.array_equal(c.objects[5].outcome, outcome[5]) and c.objects[5].fragility.shape == (len(tp.SCALES), 9)
           and list(c.objects[0].attrs["support_polygon_m"]) == [0, 0, 1, 0, 1, 1]
-          and "support_polygon_m" not in c.objects[1].attrs,
-          "reader: one ObjectData per variant, labelled rock [vK], with its alpha_rad and its cells")
+          and "support_polygon_m" not in c.objects[1].attrs), "reader: one ObjectData per variant, labelled rock [vK], with its alpha_rad and its cells"
 
     csv_path, xml_path = os.path.join(tmp, "planted.csv"), os.path.join(tmp, "planted.xml")
-    doc = fragility_json(cube, "--bootstrap", "60", "--csv", csv_path, "--nrml", xml_path)
+    doc = fragility_json(tool, cube, "--bootstrap", "60", "--csv", csv_path, "--nrml", xml_path)
     if doc is None:
         return
     fr = [o["fragility"] for o in doc["objects"]]
     covered = sum(f["theta_interval_g"][0] <= t <= f["theta_interval_g"][1] for f, t in zip(fr, theta))
     worst = max(abs(f["theta_g"] / t - 1) for f, t in zip(fr, theta))
-    check(covered >= V - 3 and worst < 0.15,
-          f"per-variant fits: planted theta inside the 90 % interval in {covered}/{V} variants (>= {V - 3}), "
+    assert covered >= V - 3 and worst < 0.15, (f"per-variant fits: planted theta inside the 90 % interval in {covered}/{V} variants (>= {V - 3}), "
           f"largest relative error {100 * worst:.1f} % (< 15 %)")
     bcov = sum(f["beta_interval"][0] <= b <= f["beta_interval"][1] for f, b in zip(fr, beta))
-    check(bcov >= V - 3, f"per-variant fits: planted beta inside its interval in {bcov}/{V} variants")
+    assert bcov >= V - 3, f"per-variant fits: planted beta inside its interval in {bcov}/{V} variants"
 
     pooled = doc["variant_analysis"][0]["pooled"]
     a = np.array(pooled["pga_g"])
     truth = np.mean([ndtr(np.log(a / t) / b) for t, b in zip(theta, beta)], axis=0)
     gap = float(np.max(np.abs(np.array(pooled["mixture_probability"]) - truth)))
-    check(gap < 0.04, f"pooled mixture = mean of the planted lognormal CDFs within {gap:.3f} (< 0.04) over "
+    assert gap < 0.04, (f"pooled mixture = mean of the planted lognormal CDFs within {gap:.3f} (< 0.04) over "
                       f"{a[0]:.3g}-{a[-1]:.3g} g")
     lo, hi = math.log(0.01), math.log(20.0)
     for _ in range(100):  # the planted mixture's median, by bisection here
         mid = 0.5 * (lo + hi)
         lo, hi = (mid, hi) if np.mean(ndtr((mid - np.log(theta)) / beta)) < 0.5 else (lo, mid)
     planted_median = math.exp(lo)
-    check(abs(pooled["median_g"] / planted_median - 1) < 0.06,
-          f"pooled median {pooled['median_g']:.4f} g vs planted mixture's {planted_median:.4f} g (< 6 %)")
+    assert abs(pooled["median_g"] / planted_median - 1) < 0.06, f"pooled median {pooled['median_g']:.4f} g vs planted mixture's {planted_median:.4f} g (< 6 %)"
     t_rep = np.array([f["theta_g"] for f in fr])
     b_rep = np.array([f["beta"] for f in fr])
     ok = (abs(pooled["lognormal_theta_g"] - math.exp(np.mean(np.log(t_rep)))) < 1e-9
           and abs(pooled["lognormal_beta"] - math.sqrt(np.mean(b_rep**2) + np.var(np.log(t_rep)))) < 1e-9
           and np.allclose(pooled["theta_percentiles_g"], np.percentile(t_rep, [5, 50, 95]), rtol=1e-12))
-    check(ok, "pooled lognormal: ln C mean and variance of the mixture of the reported fits; theta 5/50/95 % "
+    assert ok, ("pooled lognormal: ln C mean and variance of the mixture of the reported fits; theta 5/50/95 % "
               "over variants")
     band_lo, band_hi = np.array(pooled["band_lower"]), np.array(pooled["band_upper"])
     curves = np.array([ndtr(np.log(a / t) / b) for t, b in zip(t_rep, b_rep)])
-    check(np.allclose(band_lo, np.percentile(curves, 5, axis=0)) and np.allclose(band_hi, np.percentile(curves, 95, axis=0))
-          and np.all(band_lo <= pooled["mixture_probability"]) and np.all(pooled["mixture_probability"] <= band_hi),
-          "5-95 % band of P_v(a) over variants, the mixture inside it")
+    assert (np.allclose(band_lo, np.percentile(curves, 5, axis=0)) and np.allclose(band_hi, np.percentile(curves, 95, axis=0))
+          and np.all(band_lo <= pooled["mixture_probability"]) and np.all(pooled["mixture_probability"] <= band_hi)), "5-95 % band of P_v(a) over variants, the mixture inside it"
 
     with open(csv_path, newline="") as fh:
         rows = list(csv.DictReader(fh))
-    check(list(rows[0])[:2] == ["object", "variant"] and {r["variant"] for r in rows} == {str(v) for v in range(V)} | {"pooled"}
-          and sum(r["fit"] == "scalar" for r in rows) == V,
-          f"CSV: a variant column, each variant's rows and the pooled row ({len(rows)} rows)")
+    assert (list(rows[0])[:2] == ["object", "variant"] and {r["variant"] for r in rows} == {str(v) for v in range(V)} | {"pooled"}
+          and sum(r["fit"] == "scalar" for r in rows) == V), f"CSV: a variant column, each variant's rows and the pooled row ({len(rows)} rows)"
     import xml.etree.ElementTree as ET
     ids = [fn.get("id") for fn in ET.parse(xml_path).getroot().iter("{http://openquake.org/xmlns/nrml/0.5}fragilityFunction")]
-    check(len(ids) == V + 1 and ids[-1].startswith("rock_pooled") and ids[3].startswith("rock_v3_"),
-          f"NRML: one function per variant and the pooled one ({ids[0]}, ..., {ids[-1]})")
+    assert len(ids) == V + 1 and ids[-1].startswith("rock_pooled") and ids[3].startswith("rock_v3_"), f"NRML: one function per variant and the pooled one ({ids[0]}, ..., {ids[-1]})"
     with h5py.File(cube, "r") as f:
         g = f["fragility/rock"]
         ok = (int(g.attrs["variants"]) == V and "v11" in g and "theta_g" in g["v11"]
               and np.allclose(g["variant_fragility/theta_g"][...], t_rep)
               and abs(g["pooled"].attrs["median_g"] - pooled["median_g"]) < 1e-12
               and np.array_equal(f["objects/rock/outcome"][...], outcome) and "sensitivity" in g)
-    check(ok, "cube: /fragility/rock holds each variant (v0..), the per-variant lognormals, pooled, sensitivity; "
+    assert ok, ("cube: /fragility/rock holds each variant (v0..), the per-variant lognormals, pooled, sensitivity; "
               "cells untouched")
 
     # the table through the plot tool, and the maps' band figure
     out = os.path.join(tmp, "table.md")
     p = tool("plot", "table", cube, "--out", out, "--variant", "3")
     text = open(out).read() if p.returncode == 0 else ""
-    check(p.returncode == 0 and "rock [v3]" in text and "rock [v4]" not in text,
-          f"rigid plot table --variant 3: the row is named rock [v3] (exit {p.returncode} {p.stderr.strip()})")
+    assert p.returncode == 0 and "rock [v3]" in text and "rock [v4]" not in text, f"rigid plot table --variant 3: the row is named rock [v3] (exit {p.returncode} {p.stderr.strip()})"
     maps = os.path.join(tmp, "maps")
     p = tool("plot", "maps", cube, "--out", maps)
     files = sorted(os.listdir(maps)) if os.path.isdir(maps) else []
-    check(p.returncode == 0 and files == ["fit.json", "rock_pooled_map.png", "rock_variants.png"],
-          f"rigid plot maps: the band figure and the pooled map by default ({files}) {p.stderr.strip()}")
+    assert p.returncode == 0 and files == ["fit.json", "rock_pooled_map.png", "rock_variants.png"], f"rigid plot maps: the band figure and the pooled map by default ({files}) {p.stderr.strip()}"
     p = tool("plot", "maps", cube, "--out", maps, "--variant", "2")
-    check(p.returncode == 0 and os.path.isfile(os.path.join(maps, "rock_v2_map.png")),
-          "rigid plot maps --variant 2: that variant's map (rock_v2_map.png)")
+    assert p.returncode == 0 and os.path.isfile(os.path.join(maps, "rock_v2_map.png")), "rigid plot maps --variant 2: that variant's map (rock_v2_map.png)"
     return cube, theta, beta
 
 
@@ -266,7 +228,7 @@ def planted(tmp):
 # b. the sensitivity oracle
 
 
-def sensitivity_oracle(tmp):
+def test_sensitivity_oracle(tmp, tool):
     rng = np.random.default_rng(424242)
     V = 30
     a_values, b_values = lhs(rng, V, 0.4, 1.0), lhs(rng, V, 2400.0, 2800.0)
@@ -279,7 +241,7 @@ def sensitivity_oracle(tmp):
         # alpha derived from friction (monotone): its PRCC given the varied parameters is undefined
         write_variant_cube(cube, [("rock", outcome, {"alpha_rad": 0.1 + 0.2 * a_values})],
                            [("friction", "1", a_values), ("density_kg_m3", "kg m-3", b_values)])
-        doc = fragility_json(cube, "--bootstrap", "20", "--no-store", "--seed", "5")
+        doc = fragility_json(tool, cube, "--bootstrap", "20", "--no-store", "--seed", "5")
         if doc is None:
             return
         an = doc["variant_analysis"][0]
@@ -287,22 +249,20 @@ def sensitivity_oracle(tmp):
         results[driver] = (an, rows)
         other = "density_kg_m3" if driver == "friction" else "friction"
         d, o = rows[driver], rows[other]
-        check(d["rho_theta"] > 0.9 and d["prcc_theta"] > 0.9,
-              f"theta = f({driver}): rho {d['rho_theta']:.3f}, PRCC {d['prcc_theta']:.3f} (> 0.9)")
+        assert d["rho_theta"] > 0.9 and d["prcc_theta"] > 0.9, f"theta = f({driver}): rho {d['rho_theta']:.3f}, PRCC {d['prcc_theta']:.3f} (> 0.9)"
         lo, hi = o["rho_theta_interval"]
         plo, phi = o["prcc_theta_interval"]
-        check(abs(o["rho_theta"]) < 0.35 and lo < 0 < hi and plo < 0 < phi,
-              f"{other} irrelevant: rho {o['rho_theta']:+.3f} [{lo:+.3f}, {hi:+.3f}], PRCC {o['prcc_theta']:+.3f} "
+        assert abs(o["rho_theta"]) < 0.35 and lo < 0 < hi and plo < 0 < phi, (f"{other} irrelevant: rho {o['rho_theta']:+.3f} [{lo:+.3f}, {hi:+.3f}], PRCC {o['prcc_theta']:+.3f} "
               f"[{plo:+.3f}, {phi:+.3f}]: intervals cover 0")
         varied = [r["parameter"] for r in an["sensitivity"] if r["kind"] != "derived"]
-        check(varied == [driver, other], f"ranking by |rho(theta)|: {[r['parameter'] for r in an['sensitivity']]}")
+        assert varied == [driver, other], f"ranking by |rho(theta)|: {[r['parameter'] for r in an['sensitivity']]}"
         thetas = [v["theta_g"] for v in an["variant_fragility"]]
         worst = 0.0
         for name, values in (("friction", a_values), ("density_kg_m3", b_values)):
             worst = max(worst, abs(stats.spearmanr(values, thetas)[0] - rows[name]["rho_theta"]))
         betas = [v["beta"] for v in an["variant_fragility"]]
         worst = max(worst, abs(stats.spearmanr(a_values, betas)[0] - rows["friction"]["rho_beta"]))
-        check(worst < 1e-12, f"rho equals scipy.stats.spearmanr on the reported thetas and betas ({worst:.1e})")
+        assert worst < 1e-12, f"rho equals scipy.stats.spearmanr on the reported thetas and betas ({worst:.1e})"
         # PRCC by a second method: the partial correlation from the inverse of the rank correlation
         # matrix of (friction, density, theta), -P_xy / sqrt(P_xx P_yy)
         ranks = np.array([stats.rankdata(v) for v in (a_values, b_values, thetas)])
@@ -311,23 +271,21 @@ def sensitivity_oracle(tmp):
         for i, name in enumerate(("friction", "density_kg_m3")):
             partial = -precision[i, 2] / math.sqrt(precision[i, i] * precision[2, 2])
             worst = max(worst, abs(partial - rows[name]["prcc_theta"]))
-        check(worst < 1e-9, f"PRCC equals the partial correlation from the inverse rank correlation matrix ({worst:.1e})")
+        assert worst < 1e-9, f"PRCC equals the partial correlation from the inverse rank correlation matrix ({worst:.1e})"
         al = rows["alpha_rad"]
-        check(al["kind"] == "derived" and abs(al["rho_theta"] - rows["friction"]["rho_theta"]) < 1e-12
-              and al["prcc_theta"] is None and "determined" in al["note"],
-              f"derived alpha_rad (monotone in friction): rho as friction's, no PRCC ({al['note']})")
+        assert (al["kind"] == "derived" and abs(al["rho_theta"] - rows["friction"]["rho_theta"]) < 1e-12
+              and al["prcc_theta"] is None and "determined" in al["note"]), f"derived alpha_rad (monotone in friction): rho as friction's, no PRCC ({al['note']})"
     if len(results) == 2:
         first = [r["parameter"] for r in results["friction"][0]["sensitivity"] if r["kind"] != "derived"][0]
         swapped = [r["parameter"] for r in results["density_kg_m3"][0]["sensitivity"] if r["kind"] != "derived"][0]
-        check(first == "friction" and swapped == "density_kg_m3",
-              f"swapping the roles swaps the ranking (first: {first}, then {swapped})")
+        assert first == "friction" and swapped == "density_kg_m3", f"swapping the roles swaps the ranking (first: {first}, then {swapped})"
 
 
 # --------------------------------------------------------------------------------------------
 # c. deterministic (separated) variants
 
 
-def quasi_separated():
+def test_quasi_separated():
     """One mixed scale between all-survived and all-overturned ones (quasi-complete separation: the
     probit's slope diverges too): the step sits at the mixed scale; two mixed scales are a fit's."""
     scales = np.array([0.1, 0.2, 0.3, 0.4])
@@ -335,14 +293,12 @@ def quasi_separated():
     outcome[:, 3, :] = 2
     outcome[0, 2, 0] = 2
     t = ff.empirical_threshold(ff.Cells(outcome, scales, np.array([0.1, 0.1])))
-    check(t is not None and t["theta_g"] == 0.3 and t["between_g"] == [0.2, 0.4],
-          f"quasi-complete separation: the step at the one mixed scale ({t})")
+    assert t is not None and t["theta_g"] == 0.3 and t["between_g"] == [0.2, 0.4], f"quasi-complete separation: the step at the one mixed scale ({t})"
     outcome[1, 1, 0] = 2
-    check(ff.empirical_threshold(ff.Cells(outcome, scales, np.array([0.1, 0.1]))) is None,
-          "two mixed scales: no threshold (the probit fit applies)")
+    assert ff.empirical_threshold(ff.Cells(outcome, scales, np.array([0.1, 0.1]))) is None, "two mixed scales: no threshold (the probit fit applies)"
 
 
-def deterministic(tmp):
+def test_deterministic(tmp, tool):
     thresholds = [0.35, 0.55, 0.75, 0.95, 1.25, 1.55]  # between scales (0.1 g apart)
     size = [0.8, 1.0, 1.2, 1.4, 1.7, 2.0]
     outcome = np.array([threshold_outcome(t, records=4) for t in thresholds])
@@ -350,7 +306,7 @@ def deterministic(tmp):
     write_variant_cube(cube, [("block", outcome, {})],
                        [("size_scale", "1", size), ("contact", "", ["rigid", "penalty", "rigid", "penalty", "rigid", "penalty"])],
                        method="list")
-    doc = fragility_json(cube, "--bootstrap", "20", "--no-store")
+    doc = fragility_json(tool, cube, "--bootstrap", "20", "--no-store")
     if doc is None:
         return
     an = doc["variant_analysis"][0]
@@ -360,17 +316,14 @@ def deterministic(tmp):
         above = tp.SCALES[tp.SCALES >= t].min()
         worst = max(worst, abs(v["theta_g"] / math.sqrt(below * above) - 1))
         flagged += v["source"] == "empirical threshold" and v["beta"] == 0
-    check(worst < 1e-12 and flagged == len(thresholds),
-          f"separated variants: theta = sqrt(highest survived x lowest overturned scale), flagged "
+    assert worst < 1e-12 and flagged == len(thresholds), (f"separated variants: theta = sqrt(highest survived x lowest overturned scale), flagged "
           f"({flagged}/{len(thresholds)}; worst {worst:.1e})")
     rows = {r["parameter"]: r for r in an["sensitivity"]}
-    check(abs(rows["size_scale"]["rho_theta"] - 1) < 1e-12 and an["sensitivity"][0]["parameter"] == "size_scale"
-          and rows["size_scale"]["rho_beta"] is None and "text (category order: rigid, penalty)" == rows["contact"]["kind"],
-          f"sensitivity on thresholds: rho(size_scale) = {rows['size_scale']['rho_theta']}, beta left out; "
+    assert (abs(rows["size_scale"]["rho_theta"] - 1) < 1e-12 and an["sensitivity"][0]["parameter"] == "size_scale"
+          and rows["size_scale"]["rho_beta"] is None and "text (category order: rigid, penalty)" == rows["contact"]["kind"]), (f"sensitivity on thresholds: rho(size_scale) = {rows['size_scale']['rho_theta']}, beta left out; "
           f"contact by category order")
     p = tool("fragility", cube, "--bootstrap", "20", "--no-store")
-    check(p.returncode == 0 and "empirical threshold" in p.stdout and "block [v5]" in p.stdout,
-          "the table says which thetas are empirical thresholds")
+    assert p.returncode == 0 and "empirical threshold" in p.stdout and "block [v5]" in p.stdout, "the table says which thetas are empirical thresholds"
     # a threshold is a step: the rate of toppling is the hazard curve's rate at the threshold
     k, k0 = 2.0, 1e-5
     curve = os.path.join(tmp, "steps.csv")
@@ -381,32 +334,30 @@ def deterministic(tmp):
     if p.returncode == 0:
         r = json.loads(p.stdout)
         t = an["variant_fragility"][2]["theta_g"]
-        check(abs(r["annual_toppling_rate"] / (k0 * t ** -k) - 1) < 1e-9 and r["fragility"][0]["source"] == "empirical threshold",
-              f"hazard --variant 2 (a threshold): rate {r['annual_toppling_rate']:.6e} = H(theta) {k0 * t ** -k:.6e}")
+        assert abs(r["annual_toppling_rate"] / (k0 * t ** -k) - 1) < 1e-9 and r["fragility"][0]["source"] == "empirical threshold", f"hazard --variant 2 (a threshold): rate {r['annual_toppling_rate']:.6e} = H(theta) {k0 * t ** -k:.6e}"
     else:
-        check(False, f"hazard --variant 2 of the thresholds: exit {p.returncode} {p.stderr.strip()}")
+        assert False, f"hazard --variant 2 of the thresholds: exit {p.returncode} {p.stderr.strip()}"
     p = tool("hazard", cube, "--curve", curve, "--age", "1000", "--json", "--bootstrap", "20")
     if p.returncode == 0:
         r = json.loads(p.stdout)
         want = np.mean([k0 * v["theta_g"] ** -k for v in an["variant_fragility"]])
-        check(abs(r["annual_toppling_rate"] / want - 1) < 1e-9,
-              f"pooled hazard of thresholds: rate {r['annual_toppling_rate']:.6e} = mean of H(theta_v) {want:.6e}")
+        assert abs(r["annual_toppling_rate"] / want - 1) < 1e-9, f"pooled hazard of thresholds: rate {r['annual_toppling_rate']:.6e} = mean of H(theta_v) {want:.6e}"
     else:
-        check(False, f"pooled hazard of the thresholds: exit {p.returncode} {p.stderr.strip()}")
+        assert False, f"pooled hazard of the thresholds: exit {p.returncode} {p.stderr.strip()}"
 
 
 # --------------------------------------------------------------------------------------------
 # d. hazard, e. bad input
 
 
-def hazard(tmp, cube):
+def hazard(tmp, cube, tool):
     k, k0, years = 2.5, 2e-5, 10000.0
     curve = os.path.join(tmp, "power.csv")
     with open(curve, "w") as f:
         for a in np.geomspace(0.01, 5.0, 25):
             f.write(f"{a!r},{k0 * a ** -k!r}\n")
     p = tool("hazard", cube, "--curve", curve, "--age", str(years), "--bootstrap", "40", "--json")
-    check(p.returncode == 0, f"rigid hazard (pooled) exit {p.returncode} {p.stderr.strip()}")
+    assert p.returncode == 0, f"rigid hazard (pooled) exit {p.returncode} {p.stderr.strip()}"
     if p.returncode != 0:
         return
     r = json.loads(p.stdout)
@@ -414,72 +365,51 @@ def hazard(tmp, cube):
     rates = [k0 * t ** -k * math.exp(0.5 * k * k * b * b) for t, b in per]
     exact = float(np.mean(rates))
     lo, hi = r["annual_toppling_rate_interval"]
-    check(abs(r["annual_toppling_rate"] / exact - 1) < 0.005 and lo < r["annual_toppling_rate"] < hi,
-          f"pooled rate {r['annual_toppling_rate']:.4e} = mean over variants of the closed form {exact:.4e}, "
+    assert abs(r["annual_toppling_rate"] / exact - 1) < 0.005 and lo < r["annual_toppling_rate"] < hi, (f"pooled rate {r['annual_toppling_rate']:.4e} = mean over variants of the closed form {exact:.4e}, "
           f"inside its aleatory interval [{lo:.3e}, {hi:.3e}]")
     survivals = np.exp(-np.array(rates) * years)
     elo, ehi = r["survival_probability_epistemic_range"]
     want = np.percentile(survivals, [5, 95])
-    check(abs(elo - want[0]) < 0.005 and abs(ehi - want[1]) < 0.005 and elo <= r["survival_probability"] <= ehi,
-          f"survival {r['survival_probability']:.4f}, epistemic 5-95 % over variants [{elo:.4f}, {ehi:.4f}] "
+    assert abs(elo - want[0]) < 0.005 and abs(ehi - want[1]) < 0.005 and elo <= r["survival_probability"] <= ehi, (f"survival {r['survival_probability']:.4f}, epistemic 5-95 % over variants [{elo:.4f}, {ehi:.4f}] "
           f"(closed forms [{want[0]:.4f}, {want[1]:.4f}])")
     p = tool("hazard", cube, "--curve", curve, "--age", str(years), "--bootstrap", "40", "--json", "--variant", "4")
     if p.returncode == 0:
         r4 = json.loads(p.stdout)
         f0 = r4["fragility"][0]
         exact4 = k0 * f0["theta_g"] ** -k * math.exp(0.5 * k * k * f0["beta"] ** 2)
-        check(abs(r4["annual_toppling_rate"] / exact4 - 1) < 0.005 and r4["object"] == "rock [v4]"
-              and abs(f0["theta_g"] - per[4][0]) < 1e-9,
-              f"--variant 4: rate {r4['annual_toppling_rate']:.4e} = closed form of variant 4's lognormal {exact4:.4e}")
+        assert (abs(r4["annual_toppling_rate"] / exact4 - 1) < 0.005 and r4["object"] == "rock [v4]"
+              and abs(f0["theta_g"] - per[4][0]) < 1e-9), f"--variant 4: rate {r4['annual_toppling_rate']:.4e} = closed form of variant 4's lognormal {exact4:.4e}"
     else:
-        check(False, f"rigid hazard --variant 4: exit {p.returncode} {p.stderr.strip()}")
+        assert False, f"rigid hazard --variant 4: exit {p.returncode} {p.stderr.strip()}"
     return curve
 
 
-def bad_input_case(name, args, fragments):
+def bad_input_case(tool, name, args, fragments):
     p = tool(*args)
     lines = [ln for ln in p.stderr.splitlines() if ln.strip()]
     ok = p.returncode == 2 and len(lines) == 1 and "error" in lines[0] and all(f in lines[0] for f in fragments)
-    check(ok, f"bad input, {name}: exit {p.returncode}, {len(lines)} stderr line(s): {lines[0] if lines else ''}")
+    assert ok, f"bad input, {name}: exit {p.returncode}, {len(lines)} stderr line(s): {lines[0] if lines else ''}"
 
 
-def bad_inputs(tmp, cube, curve):
+def bad_inputs(tool, tmp, cube, curve):
     plain = os.path.join(tmp, "plain.h5")
     rng = np.random.default_rng(1)
     tp.write_cube(plain, np.full(RECORDS, PGV_PGA), [("rock", lognormal_outcome(rng, 0.5, 0.3), {})])
     hazard = ["--curve", curve, "--age", "1000", "--bootstrap", "20"]
     for what, args in (("fragility", ["fragility", cube, "--no-store"]), ("hazard", ["hazard", cube, *hazard]),
                        ("plot maps", ["plot", "maps", cube, "--out", os.path.join(tmp, "m")])):
-        bad_input_case(f"{what} --variant 12 of 12 variants", args + ["--variant", "12"], [cube, "--variant 12", "out of range"])
-    bad_input_case("fragility --variant -1", ["fragility", cube, "--no-store", "--variant", "-1"], [cube, "out of range"])
-    bad_input_case("fragility --variant on a cube without variants", ["fragility", plain, "--no-store", "--variant", "0"],
+        bad_input_case(tool, f"{what} --variant 12 of 12 variants", args + ["--variant", "12"], [cube, "--variant 12", "out of range"])
+    bad_input_case(tool, "fragility --variant -1", ["fragility", cube, "--no-store", "--variant", "-1"], [cube, "out of range"])
+    bad_input_case(tool, "fragility --variant on a cube without variants", ["fragility", plain, "--no-store", "--variant", "0"],
                    [plain, "no variants"])
-    bad_input_case("hazard --variant on a cube without variants", ["hazard", plain, *hazard, "--variant", "1"],
+    bad_input_case(tool, "hazard --variant on a cube without variants", ["hazard", plain, *hazard, "--variant", "1"],
                    [plain, "no variants"])
-    bad_input_case("plot table --variant on a cube without variants",
+    bad_input_case(tool, "plot table --variant on a cube without variants",
                    ["plot", "table", plain, "--out", os.path.join(tmp, "t.md"), "--variant", "0"], [plain, "no variants"])
-    bad_input_case("--variant not a number", ["fragility", cube, "--variant", "two"], ["--variant"])
+    bad_input_case(tool, "--variant not a number", ["fragility", cube, "--variant", "two"], ["--variant"])
 
 
-def main():
-    tmp = tempfile.mkdtemp(prefix="rigid_variants_test_")
-    try:
-        result = planted(tmp)
-        sensitivity_oracle(tmp)
-        quasi_separated()
-        deterministic(tmp)
-        if result:
-            curve = hazard(tmp, result[0])
-            if curve:
-                bad_inputs(tmp, result[0], curve)
-    finally:
-        shutil.rmtree(tmp, ignore_errors=True)
-    if FAILURES:
-        print(f"{len(FAILURES)} check(s) failed")
-        return 1
-    print("all checks passed")
-    return 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())
+def test_planted_hazard_and_bad_inputs(tmp, tool):
+    cube = planted(tmp, tool)[0]
+    curve = hazard(tmp, cube, tool)
+    bad_inputs(tool, tmp, cube, curve)

@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """Pareto plot and markdown table of `rigid study accuracy` (docs/accuracy.md).
 
     accuracy_plot.py DIR/accuracy.csv --png DIR/accuracy_pareto.png --table DIR/accuracy_table.md

@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """`rigid fragility` and `rigid hazard`: from a campaign cube to fitted fragilities, exports hazard
 codes read, and the probability that a rock survived a hazard model over its exposure age.
 
@@ -36,13 +35,16 @@ try:
     import h5py
     import numpy as np
     from numpy.polynomial.hermite_e import hermegauss
-    import cube_files
-    import fragility_fit as ff
-    import hazard_curve as hc
-    import nrml
-    import progress
-    import sensitivity
-    from rigid_plot import Cube, InputError, Normalisation, block_parameter, parse_per_object
+    from . import files as cube_files
+    from . import fit as ff
+    from . import hazard as hc
+    from . import nrml
+    from . import progress
+    from . import sensitivity
+    from .cube import Cube
+    from .errors import InputError
+    from .fit import SCALAR_SOURCE, THRESHOLD_SOURCE
+    from .map_fit import Normalisation, block_parameter, parse_per_object
 except ImportError as e:  # pragma: no cover
     sys.stderr.write(f"rigid: error: {e}; install python3-numpy python3-h5py python3-scipy python3-matplotlib "
                      f"and run with /usr/bin/python3 (this is {sys.executable})\n")
@@ -155,8 +157,6 @@ def end_progress():
 # Bootstrap replicates over variants for the sensitivity intervals: resampling variants costs rank
 # statistics only, so this is fixed (not --bootstrap, which counts probit refits).
 SENSITIVITY_REPLICATES = 1000
-THRESHOLD_SOURCE = "empirical threshold"
-SCALAR_SOURCE = "scalar fit (all records)"
 
 
 def fragility_source(fit):

@@ -25,7 +25,12 @@ import numpy as np
 from scipy import optimize, stats
 from scipy.special import log_ndtr, ndtr, ndtri
 
-NOT_RUN, SURVIVED, OVERTURNED, INFERRED, FAILED = 0, 1, 2, 3, 4
+from .outcomes import INFERRED, simulated_counts
+
+# What stands for an object (a variant) when its vector fit has no finite estimate, in this order
+# (fragility.fragility_source; map_fit.map_lognormal follows the same order).
+SCALAR_SOURCE = "scalar fit (all records)"
+THRESHOLD_SOURCE = "empirical threshold"
 
 # Told of each bootstrap resample and each finished fit when set (progress.FitProgress: the
 # command's progress line); this module itself writes nothing.
@@ -150,13 +155,6 @@ def fit_probability(fit, u, x):
 
 # --------------------------------------------------------------------------------------------
 # Cells of one object
-
-
-def simulated_counts(outcome):
-    """(overturned, simulated) per (record, scale) over the rotations: survived and overturned
-    cells only (inferred, not-run and failed cells left out; module docstring)."""
-    over = np.sum(outcome == OVERTURNED, axis=2)
-    return over, over + np.sum(outcome == SURVIVED, axis=2)
 
 
 class Cells:

@@ -1,8 +1,7 @@
-#!/usr/bin/python3
 """Outcome agreement of campaign cubes against a reference cube (docs/accuracy.md: how the default
 accuracy preset is chosen).
 
-    outcome_agreement.py REFERENCE.h5 CANDIDATE.h5 [CANDIDATE.h5 ...] [--json]
+    python3 -m rigidpy.outcome_agreement REFERENCE.h5 CANDIDATE.h5 [CANDIDATE.h5 ...] [--json]
 
 The cubes must come from the same job (same objects, records, scales, rotations). Per object and
 over all objects, for every candidate:
@@ -22,29 +21,29 @@ import json
 import sys
 
 try:
-    import h5py
     import numpy as np
-    import cube_checksums
+    from .cube import Cube
+    from .errors import InputError
+    from . import outcomes
+    from .outcomes import RAN, SIMULATED_KNOWN
 except ImportError as e:  # pragma: no cover
     sys.stderr.write(f"outcome_agreement: error: {e}; run with /usr/bin/python3\n")
     sys.exit(2)
 
-NOT_RUN, SURVIVED, OVERTURNED, INFERRED, FAILED = 0, 1, 2, 3, 4
-
 
 def read(path):
+    """{object: outcome and wall_s}, the whole dataset of each object (variants stacked on the
+    first axis, as stored), and the root's physics_json."""
+    cube = Cube(path, wall_times=True)  # the outcomes compared are the ones the campaign wrote
     out = {}
-    with h5py.File(path, "r") as f:
-        try:  # the outcomes compared are the ones the campaign wrote
-            version = cube_checksums.verify(f, path)
-        except cube_checksums.ChecksumError as e:
-            raise ValueError(str(e))
-        if warning := cube_checksums.old_cube_warning(path, version):
-            sys.stderr.write(f"outcome_agreement: warning: {warning}\n")
-        for name, g in f["objects"].items():
-            if isinstance(g, h5py.Group) and "outcome" in g:
-                out[name] = dict(outcome=g["outcome"][()].astype(int), wall=g["wall_s"][()])
-        physics = f.attrs.get("physics_json", "")
+    for name in cube.base_names():
+        parts = [o for o in cube.objects if o.name == name]
+        if parts[0].variant is None:
+            out[name] = dict(outcome=parts[0].outcome.astype(int), wall=parts[0].wall_s)
+        else:
+            out[name] = dict(outcome=np.stack([o.outcome for o in parts]).astype(int),
+                             wall=np.stack([o.wall_s for o in parts]))
+    physics = cube.root_attrs.get("physics_json", "")
     return out, physics.decode() if isinstance(physics, bytes) else physics
 
 
@@ -58,16 +57,16 @@ def compare(ref, cand):
         a, b = r["outcome"], cand[name]["outcome"]
         if a.shape != b.shape:
             raise ValueError(f"object {name}: shapes {a.shape} and {b.shape} differ")
-        known_a = np.isin(a, (SURVIVED, OVERTURNED, INFERRED))
-        known_b = np.isin(b, (SURVIVED, OVERTURNED, INFERRED))
+        known_a = outcomes.known(a)
+        known_b = outcomes.known(b)
         known = known_a & known_b
-        over_a = np.isin(a, (OVERTURNED, INFERRED))
-        over_b = np.isin(b, (OVERTURNED, INFERRED))
+        over_a = outcomes.counts_as_overturned(a)
+        over_b = outcomes.counts_as_overturned(b)
         agree = known & (over_a == over_b)
-        sim = np.isin(a, (SURVIVED, OVERTURNED)) & np.isin(b, (SURVIVED, OVERTURNED))
+        sim = np.isin(a, SIMULATED_KNOWN) & np.isin(b, SIMULATED_KNOWN)
         sim_agree = sim & (a == b)
-        simulated_b = np.isin(b, (SURVIVED, OVERTURNED, FAILED))
-        simulated_a = np.isin(a, (SURVIVED, OVERTURNED, FAILED))
+        simulated_b = np.isin(b, RAN)
+        simulated_a = np.isin(a, RAN)
         row = dict(cells=int(a.size), known=int(known.sum()), agree=int(agree.sum()), sim=int(sim.sum()),
                    sim_agree=int(sim_agree.sum()), unknown=int((~known).sum()),
                    wall=float(np.nansum(cand[name]["wall"][simulated_b])), simulated=int(simulated_b.sum()),
@@ -98,7 +97,7 @@ def main(argv):
         for path in args[1:]:
             cand, physics = read(path)
             results[path] = (compare(ref, cand), physics)
-    except (OSError, ValueError, KeyError) as e:
+    except (OSError, ValueError, KeyError, InputError) as e:
         sys.stderr.write(f"outcome_agreement: error: {e}\n")
         return 2
     if as_json:

@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """`rigid shaketable fragility`'s fits: the shake-table rock's fragility from the lab's outcomes
 beside the calibrated model's, per PGV/PGA bin, with one table of medians and one figure.
 
@@ -26,9 +25,11 @@ import sys
 
 try:
     import numpy as np
-    import cube_files
-    import fragility_fit as ff
-    from rigid_plot import Cube, InputError
+    from . import files as cube_files
+    from . import fit as ff
+    from .cube import Cube
+    from .errors import InputError
+    from .outcomes import simulated_counts
 except ImportError as e:  # pragma: no cover
     sys.stderr.write(f"rigid: error: {e}; install python3-numpy python3-h5py python3-scipy python3-matplotlib "
                      f"and run with /usr/bin/python3 (this is {sys.executable})\n")
@@ -85,8 +86,7 @@ def model_cells(cube, members):
     simulated = np.ones((R, S), bool)
     for m in members:
         outcome = cube.objects[m["variant"]].outcome[:, :, m["rotations"]]
-        over = np.sum(outcome == ff.OVERTURNED, axis=2)
-        sim = over + np.sum(outcome == ff.SURVIVED, axis=2)
+        over, sim = simulated_counts(outcome)
         simulated &= sim == len(m["rotations"])
         p += m["weight"] / total * over / len(m["rotations"])
     weight = float(np.mean([len(m["rotations"]) for m in members]))
@@ -142,7 +142,7 @@ def describe(r):
     return text + "".join(f"\n          ({n})" for n in notes)
 
 
-def main(argv=None):
+def fragility_command(argv=None):
     ap = argparse.ArgumentParser(prog="rigid shaketable fragility")
     ap.add_argument("cube")
     ap.add_argument("--lab", required=True)
@@ -282,9 +282,13 @@ def draw(rows, lab, model_p, simulated, scales_g, path, inputs):
     plt.close(fig)
 
 
-if __name__ == "__main__":
+def main(argv=None):
     try:
-        sys.exit(main())
+        return fragility_command(argv)
     except (InputError, cube_files.OutputError) as e:
         sys.stderr.write(f"rigid: error: {e}\n")
-        sys.exit(2)
+        return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main())

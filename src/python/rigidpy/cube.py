@@ -1,0 +1,249 @@
+"""The one reader of a campaign cube (docs/cube.md; layout at the top of src/io/cube.cpp): the
+axes, the records and every object's cells, checksums verified, the derived datasets recomputed
+from the cells and stored ones that disagree refused. Everything in this package that reads a
+cube reads it through Cube."""
+import math
+import os
+import sys
+
+import h5py
+import numpy as np
+
+from . import checksums as cube_checksums
+from .errors import InputError
+from .outcomes import NOT_RUN, probability_from_outcome
+
+
+def _strings(ds):
+    return [s for s in ds.asstr()[()]]
+
+
+class ObjectData:
+    """One object of a cube, or one variant of it (a cube with a variant axis: one ObjectData per
+    (object, variant), all with the base object's name)."""
+
+    def __init__(self, name, attrs, outcome, probability, fragility, count, variant=None):
+        self.name = name
+        self.attrs = attrs
+        self.outcome = outcome          # [R, S, A] int8
+        self.probability = probability  # [R, S]
+        self.fragility = fragility      # [S, B]
+        self.count = count              # [S, B]
+        self.variant = variant          # None without variants, else 0..V-1
+
+    @property
+    def label(self):
+        """The name in tables, titles and file names: `rock`, or `rock [v3]` for a variant."""
+        return self.name if self.variant is None else f"{self.name} [v{self.variant}]"
+
+
+class VariantTable:
+    """/variants of a cube with a variant axis: count, method, seed and the varied parameters as
+    (name, units, values): a float array, or a list of str for a text parameter."""
+
+    def __init__(self, group):
+        self.count = int(group.attrs["count"])
+        self.method = _text(group.attrs.get("method", ""))
+        self.seed = int(group.attrs.get("seed", 0))
+        self.parameters = []
+        self.descriptions = {}
+        for name in _text(group.attrs.get("parameters", "")).split():
+            ds = group[name]
+            if ds.dtype.kind in "OSU":
+                values = _strings(ds)
+            else:
+                values = ds[()].astype(float)
+            if len(values) != self.count:
+                raise KeyError(f"variants/{name} of {len(values)} values for {self.count} variants")
+            self.parameters.append((name, _text(ds.attrs.get("units", "")), values))
+            self.descriptions[name] = _text(ds.attrs.get("description", ""))
+
+
+def _text(v):
+    return v.decode() if isinstance(v, bytes) else str(v)
+
+
+# Per-variant values that a cube without variants keeps as group attributes; with variants they
+# are datasets [variant] (spec "On disk"), presented here as attributes of each variant's ObjectData.
+VARIANT_NUMBERS = ("alpha_rad", "p_rad_s", "rocking_radius_m", "weakest_azimuth_deg")
+VARIANT_TEXTS = ("physics_json", "inputs_sha256")
+
+
+def variant_attrs(group, attrs, v):
+    """The attributes of variant v: the group's, plus its row of the per-variant datasets (NaN and
+    "" mean the variant has none, as a missing attribute does without variants)."""
+    out = dict(attrs)
+    for key in VARIANT_NUMBERS:
+        if key in group:
+            value = float(group[key][v])
+            if math.isfinite(value):
+                out[key] = value
+    for key in VARIANT_TEXTS:
+        if key in group:
+            out[key] = _strings(group[key])[v]
+    if "alpha_by_azimuth_rad" in group:
+        out["alpha_by_azimuth_rad"] = group["alpha_by_azimuth_rad"][v].astype(float)
+    if "support_polygon_m" in group:
+        text = _strings(group["support_polygon_m"])[v].split()
+        if text:
+            out["support_polygon_m"] = np.array([float(t) for t in text])
+    return out
+
+
+class Cube:
+    """The parts of a cube the plots need, read once. Reads both layouts: without variants
+    (schema 1) and with a variant axis (schema 2, layout at the top of src/io/cube.cpp), where each
+    (object, variant) becomes one ObjectData, in object then variant order."""
+
+    def __init__(self, path, wall_times=False):
+        self._wall_times = wall_times  # also read each object's wall_s (outcome_agreement)
+        if not os.path.isfile(path):
+            raise InputError(f"{path}: no such file")
+        try:
+            f = h5py.File(path, "r")
+        except OSError as e:
+            raise InputError(f"{path}: not an HDF5 file ({e})")
+        self.path = path
+        self.label = os.path.splitext(os.path.basename(path))[0]
+        with f:
+            try:
+                version = cube_checksums.verify(f, path)
+            except cube_checksums.ChecksumError as e:
+                raise InputError(str(e))
+            except KeyError as e:
+                raise InputError(f"{path}: not a Rigid fragility cube (missing {e})")
+            if warning := cube_checksums.old_cube_warning(path, version):
+                sys.stderr.write(f"rigid: warning: {warning}\n")
+            try:
+                self.records = _strings(f["axes/record"])
+                self.scales = f["axes/scale_g"][()].astype(float)
+                self.edges = f["axes/pgv_pga_edges_s"][()].astype(float)
+                self.pgv_pga = f["records/pgv_pga_s"][()].astype(float)
+                rec = f["records"]
+                R = len(self.records)
+                self.windows = list(zip(_strings(rec["source"]) if "source" in rec else [""] * R,
+                                        rec["start_s"][()] if "start_s" in rec else [0.0] * R,
+                                        rec["end_s"][()] if "end_s" in rec else [math.inf] * R))
+                self.root_attrs = {k: f.attrs[k] for k in f.attrs}
+                self.variants = VariantTable(f["variants"]) if "variants" in f else None
+                groups = f["objects"]
+                items = []
+                for name in groups:
+                    g = groups[name]
+                    attrs = {a: g.attrs[a] for a in g.attrs}
+                    index = int(attrs.get("index", len(items)))
+                    if self.variants is None:
+                        items.append(((index, 0), self._object_data(name, g, attrs, None)))
+                        continue
+                    if int(attrs.get("variants", -1)) != self.variants.count:
+                        raise InputError(f"{path}: object {name}: attribute variants = {attrs.get('variants')}, "
+                                         f"but the cube has {self.variants.count} variants")
+                    for v in range(self.variants.count):
+                        items.append(((index, v), self._object_data(name, g, variant_attrs(g, attrs, v), v)))
+            except KeyError as e:
+                raise InputError(f"{path}: not a Rigid fragility cube (missing {e})")
+        items.sort(key=lambda t: t[0])
+        self.objects = [o for _, o in items]
+        R, S, B = len(self.records), len(self.scales), len(self.edges) - 1
+        for o in self.objects:
+            if o.outcome.shape[:2] != (R, S) or o.fragility.shape != (S, B):
+                raise InputError(f"{path}: object {o.label}: datasets do not match the axes")
+
+    def _object_data(self, name, g, attrs, variant):
+        """One object's (variant's) cells; with variants the datasets' first axis is the variant."""
+        def read(key):
+            return g[key][()] if variant is None else g[key][variant]
+        outcome = read("outcome").astype(np.int8)
+        # the derived datasets are recomputed from the checksummed cells, and stored ones that
+        # disagree are refused: no result rests on a number no checksum covers
+        prob = probability_from_outcome(outcome)
+        frag, cnt = fragility_from_probability(prob, self.pgv_pga, self.edges)
+        for key, mine in (("probability", prob), ("fragility", frag), ("fragility_count", cnt)):
+            if key in g:
+                stored = np.asarray(read(key), float)
+                if stored.shape != mine.shape or not np.allclose(stored, mine, rtol=1e-12, atol=0, equal_nan=True):
+                    raise InputError(f"{self.path}: /objects/{name}/{key} does not follow from its cells "
+                                     f"(the file was altered)")
+        data = ObjectData(name, attrs, outcome, np.asarray(prob, float), np.asarray(frag, float),
+                          np.asarray(cnt, int), variant)
+        if self._wall_times:
+            data.wall_s = np.asarray(read("wall_s"), float)
+        return data
+
+    def base_names(self):
+        names = []
+        for o in self.objects:
+            if o.name not in names:
+                names.append(o.name)
+        return names
+
+    def object(self, name, variant=None):
+        for o in self.objects:
+            if o.name == name and (variant is None or o.variant == variant):
+                return o
+        raise InputError(f"{self.path}: no object {name!r} (objects: {', '.join(self.base_names())})")
+
+    def check_variant(self, variant):
+        """--variant K: refused on a cube without variants and outside 0..V-1."""
+        if variant is None:
+            return
+        if self.variants is None:
+            raise InputError(f"{self.path}: --variant {variant}: the cube has no variants")
+        if not 0 <= variant < self.variants.count:
+            raise InputError(f"{self.path}: --variant {variant} out of range (the cube has "
+                             f"{self.variants.count} variants, 0-{self.variants.count - 1})")
+
+    def select(self, names, variant=None):
+        """The objects named (every variant of each; all objects without names), or only variant K."""
+        self.check_variant(variant)
+        chosen = [o for n in names for o in self.objects if o.name == n] if names else list(self.objects)
+        for n in names or []:
+            self.object(n)  # an unknown name: InputError naming the cube
+        return [o for o in chosen if variant is None or o.variant == variant]
+
+    def bin_of_records(self):
+        return np.array([pgv_pga_bin(self.edges, v) for v in self.pgv_pga], dtype=int)
+
+    def incomplete(self, state):
+        """Why fits of this cube are provisional (cells not run; `state` of
+        cube_files.campaign_state, taken before any lock of ours), or None when it is complete."""
+        total = sum(o.outcome.size for o in self.objects)
+        not_run = sum(int((o.outcome == NOT_RUN).sum()) for o in self.objects)
+        parts = []
+        if not_run:
+            parts.append(f"{not_run} of {total} cells ({100 * not_run / total:.0f} %) not run")
+        if state == "running":
+            parts.append(f"a campaign (or a store) is writing it now ({self.path}.lock is held)")
+        elif state == "stopped" and not_run:
+            parts.append(f"its campaign stopped before the end ({self.path}.journal is there; run the campaign "
+                         f"again to finish it)")
+        return f"{self.path}: incomplete cube: " + "; ".join(parts) if parts else None
+
+
+def pgv_pga_bin(edges, v):
+    """Bin i holds edges[i] <= v < edges[i+1]; the last bin also its upper edge; -1 outside."""
+    if not np.isfinite(v) and not (v == math.inf and edges[-1] == math.inf):
+        return -1
+    B = len(edges) - 1
+    for i in range(B):
+        if edges[i] <= v < edges[i + 1] or (i == B - 1 and v == edges[-1]):
+            return i
+    return -1
+
+
+
+def fragility_from_probability(prob, pgv_pga, edges):
+    R, S = prob.shape
+    B = len(edges) - 1
+    total = np.zeros((S, B))
+    count = np.zeros((S, B), dtype=int)
+    for r in range(R):
+        b = pgv_pga_bin(edges, pgv_pga[r])
+        if b < 0:
+            continue
+        ok = np.isfinite(prob[r])
+        total[ok, b] += prob[r, ok]
+        count[ok, b] += 1
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return np.where(count > 0, total / np.maximum(count, 1), np.nan), count
+
