@@ -1,7 +1,7 @@
 #!/usr/bin/python3
-"""Launcher of `rigid plot` (rigidpy.plot, the same as `python3 -m rigidpy.plot` from this folder): the
-rigid executable runs this file, and the folder a script is in is on Python's path, so the package
-beside it is found without installing it."""
+"""Launcher of `rigid plot`: rigidpy.plot, the same as `python3 -m rigidpy.plot` from this folder.
+The rigid executable runs this file; a script's folder is on Python's path, so the package beside
+it is found without installing it."""
 import sys
 
 from rigidpy.plot import main

@@ -61,8 +61,8 @@ def planted_outcomes(rng, pgv_pga, mu0, mu1, sigma, extras=True):
     return out
 
 
-def write_cube(path, pgv_pga, objects, root_attrs=None):
-    """objects: list of (name, outcome [R,S,A], attrs dict)."""
+def write_cube(path, pgv_pga, objects, root_attrs=None, wall_s=None):
+    """objects: list of (name, outcome [R,S,A], attrs dict); wall_s: each cell's wall time, when given."""
     str_t = h5py.string_dtype("utf-8")
     names = [f"rec{r:03d}" for r in range(len(pgv_pga))]
     with h5py.File(path, "w") as f:
@@ -92,5 +92,7 @@ def write_cube(path, pgv_pga, objects, root_attrs=None):
             g.create_dataset("probability", data=prob)
             g.create_dataset("fragility", data=frag)
             g.create_dataset("fragility_count", data=count)
+            if wall_s is not None:
+                g.create_dataset("wall_s", data=np.full(outcome.shape, float(wall_s)))
         cube_checksums.seal(f)
 

@@ -7,9 +7,9 @@ codes read, and the probability that a rock survived a hazard model over its exp
                        [--pgv-pga S | --pgv-pga-dist lognormal:MEDIAN,BETA] [--site ID]
                        [--confidence 0.95] [--plot PNG] [--json]
 
-Fits (fragility_fit.py): per PGV/PGA bin a lognormal (theta, beta) on the records of the bin, and
+Fits (fit.py): per PGV/PGA bin a lognormal (theta, beta) on the records of the bin, and
 the vector fit P = Phi((u - mu(x)) / sigma(x)) over all records, evaluated at a chosen PGV/PGA;
-90 % intervals by bootstrap over records. Hazard (hazard_curve.py): lambda = E[H(C)], survival
+90 % intervals by bootstrap over records. Hazard (hazard.py): lambda = E[H(C)], survival
 exp(-lambda T). Exit status: 0 done, 2 bad input, 1 internal error.
 
 With variants (a cube with a variant axis: epistemic uncertainty, layout at the top of src/io/cube.cpp):

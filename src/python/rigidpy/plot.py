@@ -13,8 +13,8 @@ per object, the variants' fragility curves with their 5-95 % band and the pooled
 (NAME_variants.png) and the map of the pooled cells (NAME_pooled_map.png); --variant K that
 variant's map and records figures.
 
-`rigid plot ARGS...` runs this file with Debian's /usr/bin/python3 (python3-numpy, python3-h5py,
-python3-matplotlib, python3-scipy). The fit is fragility_fit.py's (shared with `rigid fragility`).
+`rigid plot ARGS...` runs this module (its launcher rigid_plot.py) with Debian's /usr/bin/python3 (python3-numpy, python3-h5py,
+python3-matplotlib, python3-scipy). The fit is fit.py's (shared with `rigid fragility`).
 
 The fit ("this project's fit", NOT the coefficients of Purvance et al. 2008, which we do not have):
 
@@ -24,7 +24,7 @@ The fit ("this project's fit", NOT the coefficients of Purvance et al. 2008, whi
 
 fitted by maximum likelihood to the binomial outcomes of every simulated cell (record, scale,
 rotation): overturned and survived; the stop rule's inferred cells, not-run and failed cells are
-left out (fragility_fit.py says why). PGA is the cell's scale (target
+left out (fit.py says why). PGA is the cell's scale (target
 GMRotI50 PGA, g), PGV/PGA the record's `pgv_pga_s` (scaling does not change it).
 alpha (rad) and p (rad/s) come from the command line (--alpha, --p; one value for all objects or
 NAME=VALUE per object), else from the attributes `alpha_rad` / `p_rad_s` of the object group, else

@@ -8,7 +8,7 @@ The command writes LAB.csv (each test's measured PGA, PGV/PGA and outcome), MOTI
 recording each of the cube's records is) and MEMBERS.json (the calibration's ensemble) beside
 the cube of its designed campaign, then runs this script.
 
-Both fits are the project's scalar probit P = Phi(ln(PGA/theta)/beta) (fragility_fit.py) with
+Both fits are the project's scalar probit P = Phi(ln(PGA/theta)/beta) (fit.py) with
 motions as the resampled unit of the bootstrap: the tests of one motion share its waveform, as
 the cells of one record do in a campaign. Lab: each test is one Bernoulli outcome at its measured
 PGA. Model: at each PGA of the grid, the ensemble's probability of overturning (each member's
