@@ -41,6 +41,7 @@ from scipy import stats  # noqa: E402
 
 import synthetic_cube as tp  # noqa: E402  (the synthetic cube writer of the documented layout)
 from rigidpy import fragility as rf  # noqa: E402
+from rigidpy import fragility_report as report  # noqa: E402
 from rigidpy import plot as rp  # noqa: E402
 from rigidpy import progress  # noqa: E402
 
@@ -69,12 +70,12 @@ def test_scientific_notation():
     for z in (4.0, 6.0, 8.0, 12.0, 20.0, 30.0):
         p = float(stats.norm.sf(z))
         log10 = float(stats.norm.logsf(z)) / math.log(10)
-        text = rf.fmt_probability(p)
+        text = report.fmt_probability(p)
         m = re.fullmatch(r"(\d\.\d+)e([+-]\d+)", text)
         assert (m is not None and int(m.group(2)) == math.floor(log10)
               and abs(float(m.group(1)) - 10 ** (log10 - math.floor(log10))) < 1e-3), f"P = Phi(-{z:g}) prints as {text}: exponent {math.floor(log10)} from norm.logsf"
-    assert rf.fmt_probability(0.4321) == "0.4321" and rf.fmt_probability(0.0) == "0", "ordinary probabilities stay fixed-point (0.4321), zero prints as 0"
-    assert rf.fmt_probability(0.0049) == "4.900e-03", "0.0049 keeps its two significant digits (4.900e-03)"
+    assert report.fmt_probability(0.4321) == "0.4321" and report.fmt_probability(0.0) == "0", "ordinary probabilities stay fixed-point (0.4321), zero prints as 0"
+    assert report.fmt_probability(0.0049) == "4.900e-03", "0.0049 keeps its two significant digits (4.900e-03)"
 
 
 def planted_cube(path, rng, mu0, two_record_bin=True):
@@ -208,10 +209,10 @@ def test_nrml_and_flags(planted):
 
 def test_interval_flag_and_progress():
     scales = (0.1, 2.0)
-    assert rf.fmt_interval(0.3, 0.05, 0.56, scale_range_g=scales).endswith(rf.BEYOND_MARK), "theta interval [0.05, 0.56] with scales from 0.1 g: flagged"
-    assert rf.fmt_interval(0.3, 0.2, 2.5, scale_range_g=scales).endswith(rf.BEYOND_MARK), "theta interval reaching 2.5 g over scales up to 2.0 g: flagged"
-    assert not rf.fmt_interval(0.3, 0.2, 0.5, scale_range_g=scales).endswith(rf.BEYOND_MARK), "an interval inside the scales: not flagged"
-    assert rf.fmt_interval(0.3, 0.0001, 0.5) == "0.300 [1.00e-04, 0.500]", "a lower end of 1e-4 is not 0.000"
+    assert report.fmt_interval(0.3, 0.05, 0.56, scale_range_g=scales).endswith(report.BEYOND_MARK), "theta interval [0.05, 0.56] with scales from 0.1 g: flagged"
+    assert report.fmt_interval(0.3, 0.2, 2.5, scale_range_g=scales).endswith(report.BEYOND_MARK), "theta interval reaching 2.5 g over scales up to 2.0 g: flagged"
+    assert not report.fmt_interval(0.3, 0.2, 0.5, scale_range_g=scales).endswith(report.BEYOND_MARK), "an interval inside the scales: not flagged"
+    assert report.fmt_interval(0.3, 0.0001, 0.5) == "0.300 [1.00e-04, 0.500]", "a lower end of 1e-4 is not 0.000"
 
     now = [0.0]
     out = io.StringIO()

@@ -37,7 +37,6 @@ PGV/PGA range (polynomials are not extrapolated).
 
 Exit status: 0 done, 2 bad input (missing file, no such object, incompatible cubes), 1 internal.
 """
-import argparse
 import csv
 import json
 import math
@@ -49,6 +48,7 @@ try:
     from . import files as cube_files
     from . import fit as fragility_fit
     from .cube import Cube, ObjectData, pgv_pga_bin
+    from .command_line import OneLineParser
     from .errors import InputError
     from .figures import INPUTS, file_stem, plot_diff, plot_map, plot_records, plot_variant_band, safe_name
     from .fit import fit_sigma
@@ -408,13 +408,6 @@ def cmd_table(args):
     print("\n".join(lines))
     print(f"wrote {out}, {csv_path}")
     return 0
-
-
-class OneLineParser(argparse.ArgumentParser):
-    """A bad command line is bad input like any other: one line naming the problem, exit 2."""
-
-    def error(self, message):
-        self.exit(2, f"{self.prog}: error: {message} (--help for the options)\n")
 
 
 def build_parser():

@@ -1,0 +1,41 @@
+"""What the commands share on their command lines: the parser whose errors are one line and exit
+2, numbers checked against their range, and the warning of a cube whose campaign has not run every
+cell."""
+import argparse
+import math
+import sys
+
+from .errors import InputError
+
+
+class OneLineParser(argparse.ArgumentParser):
+    """A bad command line is bad input like any other: one line naming the problem, exit 2."""
+
+    def error(self, message):
+        self.exit(2, f"{self.prog}: error: {message} (--help for the options)\n")
+
+
+
+
+def number_in(text, option, low=None, high=None):
+    try:
+        v = float(text)
+    except ValueError:
+        raise InputError(f"{option} {text!r}: expected a number")
+    if not math.isfinite(v) or (low is not None and v < low) or (high is not None and v > high):
+        raise InputError(f"{option} {text!r}: must be in [{low}, {high}]")
+    return v
+
+
+def check_completeness(cube, state, args):
+    """A cube whose campaign has not run every cell: refused with --require-complete, else its
+    warning kept for warn_incomplete (printed once the fit stands, so bad input stays one line)."""
+    problem = cube.incomplete(state)
+    if problem is not None and args.require_complete:
+        raise InputError(problem + " (--require-complete)")
+    args.incomplete = problem
+
+
+def warn_incomplete(args):
+    if getattr(args, "incomplete", None):
+        sys.stderr.write(f"rigid {args.command}: warning: {args.incomplete}; the fits use the cells run so far\n")
