@@ -8,6 +8,7 @@ wrote (test_cube.py, test_variant_cube.py); --shared, the read-only reference da
 ../shared beside the checkout; tests that need it are skipped with a message when it is absent).
 A run in which every test was skipped exits 77, CTest's SKIP_RETURN_CODE.
 """
+import contextlib
 import os
 import subprocess
 import sys
@@ -110,3 +111,16 @@ def cube_path(request):
 def tmp(tmp_path):
     """A fresh directory for one test, as a str (removed by pytest's own retention rules)."""
     return str(tmp_path)
+
+
+@pytest.fixture
+def subtest():
+    """subtest(**case): names the case (engine, object, ...) in a failing assertion inside it, as
+    unittest's subTest did; the test stops at the first failure."""
+    @contextlib.contextmanager
+    def case(**where):
+        try:
+            yield
+        except AssertionError as e:
+            raise AssertionError(f"{where}: {e}") from e
+    return case

@@ -58,14 +58,14 @@ class TestAnalysisReadyCube:
         yield
         cls.f.close()
 
-    def test_xarray_opens_every_object_group_with_both_engines(self):
+    def test_xarray_opens_every_object_group_with_both_engines(self, subtest):
         records = list(self.f["axes/record"].asstr()[()])
         scales = self.f["axes/scale_g"][()]
         rotations = len(self.f["axes/rotation"])
         assert self.objects
         for engine in ENGINES:
             for name in self.objects:
-                with self.subTest(engine=engine, object=name), \
+                with subtest(engine=engine, object=name), \
                         xr.open_dataset(self.cube, group=f"objects/{name}", engine=engine) as ds:
                     assert ds["outcome"].dims == ("record", "scale", "rotation")
                     assert list(ds["record"].values) == records
@@ -87,7 +87,7 @@ class TestAnalysisReadyCube:
                     p = ds["probability"].sel(scale=scales[-1], record=records[0]).item()
                     assert same(p, g["probability"][0, -1])
 
-    def test_every_group_opens_without_phony_dimensions(self):
+    def test_every_group_opens_without_phony_dimensions(self, subtest):
         # netCDF-4 names a dimension without a dimension scale "phony_dim_N" and xarray refuses
         # the group unless asked for phony_dims; every group the cube has must open as is
         groups = []
@@ -98,7 +98,7 @@ class TestAnalysisReadyCube:
             for group in groups:
                 if not any(isinstance(v, h5py.Dataset) for v in self.f[group].values()):
                     continue  # attributes and subgroups only
-                with self.subTest(engine=engine, group=group), \
+                with subtest(engine=engine, group=group), \
                         xr.open_dataset(self.cube, group=group, engine=engine) as ds:
                     phony = [d for d in ds.dims if str(d).startswith("phony_dim")]
                     assert phony == [], f"{group}: {dict(ds.sizes)}"
@@ -120,7 +120,7 @@ class TestAnalysisReadyCube:
         assert "ETA" in self.campaign_log
         assert "messages" not in self.campaign_log
 
-    def test_demo_scales_select_by_the_decimals_the_job_states(self):
+    def test_demo_scales_select_by_the_decimals_the_job_states(self, subtest):
         # jobs/demo.toml's scales "0.1:1.0:0.1", read here as decimals (the oracle: Python's
         # Decimal, not the tool's parser); --noop runs no physics, the axes are the demo's own
         job = os.path.join(self.repo, "jobs", "demo.toml")
@@ -137,7 +137,7 @@ class TestAnalysisReadyCube:
             assert list(f["axes/scale_g"][()]) == stated
         for engine in ENGINES:
             for name in objects:
-                with self.subTest(engine=engine, object=name), \
+                with subtest(engine=engine, object=name), \
                         xr.open_dataset(cube, group=f"objects/{name}", engine=engine) as ds:
                     for v in stated:
                         assert ds.outcome.sel(scale=v).sizes == {"record": 9, "rotation": 2}, v
@@ -160,11 +160,11 @@ class TestAnalysisReadyCube:
         assert "tasks sent to 1 worker ranks in" in logs[True]
         assert "journal syncs" in logs[True]
 
-    def test_rocking_parameters_travel_with_each_single_block_object(self):
+    def test_rocking_parameters_travel_with_each_single_block_object(self, subtest):
         # rectangular blocks: the weakest of the 16 directions is across the width, where the
         # per-azimuth alpha equals alpha itself; the support polygon is the base's four corners
         for name in self.objects:
-            with self.subTest(object=name), xr.open_dataset(self.cube, group=f"objects/{name}", engine="h5netcdf") as ds:
+            with subtest(object=name), xr.open_dataset(self.cube, group=f"objects/{name}", engine="h5netcdf") as ds:
                 if "alpha_rad" not in ds.attrs:
                     continue
                 alphas = np.asarray(ds.attrs["alpha_by_azimuth_rad"])

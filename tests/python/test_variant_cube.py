@@ -52,13 +52,13 @@ class TestVariantCube:
             assert corners == [-0.1, -0.2, 0.1, -0.2, 0.1, 0.2, -1.0 / 7.0, 0.2]
             assert list(f["objects/rock_b/support_polygon_m"].asstr()[()]) == ["", "", ""]
 
-    def test_xarray_opens_a_variant_group_with_both_engines(self):
+    def test_xarray_opens_a_variant_group_with_both_engines(self, subtest):
         with h5py.File(self.cube, "r") as f:
             raw = {name: f[f"objects/{name}/outcome"][()] for name in f["objects"]}
             records = list(f["axes/record"].asstr()[()])
         for engine in ENGINES:
             for name, outcome in raw.items():
-                with self.subTest(engine=engine, object=name), \
+                with subtest(engine=engine, object=name), \
                         xr.open_dataset(self.cube, group=f"objects/{name}", engine=engine) as ds:
                     assert ds["outcome"].dims == ("variant", "record", "scale", "rotation")
                     assert ds["probability"].dims == ("variant", "record", "scale")
