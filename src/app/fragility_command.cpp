@@ -25,12 +25,14 @@ void register_fragility_script_command(CLI::App& app, const std::string& name, c
   cmd->set_help_flag();
   cmd->callback([cmd, name] {
     const std::string script = find_plot_helper(kScript);
-    if (script.empty()) throw InputError("", 0, std::string("cannot find ") + kScript + " (src/python beside the build)");
+    if (script.empty())
+      throw InputError("", 0, std::string("cannot find ") + kScript + " (src/python beside the build)");
     std::vector<std::string> args{name};
     for (const std::string& a : cmd->remaining()) args.push_back(a);
     exec_python(script, args,
-                "`rigid " + name + "` needs Debian's python3 with python3-numpy, python3-h5py, python3-scipy, "
-                "python3-statsmodels and python3-matplotlib (setup.sh installs them)");
+                "`rigid " + name +
+                    "` needs Debian's python3 with python3-numpy, python3-h5py, python3-scipy, "
+                    "python3-statsmodels and python3-matplotlib (setup.sh installs them)");
   });
 }
 

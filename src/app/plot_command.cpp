@@ -28,8 +28,7 @@ namespace {
 
 std::string find_plot_script() {
   if (const char* env = std::getenv("RIGID_PLOT_SCRIPT"); env != nullptr && *env != '\0') {
-    if (first_file({env}).empty())
-      throw InputError("", 0, std::string("RIGID_PLOT_SCRIPT=") + env + ": no such file");
+    if (first_file({env}).empty()) throw InputError("", 0, std::string("RIGID_PLOT_SCRIPT=") + env + ": no such file");
     return env;
   }
   const std::vector<std::string> candidates = plot_helper_candidates("rigid_plot.py");
