@@ -338,10 +338,11 @@ def command_lines(c):
 
 
 def planted_cube(d):
-    """A cube of outcomes drawn from a planted probit model (tests/python/test_plot.py's writer,
-    with the checksums of the current schema): a fit that has a vector estimate."""
+    """A cube of outcomes drawn from a planted probit model (tests/python/synthetic_cube.py's
+    writer, with the checksums of the current schema): a fit that has a vector estimate."""
+    sys.path.insert(0, os.path.join(SOURCE, "src", "python"))  # rigidpy, for the checksums
     sys.path.insert(0, os.path.join(SOURCE, "tests", "python"))
-    import test_plot as tp
+    import synthetic_cube as tp
     rng = np.random.default_rng(20261126)
     pgv = np.exp(rng.uniform(np.log(0.035), np.log(0.5), tp.R))
     outcome = tp.planted_outcomes(rng, pgv, tp.MU0, tp.MU1, tp.SIGMA, extras=False)
