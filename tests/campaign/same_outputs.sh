@@ -21,10 +21,10 @@ if [[ ${1:-} == --compare ]]; then
   for ranks in 1 2; do
     for c in "${cubes[@]}"; do
       f=$c.np$ranks.h5
-      if /usr/bin/python3 "$repo/tests/python/compare_cubes.py" "$2/$f" "$3/$f" >/dev/null 2>&1; then
+      if /usr/bin/python3 "$repo/tests/python/compare_cubes.py" --other-build "$2/$f" "$3/$f" >/dev/null 2>&1; then
         echo "same: $f"
       else
-        echo "DIFFERENT: $f"; /usr/bin/python3 "$repo/tests/python/compare_cubes.py" "$2/$f" "$3/$f" | head -n 12
+        echo "DIFFERENT: $f"; /usr/bin/python3 "$repo/tests/python/compare_cubes.py" --other-build "$2/$f" "$3/$f" | head -n 12
         status=1
       fi
     done

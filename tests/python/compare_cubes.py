@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Compares two Rigid fragility cubes (HDF5) dataset by dataset, bit for bit.
 
-    compare_cubes.py A.h5 B.h5 [--show N]
+    compare_cubes.py A.h5 B.h5 [--show N] [--other-build]
 
 Exit status: 0 identical, 1 different, 2 unreadable file or bad usage. Prints the first
 differences (up to N per dataset, default 5).
@@ -11,6 +11,8 @@ their bit patterns, so NaN equals NaN only with the same bits); the attributes o
 every group and of every dataset. Ignored: datasets named in IGNORED_DATASETS (wall-clock times
 differ between runs), root attributes named in IGNORED_ROOT_ATTRS, and HDF5's dimension-scale
 bookkeeping (DIMENSION_LIST, REFERENCE_LIST), which holds object addresses, not data.
+--other-build also ignores the root's software_version (the cubes of two builds of the same
+results, as tests/campaign/same_outputs.sh compares them).
 Needs numpy and h5py (Debian: /usr/bin/python3 with python3-h5py).
 """
 import sys
@@ -86,7 +88,7 @@ def compare_attrs(path, x, y, ignored, show, report):
         report(where, differences(values(x.attrs[n]), values(y.attrs[n]), show))
 
 
-def compare(path_a, path_b, show=5, out=sys.stdout):
+def compare(path_a, path_b, show=5, ignored_root=IGNORED_ROOT_ATTRS, out=sys.stdout):
     """Returns True when the two cubes are identical (up to the ignored items)."""
     different = False
 
@@ -98,7 +100,7 @@ def compare(path_a, path_b, show=5, out=sys.stdout):
                 print(f"{where}: {line}", file=out)
 
     with h5py.File(path_a, "r") as a, h5py.File(path_b, "r") as b:
-        compare_attrs("", a, b, IGNORED_ROOT_ATTRS, show, report)
+        compare_attrs("", a, b, ignored_root, show, report)
         oa, ob = objects(a), objects(b)
         for name in sorted(set(oa) | set(ob)):
             if name.rsplit("/", 1)[-1] in IGNORED_DATASETS:
@@ -119,6 +121,10 @@ def compare(path_a, path_b, show=5, out=sys.stdout):
 def main(argv):
     args = list(argv[1:])
     show = 5
+    ignored_root = set(IGNORED_ROOT_ATTRS)
+    if "--other-build" in args:
+        args.remove("--other-build")
+        ignored_root.add("software_version")
     if "--show" in args:
         i = args.index("--show")
         try:
@@ -131,7 +137,7 @@ def main(argv):
         print(__doc__.strip().splitlines()[2].strip(), file=sys.stderr)
         return 2
     try:
-        same = compare(args[0], args[1], show)
+        same = compare(args[0], args[1], show, ignored_root)
     except OSError as e:
         print(f"compare_cubes.py: {e}", file=sys.stderr)
         return 2

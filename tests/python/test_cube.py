@@ -199,8 +199,8 @@ class TestCompareCubes:
                 change(f)
         return p
 
-    def run_compare(self, b):
-        return subprocess.run([sys.executable, COMPARE, self.fixture, b], capture_output=True, text=True)
+    def run_compare(self, b, *options):
+        return subprocess.run([sys.executable, COMPARE, *options, self.fixture, b], capture_output=True, text=True)
 
     def test_identical(self):
         r = self.run_compare(self.copy("same.h5"))
@@ -240,6 +240,18 @@ class TestCompareCubes:
         for name, change in (("s.h5", rename), ("a.h5", attr), ("d.h5", dataset_attr), ("m.h5", drop)):
             r = self.run_compare(self.copy(name, change))
             assert r.returncode == 1, f"{name}: {r.stdout}"
+
+    def test_another_build_differs_only_in_its_version(self):
+        def version(f):
+            f.attrs["software_version"] = "another build"
+        other = self.copy("v.h5", version)
+        assert self.run_compare(other).returncode == 1
+        r = self.run_compare(other, "--other-build")
+        assert r.returncode == 0, r.stdout + r.stderr
+        def version_and_value(f):
+            version(f)
+            f["objects/rock_b/max_slip_m"][2, 3, 1] = 0.5
+        assert self.run_compare(self.copy("vv.h5", version_and_value), "--other-build").returncode == 1
 
     def test_unreadable_file(self):
         bad = os.path.join(self.tmp, "bad.h5")
