@@ -1,7 +1,7 @@
 #pragma once
 /// Rank 0 of a campaign: hands out tasks, records and journals every result, fsyncs the journal
 /// every checkpoint interval, rewrites the cube on a background thread (amortized: see
-/// src/campaign/master.cpp), on a stop signal and at the end, and stops cleanly on a signal or a
+/// src/campaign/checkpointer.cpp), on a stop signal and at the end, and stops cleanly on a signal or a
 /// failed write.
 #include <optional>
 #include <vector>
