@@ -110,7 +110,7 @@ struct Campaign {
 // A result whose every value is its own (so a mix-up between tasks shows).
 TaskResult result(long task, std::int32_t outcome = kSurvived) {
   TaskResult r;
-  std::memset(&r, 0, sizeof r);  // padding too: results are compared byte for byte
+  std::memset(static_cast<void*>(&r), 0, sizeof r);  // padding too: results are compared byte for byte
   r.task = task;
   r.outcome = outcome;
   r.wall_s = 0.001 * double(task + 1);
