@@ -56,7 +56,8 @@ constexpr std::uint64_t kJournalFloorBytes = 64u << 20;
 Checkpointer::Checkpointer(std::string output, std::string key, const Plan& restored, CubeOf cube_of,
                            const std::vector<TaskResult>& carried, std::atomic<bool>& stop)
     : output_(std::move(output)), cube_of_(std::move(cube_of)), stop_(stop), shadow_(restored) {
-  journal_limit_bytes_ = std::max<std::uint64_t>(kJournalFloorBytes, std::uint64_t(restored.size()) * Journal::record_bytes());
+  journal_limit_bytes_ =
+      std::max<std::uint64_t>(kJournalFloorBytes, std::uint64_t(restored.size()) * Journal::record_bytes());
   std::lock_guard<std::mutex> lock(mutex_);
   try {
     journal_ = std::make_unique<Journal>(output_ + ".journal", std::move(key), carried);
@@ -160,7 +161,8 @@ bool Checkpointer::write_shadow_cube() {
     io::write_cube(output_, cube_of_(shadow_));
   } catch (const std::exception& e) {
     std::lock_guard<std::mutex> lock(mutex_);
-    fail(output_ + ": checkpoint failed: " + reason_of(e, output_) + " (results kept in the journal; run again to resume)");
+    fail(output_ + ": checkpoint failed: " + reason_of(e, output_) +
+         " (results kept in the journal; run again to resume)");
     return false;
   }
   return true;

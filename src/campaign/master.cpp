@@ -40,8 +40,9 @@ class Master {
         ranks_(ranks),
         grace_s_(options.grace >= 0 ? options.grace : context.job.grace),
         pool_(plan, stopping_),
-        checkpointer_(context.job.output, context.inputs.combined, plan,
-                      [&context](const Plan& p) { return make_cube(context, p); }, carried, stopping_),
+        checkpointer_(
+            context.job.output, context.inputs.combined, plan,
+            [&context](const Plan& p) { return make_cube(context, p); }, carried, stopping_),
         done_at_start_(plan.done()) {}
 
   // an exception out of run(): the threads end (after their current task) before the parts go
@@ -183,12 +184,13 @@ MasterResult Master::finish(const Dispatcher& dispatcher) {
   }
   result.cube = pool_.read([this](const Plan& p) { return make_cube(context_, p); });
   if (ranks_ > 1 && options_.verbose) {  // dispatch internals: for whoever tunes the dispatch
-    log_status("{} tasks sent to {} worker ranks in {} messages ({:.0f} tasks/s over {:.2f} s)", dispatcher.tasks_sent(),
-               ranks_ - 1, dispatcher.messages_sent(), double(dispatcher.tasks_sent()) / seconds_since(started_),
-               seconds_since(started_));
+    log_status("{} tasks sent to {} worker ranks in {} messages ({:.0f} tasks/s over {:.2f} s)",
+               dispatcher.tasks_sent(), ranks_ - 1, dispatcher.messages_sent(),
+               double(dispatcher.tasks_sent()) / seconds_since(started_), seconds_since(started_));
     const CheckpointStats s = checkpointer_.stats();
-    log_status("checkpoints: {} journal syncs, {} cube rewrites (the last {:.2f} s), dispatch held at most {:.2f} ms by one",
-               s.syncs, s.rewrites, s.last_rewrite_s, 1e3 * s.longest_stall_s);
+    log_status(
+        "checkpoints: {} journal syncs, {} cube rewrites (the last {:.2f} s), dispatch held at most {:.2f} ms by one",
+        s.syncs, s.rewrites, s.last_rewrite_s, 1e3 * s.longest_stall_s);
   }
   if (stopping_) {
     log_status("stopped; checkpoint written to {}; run the same command to resume", context_.job.output);

@@ -27,8 +27,8 @@ Handout TaskPool::take_one() {
 Handout TaskPool::take_batch(int ranks) {
   std::lock_guard<std::mutex> lock(mutex_);
   const long left = plan_.size() - plan_.done() - plan_.in_flight();
-  const long want = std::clamp(long(0.25 / std::max(mean_wall_s_, 1e-6)), 1L,
-                               std::max(1L, std::min(256L, left / (2L * ranks))));
+  const long want =
+      std::clamp(long(0.25 / std::max(mean_wall_s_, 1e-6)), 1L, std::max(1L, std::min(256L, left / (2L * ranks))));
   return take(want);
 }
 

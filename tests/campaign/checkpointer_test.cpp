@@ -86,9 +86,7 @@ struct Campaign {
     m.x.assign(100, 0.0);
     return m;
   }
-  Plan plan() const {
-    return Plan(1, 1, int(job.scales_g.size()), job.rotations, job.stop_after, {1.0});
-  }
+  Plan plan() const { return Plan(1, 1, int(job.scales_g.size()), job.rotations, job.stop_after, {1.0}); }
   CampaignContext context() const { return {job, model, records, inputs}; }
   Checkpointer::CubeOf cube_of() const {
     return [this](const Plan& p) { return make_cube(context(), p); };

@@ -38,7 +38,8 @@ std::vector<std::int64_t> run_alone(Plan& plan, std::atomic<bool>& stopping, std
       },
       false);
   const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(30);
-  while (!worker.done() && std::chrono::steady_clock::now() < until) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  while (!worker.done() && std::chrono::steady_clock::now() < until)
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
   EXPECT_TRUE(worker.done()) << "the worker did not end";
   stopping = true;  // ends it if it did not
   worker.join();
@@ -49,7 +50,8 @@ std::vector<std::int64_t> run_alone(Plan& plan, std::atomic<bool>& stopping, std
 TEST(LocalWorker, RunsEveryTaskOnceWithoutTheStopRule) {
   Plan plan(2, 2, 3, 2, 0, {1.0, 2.0});  // 24 cells
   std::atomic<bool> stopping{false};
-  std::vector<std::int64_t> ran = run_alone(plan, stopping, static_cast<std::int32_t>(scenario::CellOutcome::overturned));
+  std::vector<std::int64_t> ran =
+      run_alone(plan, stopping, static_cast<std::int32_t>(scenario::CellOutcome::overturned));
   std::sort(ran.begin(), ran.end());
   std::vector<std::int64_t> every(24);
   std::iota(every.begin(), every.end(), 0);
@@ -62,7 +64,8 @@ TEST(LocalWorker, NeverRunsCellsTheStopRuleInfers) {
   // stop after 1 fully overturned scale: every cell overturns, so only scale 0 is simulated
   Plan plan(1, 2, 4, 3, 1, {1.0, 1.0});
   std::atomic<bool> stopping{false};
-  const std::vector<std::int64_t> ran = run_alone(plan, stopping, static_cast<std::int32_t>(scenario::CellOutcome::overturned));
+  const std::vector<std::int64_t> ran =
+      run_alone(plan, stopping, static_cast<std::int32_t>(scenario::CellOutcome::overturned));
   EXPECT_EQ(ran.size(), 2u * 3u);  // 2 records x 3 rotations at scale 0
   for (std::int64_t t : ran) EXPECT_EQ(plan.cell(t).scale, 0) << "task " << t;
 }

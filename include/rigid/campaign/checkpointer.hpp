@@ -67,9 +67,9 @@ class Checkpointer {
   CheckpointStats stats() const;
 
  private:
-  void fail(const std::string& message);       // caller holds mutex_
+  void fail(const std::string& message);         // caller holds mutex_
   void journal_failed(const std::exception& e);  // caller holds mutex_
-  void flush_locked();                          // caller holds mutex_
+  void flush_locked();                           // caller holds mutex_
   // the rewrite's steps; each takes mutex_ for short spells and adds that time to `stall_s`
   bool take_snapshot(double& stall_s);
   bool write_shadow_cube();
@@ -88,7 +88,7 @@ class Checkpointer {
   std::uint64_t journal_limit_bytes_ = 0;  // the journal's size that forces a rewrite
 
   std::mutex rewrite_mutex_;  // held for a whole rewrite; guards shadow_
-  Plan shadow_;  // the plan as of the last snapshot, without tasks in flight
+  Plan shadow_;               // the plan as of the last snapshot, without tasks in flight
 };
 
 }  // namespace rigid::campaign
