@@ -1,4 +1,4 @@
-// What a checkpoint costs the campaign master (src/campaign/master.cpp), against the cube's size:
+// What a checkpoint costs the campaign master (src/campaign/checkpointer.cpp), against the cube's size:
 //   (a) the checkpoint proper: appending the results of one checkpoint interval to the journal
 //       and fsyncing it (what the master does every 30 s; the journal does not depend on the cube),
 //   (b) the whole-cube rewrite (io::write_cube, now a background compaction) and the period the
@@ -37,7 +37,7 @@ using rigid::campaign::TaskResult;
 
 constexpr double kResultsPerSecond = 2000;  // 500 ranks, 0.25-s tasks
 constexpr double kInterval = 30;            // s
-constexpr double kRewriteFactor = 20;       // master.cpp's K
+constexpr double kRewriteFactor = 20;       // checkpointer.cpp's K
 
 double seconds(const std::function<void()>& f) {
   const auto t0 = Clock::now();

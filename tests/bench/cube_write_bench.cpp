@@ -1,4 +1,4 @@
-// What one whole-cube rewrite costs (io::write_cube: the compaction of src/campaign/master.cpp,
+// What one whole-cube rewrite costs (io::write_cube: the compaction of src/campaign/checkpointer.cpp,
 // no longer the checkpoint itself, see checkpoint_bench.cpp): its time grows with the campaign's
 // size (uncertainty campaigns reach 5e6 cells). Cubes of the study's layout (study_cube.hpp).
 //

@@ -1,4 +1,4 @@
-// The journal as the campaign's durability layer (src/campaign/master.cpp): a checkpoint is a
+// The journal as the campaign's durability layer (src/campaign/checkpointer.cpp): a checkpoint is a
 // flush and an fsync of what was appended, through a duplicated descriptor so the fsync needs no
 // lock; a reset after a cube rewrite is written beside the journal in use (start_reset, while
 // results are still appended to the old one), then completed with what arrived meanwhile and

@@ -3,7 +3,7 @@
 /// OUTPUT.journal and flushed (a kill of the process loses nothing), and fsynced at every
 /// checkpoint (a crash of the node loses at most one checkpoint interval); on resume the cube is
 /// read and the journal's valid records are replayed. After each whole-cube rewrite (a
-/// compaction, src/campaign/master.cpp) the journal starts over with what the cube lacks.
+/// compaction, src/campaign/checkpointer.cpp) the journal starts over with what the cube lacks.
 ///
 /// Format (host byte order): a header of magic "RIGIDJ03", the 64-character key (the campaign's
 /// combined input digest) and a CRC-32 of both; then fixed-size records of a TaskResult (with

@@ -1,8 +1,9 @@
 #pragma once
 /// Rank 0 of a campaign: hands out tasks, records and journals every result, fsyncs the journal
 /// every checkpoint interval, rewrites the cube on a background thread (amortized: see
-/// src/campaign/master.cpp), on a stop signal and at the end, and stops cleanly on a signal or a
-/// failed write.
+/// src/campaign/checkpointer.cpp), on a stop signal and at the end, and stops cleanly on a signal
+/// or a failed write. Wired from task_pool, local_worker, dispatcher, checkpointer and
+/// checkpoint_writer (src/campaign/master.cpp).
 #include <optional>
 #include <vector>
 
