@@ -327,7 +327,7 @@ bool RigidStepper::solve_impulses(WorldCore& world, double dt, double smallest_r
   solver.angular_tolerance = solver.velocity_tolerance / smallest_radius;
   solver.max_iterations = world.settings.solver_max_sweeps;
   const SolverResult result = solve_velocities(solver_bodies_, rows_, patches_, solver, solver_scratch_);
-  if (!result.converged) ++world.stats.unconverged_solves;
+  if (!result.converged) ++world.stats.unconverged_steps;
   world.stats.max_solver_sweeps = std::max(world.stats.max_solver_sweeps, result.iterations);
   const bool correct = std::any_of(rows_.begin(), rows_.end(), [](const ContactRow& r) { return r.correction_velocity > 0; });
   if (correct) solve_correction(solver_bodies_, pseudo_bodies_, rows_, solver, solver_scratch_);

@@ -56,7 +56,7 @@ struct StepSettings {
   /// Gravitational acceleration (unit: m/s^2), along -z.
   double gravity = kGravity;
   /// Rigid model: sweeps of the contact solve before it gives up (SolverSettings::max_iterations);
-  /// a step that reaches it is counted in StepStats::unconverged_solves.
+  /// a step that reaches it is counted in StepStats::unconverged_steps.
   int solver_max_sweeps = 200;
 };
 
@@ -98,7 +98,7 @@ struct StepStats {
   long sliding_steps = 0;    ///< of those, evaluations where a subcontact reached mu F_n
   /// Rigid model: steps whose contact solve stopped at its sweep cap (StepSettings::
   /// solver_max_sweeps) without converging; their impulses are the last sweep's.
-  long unconverged_solves = 0;
+  long unconverged_steps = 0;
   int max_solver_sweeps = 0;  ///< rigid model: most sweeps one step's contact solve took
 };
 
