@@ -93,7 +93,8 @@ double total_normal(const std::vector<ContactRow>& rows) {
 TEST(ContactSolver, CubeOnAPlaneCarriesOneStepOfItsWeight) {
   auto bodies = ground_and_cube(Vec3(0, 0, -kG * kDt));
   auto rows = four_corners();
-  std::vector<FrictionPatch> patches;
+  // the solver sweeps rows patch by patch: a frictionless patch holds them
+  std::vector<FrictionPatch> patches = {bottom_face(0.0)};
   const auto result = solve(bodies, rows, patches, tight());
   ASSERT_TRUE(result.converged);
   // brought to rest: the impulse that cancels one step of gravity, m g dt, in total
@@ -118,7 +119,9 @@ TEST(ContactSolver, TwoSymmetricSupportsShareTheWeightEqually) {
   // each carries half the weight
   auto bodies = ground_and_cube(Vec3(0, 0, -kG * kDt));
   std::vector<ContactRow> rows = {support(kHalf, 0), support(-kHalf, 0)};
-  std::vector<FrictionPatch> patches;
+  std::vector<FrictionPatch> patches = {bottom_face(0.0)};
+  patches[0].row_count = 2;
+  patches[0].radius = kHalf;
   const auto result = solve(bodies, rows, patches, tight());
   ASSERT_TRUE(result.converged);
   const double half_weight = 0.5 * kMass * kG * kDt;
