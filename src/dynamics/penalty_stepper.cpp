@@ -6,7 +6,9 @@
 namespace rigid::dynamics {
 
 PenaltyStepper::PenaltyStepper(const WorldCore& world)
-    : springs_(world.pairs.size()), forces_(world.defs.size(), Vec3::Zero()), torques_(world.defs.size(), Vec3::Zero()) {
+    : springs_(world.pairs.size()),
+      forces_(world.defs.size(), Vec3::Zero()),
+      torques_(world.defs.size(), Vec3::Zero()) {
   for (std::size_t j = 0; j < world.pairs.size(); ++j) {
     const std::size_t cap = world.pairs[j].points.capacity();
     springs_[j].subs.reserve(cap);

@@ -37,7 +37,8 @@ RigidStepper::RigidStepper(const WorldCore& world) : impulses_(world.pairs.size(
   patches_.reserve(pairs);
   member_begin_.reserve(pairs + 1);
   member_pairs_.reserve(pairs);
-  has_compound_ = std::any_of(world.defs.begin(), world.defs.end(), [](const BodyDef& d) { return d.pieces.size() > 1; });
+  has_compound_ =
+      std::any_of(world.defs.begin(), world.defs.end(), [](const BodyDef& d) { return d.pieces.size() > 1; });
   if (has_compound_) {
     merged_patches_.reserve(pairs);
     merged_members_.reserve(pairs);
@@ -50,7 +51,8 @@ double RigidStepper::subcontact_load(const WorldCore& world, std::size_t pair, s
   return impulses_[pair].subs[k].normal_impulse / world.dt;
 }
 
-void RigidStepper::step(WorldCore& world, double dt, const Vec3& ground_velocity_start, const Vec3& ground_velocity_end) {
+void RigidStepper::step(WorldCore& world, double dt, const Vec3& ground_velocity_start,
+                        const Vec3& ground_velocity_end) {
   // the pedestals move by the exact integral of the ground velocity over the step; the contacts
   // see that mean velocity, so a block stuck to a pedestal moves exactly with it
   const Vec3 ground_velocity = 0.5 * (ground_velocity_start + ground_velocity_end);
@@ -204,8 +206,9 @@ void RigidStepper::gather_contacts(WorldCore& world, double dt, const Vec3& grou
     patch.rb = centre - sb.position;
     set_tangents(patch);
     // last step's friction of the pair, carried into the new tangent plane
-    patch.impulse = Eigen::Vector3d(patch.tangent1.dot(kept.friction_impulse), patch.tangent2.dot(kept.friction_impulse),
-                                    patch.radius > 0 ? kept.twist_impulse : 0.0);
+    patch.impulse =
+        Eigen::Vector3d(patch.tangent1.dot(kept.friction_impulse), patch.tangent2.dot(kept.friction_impulse),
+                        patch.radius > 0 ? kept.twist_impulse : 0.0);
     patches_.push_back(patch);
     member_begin_.push_back(static_cast<int>(member_pairs_.size()));
     member_pairs_.push_back(static_cast<int>(j));
@@ -277,8 +280,8 @@ void RigidStepper::merge_piece_patches(const WorldCore& world) {
         friction += impulses_[merged_members_[m]].friction_impulse;
         twist += impulses_[merged_members_[m]].twist_impulse;
       }
-      patch.impulse = Eigen::Vector3d(patch.tangent1.dot(friction), patch.tangent2.dot(friction),
-                                      patch.radius > 0 ? twist : 0.0);
+      patch.impulse =
+          Eigen::Vector3d(patch.tangent1.dot(friction), patch.tangent2.dot(friction), patch.radius > 0 ? twist : 0.0);
     }
     merged_patches_.push_back(patch);
   }
@@ -329,7 +332,8 @@ bool RigidStepper::solve_impulses(WorldCore& world, double dt, double smallest_r
   const SolverResult result = solve_velocities(solver_bodies_, rows_, patches_, solver, solver_scratch_);
   if (!result.converged) ++world.stats.unconverged_steps;
   world.stats.max_solver_sweeps = std::max(world.stats.max_solver_sweeps, result.iterations);
-  const bool correct = std::any_of(rows_.begin(), rows_.end(), [](const ContactRow& r) { return r.correction_velocity > 0; });
+  const bool correct =
+      std::any_of(rows_.begin(), rows_.end(), [](const ContactRow& r) { return r.correction_velocity > 0; });
   if (correct) solve_correction(solver_bodies_, pseudo_bodies_, rows_, solver, solver_scratch_);
   return correct;
 }
@@ -381,8 +385,8 @@ void RigidStepper::store_impulses(WorldCore& world, double dt, const Vec3& groun
     if (world.defs[patch.b].fixed) on_pedestals += impulse;
     if (total > 0) ++world.stats.contact_steps;
     // sliding: the friction on its limit and the patch centre still slipping at the end
-    const double size = std::hypot(patch.impulse.x(), patch.impulse.y(),
-                                   patch.radius > 0 ? patch.impulse.z() / patch.radius : 0.0);
+    const double size =
+        std::hypot(patch.impulse.x(), patch.impulse.y(), patch.radius > 0 ? patch.impulse.z() / patch.radius : 0.0);
     if (total > 0 && size >= patch.friction * total * (1 - 1e-9)) {
       Vec3 u = relative_velocity(solver_bodies_[patch.a], solver_bodies_[patch.b], patch.ra, patch.rb);
       u -= patch.normal.dot(u) * patch.normal;

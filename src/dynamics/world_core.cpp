@@ -196,8 +196,7 @@ bool WorldCore::pair_apart(PairContact& p, double margin) {
   return false;
 }
 
-void WorldCore::carry_with_ground(double t_end, const Vec3& displacement, const Vec3& v_start,
-                                  const Vec3& v_end) {
+void WorldCore::carry_with_ground(double t_end, const Vec3& displacement, const Vec3& v_start, const Vec3& v_end) {
   const Vec3 dv = v_end - v_start;
   for (std::size_t i = 0; i < defs.size(); ++i) {
     auto& s = states[i];

@@ -46,10 +46,11 @@ void write_axes_and_records(Writer& w, const Cube& c) {
   w.group("/axes");
   Hid record = w.strings("/axes/record", record_names(c), "record (set) names, in job order");
   w.make_scale(record, "/axes/record", "record");
-  Hid scale = w.doubles("/axes/scale_g", c.scales_g, {S}, "g", scale_description(c, "target GMRotI50 PGA of each scale"));
+  Hid scale =
+      w.doubles("/axes/scale_g", c.scales_g, {S}, "g", scale_description(c, "target GMRotI50 PGA of each scale"));
   w.make_scale(scale, "/axes/scale_g", "scale_g");
-  Hid rotation = w.ints("/axes/rotation", iota32(A), {A}, "none",
-                        "rotation index; the angle of each cell is in rotation_deg");
+  Hid rotation =
+      w.ints("/axes/rotation", iota32(A), {A}, "none", "rotation index; the angle of each cell is in rotation_deg");
   w.make_scale(rotation, "/axes/rotation", "rotation");
   Hid bin = w.ints("/axes/pgv_pga_bin", iota32(B), {B}, "none",
                    "PGV/PGA bin index; bin i holds pgv_pga_edges_s[i] <= PGV/PGA < pgv_pga_edges_s[i+1] "
@@ -57,7 +58,8 @@ void write_axes_and_records(Writer& w, const Cube& c) {
   w.make_scale(bin, "/axes/pgv_pga_bin", "pgv_pga_bin");
   // its own dimension (E = B + 1 values), of which it is the coordinate: netCDF-4 readers see no
   // dimension without a scale
-  Hid edge = w.doubles("/axes/pgv_pga_edges_s", edges, {B + 1}, "s", "edges of the PGV/PGA bins of the fragility surface");
+  Hid edge =
+      w.doubles("/axes/pgv_pga_edges_s", edges, {B + 1}, "s", "edges of the PGV/PGA bins of the fragility surface");
   w.make_scale(edge, "/axes/pgv_pga_edges_s", "pgv_pga_edges_s");
 
   w.group("/records");
@@ -202,8 +204,7 @@ void fsync_path(const H5& h, const std::string& p, bool directory) {
 }  // namespace
 
 void write_cube(const std::string& path, const Cube& cube) {
-  if (std::string p = cube_problem(cube); !p.empty())
-    throw InputError(path, 0, "cannot write the cube: " + p);
+  if (std::string p = cube_problem(cube); !p.empty()) throw InputError(path, 0, "cannot write the cube: " + p);
   const QuietErrors quiet;
   const H5 h(path);
   const std::string tmp = path + ".tmp";

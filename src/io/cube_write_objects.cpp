@@ -18,8 +18,8 @@ constexpr const char* kLegend = "0 not run, 1 survived, 2 overturned, 3 inferred
 // carries its own, named like the dimensions. /axes keeps the shared copies h5py users read.
 struct ObjectScales {
   Hid record, scale, rotation, bin;
-  Hid variant;            ///< only in a group of variants
-  hsize_t variants = 0;   ///< V in a group of variants, 0 in a cube without variants
+  Hid variant;           ///< only in a group of variants
+  hsize_t variants = 0;  ///< V in a group of variants, 0 in a cube without variants
 };
 
 /// The variant index 0..V-1 as a dimension scale named "variant" at `path`.
@@ -44,16 +44,17 @@ ObjectScales write_coordinates(Writer& w, const std::string& g, const Cube& c, h
   w.long_name(g + "/record", "record (set) name");
   w.make_scale(s.record, g + "/record", "record");
   s.scale = w.doubles(g + "/scale", c.scales_g, {S}, "1",
-                      scale_description(c, "target GMRotI50 PGA of each scale as a multiple of standard gravity; the same "
-                                            "values in m s-2 are in target_pga"));
+                      scale_description(c,
+                                        "target GMRotI50 PGA of each scale as a multiple of standard gravity; the same "
+                                        "values in m s-2 are in target_pga"));
   w.long_name(g + "/scale", "target GMRotI50 PGA in units of g (standard gravity, 9.80665 m s-2)");
   w.make_scale(s.scale, g + "/scale", "scale");
   std::vector<double> pga(c.scales_g);
   for (double& x : pga) x *= kGravity;
   w.variable(w.doubles(g + "/target_pga", pga, {S}, "m s-2", scale_description(c, "target GMRotI50 PGA of each scale")),
-                    g + "/target_pga", "target GMRotI50 PGA", {{s.scale, "scale"}});
-  s.rotation = w.ints(g + "/rotation", iota32(A), {A}, "1",
-                      "rotation index; the angle of each cell is in rotation_deg");
+             g + "/target_pga", "target GMRotI50 PGA", {{s.scale, "scale"}});
+  s.rotation =
+      w.ints(g + "/rotation", iota32(A), {A}, "1", "rotation index; the angle of each cell is in rotation_deg");
   w.long_name(g + "/rotation", "rotation index");
   w.make_scale(s.rotation, g + "/rotation", "rotation");
   s.bin = w.ints(g + "/pgv_pga_bin", iota32(B), {B}, "1",
@@ -81,7 +82,7 @@ Dims led_by_variant(const ObjectScales& s, Dims inner) {
 /// CF names, units and flag tables of the cell variables [record, scale, rotation].
 struct CellVariable {
   const char* name;
-  const char* units;      ///< UDUNITS-2; nullptr for text
+  const char* units;  ///< UDUNITS-2; nullptr for text
   const char* long_name;
   const char* description;
 };
@@ -140,9 +141,9 @@ void write_cells(Writer& w, const std::string& g, const Cube& c, const ObjectCub
   w.attribute(path(kOutcome), "legend", std::string(kLegend));
   w.flags(path(kOutcome), H5T_STD_I8LE, H5T_NATIVE_INT8, kOutcomeValues.data(), kOutcomeValues.size(),
           flag_meanings(kOutcomeValues, outcome_name));
-  for (const auto& [v, values] : {std::pair{&kRotationDeg, &o.rotation_deg}, std::pair{&kFailureTime, &o.failure_time_s},
-                                  std::pair{&kMaxTilt, &o.max_tilt_deg}, std::pair{&kMaxSlip, &o.max_slip_m},
-                                  std::pair{&kWall, &o.wall_s}})
+  for (const auto& [v, values] :
+       {std::pair{&kRotationDeg, &o.rotation_deg}, std::pair{&kFailureTime, &o.failure_time_s},
+        std::pair{&kMaxTilt, &o.max_tilt_deg}, std::pair{&kMaxSlip, &o.max_slip_m}, std::pair{&kWall, &o.wall_s}})
     describe(w.doubles(path(*v), *values, shape, v->units, v->description), *v);
   describe(w.ints(path(kFailureReason), o.failure_reason, shape, kFailureReason.units, kFailureReason.description),
            kFailureReason);
@@ -150,8 +151,9 @@ void write_cells(Writer& w, const std::string& g, const Cube& c, const ObjectCub
           flag_meanings(kReasonValues, failure_reason_name));
   const std::vector<std::string> messages = stored_failure_messages(c, o);
   describe(w.strings(path(kFailureMessage), messages, shape, nullptr, kFailureMessage.description), kFailureMessage);
-  describe(w.ints(path(kUnconverged), stored_unconverged_steps(c, o), shape, kUnconverged.units, kUnconverged.description),
-           kUnconverged);
+  describe(
+      w.ints(path(kUnconverged), stored_unconverged_steps(c, o), shape, kUnconverged.units, kUnconverged.description),
+      kUnconverged);
 
   w.attribute(g, "datasets_sha256", cell_datasets_sha256(o, messages));
   w.attribute(g, "datasets_sha256_covers", std::string(kChecksumCovers));
@@ -178,23 +180,22 @@ void write_derived(Writer& w, const std::string& g, const Cube& c, std::span<con
 
   const std::string probability = g + "/probability";
   const Dims rs = led_by_variant(s, {{R, S}, {{s.record, "record"}, {s.scale, "scale"}}});
-  w.variable(
-      w.doubles(probability, p, rs.shape, "1",
-                "overturning probability per (record, scale): (overturned + inferred) / (overturned + "
-                "inferred + survived) over the rotations; not run and failed cells left out; NaN when "
-                "none is known"),
-      probability, "probability of overturning", rs.scales);
+  w.variable(w.doubles(probability, p, rs.shape, "1",
+                       "overturning probability per (record, scale): (overturned + inferred) / (overturned + "
+                       "inferred + survived) over the rotations; not run and failed cells left out; NaN when "
+                       "none is known"),
+             probability, "probability of overturning", rs.scales);
   w.attribute(probability, "coordinates", std::string("target_pga"));
 
   const Dims surface = led_by_variant(s, {{S, B}, {{s.scale, "scale"}, {s.bin, "pgv_pga_bin"}}});
   const std::string fragility = g + "/fragility", count = g + "/fragility_count";
   w.variable(w.doubles(fragility, fragility_p, surface.shape, "1",
-                              "P(overturn | scale, PGV/PGA bin): mean of probability over the records of the "
-                              "bin whose probability is known; NaN for empty bins"),
-                    fragility, "fragility: probability of overturning per scale and PGV/PGA bin", surface.scales);
+                       "P(overturn | scale, PGV/PGA bin): mean of probability over the records of the "
+                       "bin whose probability is known; NaN for empty bins"),
+             fragility, "fragility: probability of overturning per scale and PGV/PGA bin", surface.scales);
   w.attribute(fragility, "coordinates", std::string("target_pga"));
   w.variable(w.ints(count, fragility_n, surface.shape, "1", "number of records averaged in fragility"), count,
-                    "number of records averaged in fragility", surface.scales);
+             "number of records averaged in fragility", surface.scales);
   w.attribute(count, "coordinates", std::string("target_pga"));
 }
 
@@ -284,14 +285,12 @@ void write_variant_values(Writer& w, const std::string& g, std::span<const Objec
                           const char* description) {
     std::vector<double> v;
     for (const ObjectCube& o : variants) v.push_back(o.*field);
-    w.variable(w.doubles(g + "/" + name, v, {s.variants}, units, description), g + "/" + name, long_name,
-               by_variant);
+    w.variable(w.doubles(g + "/" + name, v, {s.variants}, units, description), g + "/" + name, long_name, by_variant);
   };
   const auto text = [&](const char* name, auto field, const char* long_name, const char* description) {
     std::vector<std::string> v;
     for (const ObjectCube& o : variants) v.push_back(field(o));
-    w.variable(w.strings(g + "/" + name, v, {s.variants}, nullptr, description), g + "/" + name, long_name,
-               by_variant);
+    w.variable(w.strings(g + "/" + name, v, {s.variants}, nullptr, description), g + "/" + name, long_name, by_variant);
   };
   number("alpha_rad", &ObjectCube::alpha_rad, "rad", "rocking angle alpha",
          "rocking angle alpha of a single block (scenario::rocking_parameters); NaN when none (stacks)");
@@ -301,14 +300,17 @@ void write_variant_values(Writer& w, const std::string& g, std::span<const Objec
          "distance from the rocking edge to the centre of mass; NaN when none");
   number("weakest_azimuth_deg", &ObjectCube::weakest_azimuth_deg, "degree", "weakest azimuth",
          "azimuth of the ground acceleration with the smallest alpha; NaN when none");
-  text("physics_json", [](const ObjectCube& o) { return o.physics_json; }, "physics and run settings",
-       "the variant's own physics and run settings as a JSON object");
-  text("inputs_sha256", [](const ObjectCube& o) { return o.inputs; }, "SHA-256 of the inputs",
-       "SHA-256 of every file the variant was built from, sha256sum lines (HEX  PATH)");
+  text(
+      "physics_json", [](const ObjectCube& o) { return o.physics_json; }, "physics and run settings",
+      "the variant's own physics and run settings as a JSON object");
+  text(
+      "inputs_sha256", [](const ObjectCube& o) { return o.inputs; }, "SHA-256 of the inputs",
+      "SHA-256 of every file the variant was built from, sha256sum lines (HEX  PATH)");
   write_alpha_by_azimuth(w, g, variants, s);
-  text("support_polygon_m", [](const ObjectCube& o) { return corners_text(o.support_polygon_m); },
-       "support polygon", "corners of the support polygon relative to the centroid, \"x0 y0 x1 y1 ...\" (m); "
-       "empty when none");
+  text(
+      "support_polygon_m", [](const ObjectCube& o) { return corners_text(o.support_polygon_m); }, "support polygon",
+      "corners of the support polygon relative to the centroid, \"x0 y0 x1 y1 ...\" (m); "
+      "empty when none");
 }
 
 /// One group holding every variant of base object `base` (Cube::objects[base * V .. base * V + V)).

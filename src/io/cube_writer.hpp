@@ -23,18 +23,16 @@ class Writer {
   }
 
   void group(const std::string& path) {
-    h_.own(H5Gcreate2(file_, path.c_str(), H5P_DEFAULT, gcpl_, H5P_DEFAULT), H5Gclose,
-           "creating group " + path);
+    h_.own(H5Gcreate2(file_, path.c_str(), H5P_DEFAULT, gcpl_, H5P_DEFAULT), H5Gclose, "creating group " + path);
   }
 
   /// Scalar attribute `name` on the object at `path`.
-  void attribute(const std::string& path, const char* name, hid_t file_type, hid_t mem_type,
-                 const void* value) {
+  void attribute(const std::string& path, const char* name, hid_t file_type, hid_t mem_type, const void* value) {
     const std::string what = "writing attribute " + std::string(name) + " of " + path;
     Hid space = dataspace(h_, {});
-    Hid a = h_.own(
-        H5Acreate_by_name(file_, path.c_str(), name, file_type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-        H5Aclose, what);
+    Hid a =
+        h_.own(H5Acreate_by_name(file_, path.c_str(), name, file_type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+               H5Aclose, what);
     h_.check(H5Awrite(a, mem_type, value), what);
   }
   /// One-dimensional float64 attribute (an empty vector writes nothing).
@@ -42,9 +40,9 @@ class Writer {
     if (values.empty()) return;
     const std::string what = "writing attribute " + std::string(name) + " of " + path;
     Hid space = dataspace(h_, {hsize_t(values.size())});
-    Hid a = h_.own(H5Acreate_by_name(file_, path.c_str(), name, H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT,
-                                     H5P_DEFAULT),
-                   H5Aclose, what);
+    Hid a = h_.own(
+        H5Acreate_by_name(file_, path.c_str(), name, H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+        H5Aclose, what);
     h_.check(H5Awrite(a, H5T_NATIVE_DOUBLE, values.data()), what);
   }
   void attribute(const std::string& path, const char* name, const std::string& value) {
@@ -62,13 +60,12 @@ class Writer {
   Hid dataset(const std::string& path, hid_t file_type, hid_t mem_type, const std::vector<hsize_t>& dims,
               const void* data, const char* units, const std::string& description) {
     Hid space = dataspace(h_, dims);
-    Hid d = h_.own(H5Dcreate2(file_, path.c_str(), file_type, space, H5P_DEFAULT, dcpl_, H5P_DEFAULT),
-                   H5Dclose, "creating dataset " + path);
+    Hid d = h_.own(H5Dcreate2(file_, path.c_str(), file_type, space, H5P_DEFAULT, dcpl_, H5P_DEFAULT), H5Dclose,
+                   "creating dataset " + path);
     hsize_t n = 1;
     for (hsize_t x : dims) n *= x;
     // an empty selection needs no buffer, and HDF5 rejects a null one
-    if (n > 0)
-      h_.check(H5Dwrite(d, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), "writing dataset " + path);
+    if (n > 0) h_.check(H5Dwrite(d, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), "writing dataset " + path);
     if (units != nullptr) attribute(path, "units", units);  // text has none (CF)
     attribute(path, "description", description);
     return d;
@@ -106,9 +103,9 @@ class Writer {
              const std::string& meanings) {
     const std::string what = "writing attribute flag_values of " + path;
     Hid space = dataspace(h_, {n});
-    Hid a = h_.own(H5Acreate_by_name(file_, path.c_str(), "flag_values", file_type, space, H5P_DEFAULT,
-                                     H5P_DEFAULT, H5P_DEFAULT),
-                   H5Aclose, what);
+    Hid a = h_.own(
+        H5Acreate_by_name(file_, path.c_str(), "flag_values", file_type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+        H5Aclose, what);
     h_.check(H5Awrite(a, mem_type, values), what);
     attribute(path, "flag_meanings", meanings);
   }
@@ -157,7 +154,6 @@ inline std::string scale_description(const Cube& c, const std::string& plain) {
                           "measured PGA and PGV/PGA are /records/gmroti_pga_g and /records/pgv_pga_s)"
                         : plain;
 }
-
 
 /// /variants (with variants) and /objects: every object group with its cells and derived products
 /// (cube_write_objects.cpp).

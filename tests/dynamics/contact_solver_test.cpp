@@ -18,10 +18,10 @@ using dynamics::ContactRow;
 using dynamics::FrictionPatch;
 using dynamics::SolverBody;
 
-constexpr double kMass = 100;    // unit: kg
-constexpr double kHalf = 0.5;    // half the cube's side (unit: m)
-constexpr double kDt = 1e-3;     // unit: s
-constexpr double kG = 9.81;      // unit: m/s^2
+constexpr double kMass = 100;  // unit: kg
+constexpr double kHalf = 0.5;  // half the cube's side (unit: m)
+constexpr double kDt = 1e-3;   // unit: s
+constexpr double kG = 9.81;    // unit: m/s^2
 
 // The ground (immovable) and a cube of side 2 kHalf whose centre is kHalf above the ground's
 // surface, moving at `velocity`: what gravity gave it over one step when it started at rest.

@@ -57,8 +57,8 @@ class RigidStepper {
   /// the pedestals' work.
   void store_impulses(WorldCore& world, double dt, const Vec3& ground_velocity);
   /// Stage 7: the second half of the step with the new velocities (and the position correction).
-  void advance_from_midpoint(WorldCore& world, double dt, const Vec3& ground_velocity,
-                             const Vec3& ground_velocity_end, bool corrected);
+  void advance_from_midpoint(WorldCore& world, double dt, const Vec3& ground_velocity, const Vec3& ground_velocity_end,
+                             bool corrected);
 
   std::vector<PairImpulses> impulses_;  ///< one per WorldCore::pairs entry
   std::vector<ContactRow> rows_;

@@ -38,16 +38,16 @@ double time_step(const std::vector<BodyDef>& bodies, const contact::ContactLaw& 
 /// World::subcontact_load). Filled by World::summarize_contacts into the caller's buffers.
 struct ContactSummary {
   struct Pair {
-    int a = 0, b = 0;            ///< body indices, a < b
-    Vec3 normal{0, 0, 1};        ///< common-plane normal, from a to b
-    std::size_t first = 0;       ///< its loaded subcontacts are points[first, first + loaded)
+    int a = 0, b = 0;       ///< body indices, a < b
+    Vec3 normal{0, 0, 1};   ///< common-plane normal, from a to b
+    std::size_t first = 0;  ///< its loaded subcontacts are points[first, first + loaded)
     std::size_t loaded = 0;
   };
   struct Point {
-    Vec3 position{0, 0, 0};      ///< world frame (unit: m)
-    double load = 0;             ///< normal force (unit: N), > 0
+    Vec3 position{0, 0, 0};  ///< world frame (unit: m)
+    double load = 0;         ///< normal force (unit: N), > 0
   };
-  std::vector<Pair> pairs;       ///< every pair, in the World's order
+  std::vector<Pair> pairs;  ///< every pair, in the World's order
   std::vector<Point> points;
 };
 

@@ -21,11 +21,11 @@ struct BodyDef {
   /// With pieces, `shape` still gives the mass, the inertia and the outline (the pieces' convex
   /// hull) that everything but contact uses (failure rule, bounds, trajectories).
   std::vector<geometry::ConvexPolyhedron> pieces;
-  bool fixed = false;                ///< true: a pedestal driven by the ground motion
-  Vec3 position{0, 0, 0};            ///< world position of the centre of mass (unit: m)
+  bool fixed = false;                   ///< true: a pedestal driven by the ground motion
+  Vec3 position{0, 0, 0};               ///< world position of the centre of mass (unit: m)
   Quat orientation = Quat::Identity();  ///< body-to-world rotation
-  Vec3 velocity{0, 0, 0};            ///< initial velocity (unit: m/s)
-  Vec3 angular_velocity{0, 0, 0};    ///< initial angular velocity, world frame (unit: rad/s)
+  Vec3 velocity{0, 0, 0};               ///< initial velocity (unit: m/s)
+  Vec3 angular_velocity{0, 0, 0};       ///< initial angular velocity, world frame (unit: rad/s)
   /// Centre of mass minus the mesh's centroid, body frame (unit: m): zero for a uniform block
   /// (scenario::offset_centre_of_mass). Saved states keep the centroid's pose, so one settled
   /// state serves every offset.
@@ -71,17 +71,17 @@ struct BodyState {
 /// The narrow-phase state of one pair of contact pieces, kept across steps (what the contact
 /// models keep per pair of their own is in their steppers).
 struct PairContact {
-  int a = 0, b = 0;                      ///< body indices, a < b
+  int a = 0, b = 0;  ///< body indices, a < b
   /// Which contact piece of each body (BodyDef::pieces; 0 for a body without pieces): a compound
   /// body touches another through one pair per two pieces.
   int piece_a = 0, piece_b = 0;
-  Vec3 normal{0, 0, 1};                  ///< last common-plane normal, from a to b
+  Vec3 normal{0, 0, 1};  ///< last common-plane normal, from a to b
   contact::SupportHints hints;
-  double overlap = 0;                    ///< last overlap (unit: m); < 0 is a gap
+  double overlap = 0;  ///< last overlap (unit: m); < 0 is a gap
   /// The last step's subcontact points. The rigid model also keeps open contacts within its
   /// speculative margin (SubcontactPoint::overlap < 0).
   std::vector<contact::SubcontactPoint> points;
-  long tests = 0;                        ///< narrow-phase tests of this pair so far
+  long tests = 0;  ///< narrow-phase tests of this pair so far
   /// Distance skin (WorldEffects::distance_skin): the bounding spheres were skin_gap + margin
   /// apart when the bodies' relative travels summed to skin_travel; < 0 = no skin.
   double skin_gap = -1;
@@ -91,11 +91,11 @@ struct PairContact {
 /// Counters that tell what the stepper did (for reports and tests).
 struct StepStats {
   long steps = 0;
-  long pair_tests = 0;       ///< narrow-phase tests run
-  long pairs_skipped = 0;    ///< pairs skipped by the bounding-sphere test
-  long pairs_culled = 0;     ///< pairs skipped by the distance skin, without the sphere test
-  long contact_steps = 0;    ///< pair evaluations with the blocks in contact
-  long sliding_steps = 0;    ///< of those, evaluations where a subcontact reached mu F_n
+  long pair_tests = 0;     ///< narrow-phase tests run
+  long pairs_skipped = 0;  ///< pairs skipped by the bounding-sphere test
+  long pairs_culled = 0;   ///< pairs skipped by the distance skin, without the sphere test
+  long contact_steps = 0;  ///< pair evaluations with the blocks in contact
+  long sliding_steps = 0;  ///< of those, evaluations where a subcontact reached mu F_n
   /// Rigid model: steps whose contact solve stopped at its sweep cap (StepSettings::
   /// solver_max_sweeps) without converging; their impulses are the last sweep's.
   long unconverged_steps = 0;
