@@ -76,6 +76,7 @@ void register_campaign_command(CLI::App& app) {
     if (result.cube) {
       print_summary(*result.cube, result.output);
       print_failures(*result.cube);
+      print_unconverged(*result.cube);
     }
     if (result.status != 0) std::exit(result.status);
   });

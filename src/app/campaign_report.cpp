@@ -141,6 +141,25 @@ void print_failures(const io::Cube& cube) {
   if (failed > kListed) std::printf("  ... and %d more (rigid export cells lists every cell)\n", failed - kListed);
 }
 
+void print_unconverged(const io::Cube& cube) {
+  const std::size_t S = cube.scales_g.size(), A = std::size_t(cube.rotations);
+  constexpr int kListed = 5;
+  long cells = 0, steps = 0;
+  for (const auto& oc : cube.objects) {
+    for (std::size_t i = 0; i < oc.unconverged_steps.size(); ++i) {
+      if (oc.unconverged_steps[i] <= 0) continue;
+      steps += oc.unconverged_steps[i];
+      if (++cells == 1) std::printf("\ncells whose contact solver stopped at its sweep cap (unconverged_steps in the cube):\n");
+      if (cells > kListed) continue;
+      const std::size_t r = i / (S * A), s = (i / A) % S, a = i % A;
+      std::printf("  %s, record %s, %.3g g, rotation %zu: %d steps\n", io::object_label(oc).c_str(),
+                  cube.records[r].name.c_str(), cube.scales_g[s], a, int(oc.unconverged_steps[i]));
+    }
+  }
+  if (cells > kListed) std::printf("  ... and %ld more\n", cells - kListed);
+  if (cells > 0) std::printf("  %ld steps in %ld cells in all\n", steps, cells);
+}
+
 int print_dry_run(const scenario::Job& job, const scenario::Model& model) {
   const long tasks_per_object = long(job.records.size()) * long(job.scales_g.size()) * job.rotations;
   const long cells = long(job.objects.size()) * tasks_per_object;

@@ -166,6 +166,8 @@ void run(const RunOptions& o) {
     j["max_overlap_m"] = r.max_overlap;
     j["ended_at_rest"] = r.ended_at_rest;
     j["finite"] = r.finite;
+    j["unconverged_steps"] = r.unconverged_steps;
+    j["max_solver_sweeps"] = r.max_solver_sweeps;
     if (!block2d) j["effects"] = effects_json(r.effects);
     std::printf("%s\n", io::json_line(j).c_str());
   } else {
@@ -173,6 +175,10 @@ void run(const RunOptions& o) {
                 r.overturned ? "OVERTURNED" : "survived", r.simulated, r.steps, r.dt, wall);
     if (r.failure_time) std::printf("failure: %s at %.4f s\n", r.failed_block.c_str(), *r.failure_time);
     std::printf("max tilt %.3f deg, max slip %.4g m\n", r.max_tilt * 180.0 / kPi, r.max_slip);
+    if (r.unconverged_steps > 0) {
+      std::printf("contact solver: %ld steps stopped at the sweep cap without converging (most sweeps %d)\n",
+                  r.unconverged_steps, r.max_solver_sweeps);
+    }
     if (!block2d) std::printf("%s\n", effects_line(r.effects).c_str());
   }
 }

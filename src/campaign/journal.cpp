@@ -21,9 +21,11 @@ struct Format {
   std::size_t result_bytes;
   constexpr std::size_t record_bytes() const { return result_bytes + 8 + 4; }
 };
-// RIGIDJ03 carries failed tasks' messages; RIGIDJ02 (no message, a prefix of TaskResult) is
-// still read, so a resume across the upgrade keeps every journalled result.
-constexpr Format kCurrent{{'R', 'I', 'G', 'I', 'D', 'J', '0', '3'}, sizeof(TaskResult)};
+// RIGIDJ04 carries the count of unconverged contact solves; the older formats store a prefix of
+// TaskResult and are still read (the fields they lack keep their defaults: no message, count -1 =
+// not recorded), so a resume across an upgrade keeps every journalled result.
+constexpr Format kCurrent{{'R', 'I', 'G', 'I', 'D', 'J', '0', '4'}, sizeof(TaskResult)};
+constexpr Format kWithoutSolverCount{{'R', 'I', 'G', 'I', 'D', 'J', '0', '3'}, offsetof(TaskResult, unconverged_steps)};
 constexpr Format kWithoutMessages{{'R', 'I', 'G', 'I', 'D', 'J', '0', '2'}, offsetof(TaskResult, message)};
 constexpr char kOldMagic[8] = {'R', 'I', 'G', 'I', 'D', 'J', '0', '1'};
 constexpr std::size_t kKeyBytes = 64;
@@ -169,9 +171,12 @@ JournalContents read_journal(const std::string& path, const std::string& key, lo
   }
   if (got < sizeof header) return out;  // killed while the header was written: nothing in it
   // the format by its magic; a damaged header is read as the current one
-  const Format& format = std::memcmp(header, kWithoutMessages.magic, sizeof kWithoutMessages.magic) == 0 ? kWithoutMessages : kCurrent;
+  const Format* format = &kCurrent;
+  for (const Format* older : {&kWithoutSolverCount, &kWithoutMessages}) {
+    if (std::memcmp(header, older->magic, sizeof older->magic) == 0) format = older;
+  }
   unsigned char expected[kHeaderBytes];
-  encode_header(expected, key, format);
+  encode_header(expected, key, *format);
   std::uint32_t stored;
   std::memcpy(&stored, header + kHeaderBytes - 4, 4);
   if (stored != crc(header, kHeaderBytes - 4)) {
@@ -181,7 +186,7 @@ JournalContents read_journal(const std::string& path, const std::string& key, lo
     return out;
   }
   const std::uint64_t print = fingerprint(key);
-  const std::size_t record_bytes = format.record_bytes();
+  const std::size_t record_bytes = format->record_bytes();
   std::vector<unsigned char> buf(record_bytes);
   long index = 0, skipped = 0;
   for (; std::fread(buf.data(), 1, record_bytes, f.get()) == record_bytes; ++index) {
@@ -189,8 +194,8 @@ JournalContents read_journal(const std::string& path, const std::string& key, lo
     std::uint64_t p;
     TaskResult r;
     std::memcpy(&c, buf.data() + record_bytes - 4, 4);
-    std::memcpy(&p, buf.data() + format.result_bytes, 8);
-    std::memcpy(&r, buf.data(), format.result_bytes);
+    std::memcpy(&p, buf.data() + format->result_bytes, 8);
+    std::memcpy(&r, buf.data(), format->result_bytes);
     std::string why;
     if (c != crc(buf.data(), record_bytes - 4)) {
       why = "bad checksum";

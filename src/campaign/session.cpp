@@ -1,6 +1,8 @@
 #include "rigid/campaign/session.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <optional>
@@ -161,6 +163,7 @@ io::Cube make_cube(const CampaignContext& context, const Plan& plan) {
       oc.wall_s.push_back(kept[t] ? r.wall_s : nan);
       oc.failure_reason.push_back(kept[t] ? r.reason : 0);
       oc.failure_message.push_back(kept[t] ? message_of(r) : std::string());
+      oc.unconverged_steps.push_back(kept[t] ? std::int32_t(std::clamp<std::int64_t>(r.unconverged_steps, -1, INT32_MAX)) : -1);
     }
     cube.objects.push_back(std::move(oc));
   }
@@ -195,6 +198,7 @@ std::vector<TaskResult> restore(const std::string& output, const scenario::Job& 
         r.max_tilt_deg = oc.max_tilt_deg[i];
         r.max_slip_m = oc.max_slip_m[i];
         r.wall_s = oc.wall_s[i];
+        if (i < long(oc.unconverged_steps.size())) r.unconverged_steps = oc.unconverged_steps[i];
         plan.restore(r);
       }
     }

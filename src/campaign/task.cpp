@@ -29,6 +29,7 @@ TaskResult run_task(const scenario::Job& job, const scenario::Model& model, std:
     if (c.run.failure_time) out.failure_time_s = *c.run.failure_time;
     out.max_tilt_deg = c.run.max_tilt * 180.0 / kPi;
     out.max_slip_m = c.run.max_slip;
+    out.unconverged_steps = c.run.unconverged_steps;
   }
   out.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;

@@ -41,6 +41,8 @@
 //       rotation_deg, failure_time_s, max_tilt_deg, max_slip_m, wall_s   [R,S,A] float64
 //       failure_reason     [R,S,A] int32  flag_values/flag_meanings (FailureReason)
 //       failure_message    [R,S,A] string the error's text of failed cells, "" elsewhere
+//       unconverged_steps  [R,S,A] int32  steps whose contact solve hit its sweep cap; -1 when not
+//                          simulated or not recorded (outside datasets_sha256)
 //       probability        [R,S]   float64  derived: overturn_probability()
 //       fragility          [S,B]   float64  derived: fragility_surface().probability
 //       fragility_count    [S,B]   int32    derived: fragility_surface().count
@@ -65,7 +67,7 @@
 //                          when every variant has the same Z > 0
 //       support_polygon_m  [V]     string "x0 y0 x1 y1 ..." (%.17g), "" when none
 //       outcome, rotation_deg, failure_time_s, max_tilt_deg, max_slip_m, wall_s, failure_reason,
-//       failure_message    [V,R,S,A]
+//       failure_message, unconverged_steps    [V,R,S,A]
 //       probability        [V,R,S]; fragility, fragility_count [V,S,B] (per variant, as above)
 //
 // Layout, schema_version 3 (what write_cube writes): either layout above, the variant axis present
@@ -189,6 +191,9 @@ std::string object_problem(const Cube& c, const ObjectCube& o) {
   }
   if (!o.failure_message.empty() && o.failure_message.size() != n)
     return at + "failure_message has " + std::to_string(o.failure_message.size()) + " values, expected 0 or " +
+           std::to_string(n);
+  if (!o.unconverged_steps.empty() && o.unconverged_steps.size() != n)
+    return at + "unconverged_steps has " + std::to_string(o.unconverged_steps.size()) + " values, expected 0 or " +
            std::to_string(n);
   for (std::size_t i = 0; i < o.failure_message.size(); ++i) {
     if (std::string p = nul_problem(o.failure_message[i], at + "failure_message[" + std::to_string(i) + "]");
@@ -447,10 +452,16 @@ std::vector<std::string> stored_failure_messages(const Cube& cube, const ObjectC
   return std::vector<std::string>(cell_count(cube));
 }
 
+std::vector<std::int32_t> stored_unconverged_steps(const Cube& cube, const ObjectCube& object) {
+  if (!object.unconverged_steps.empty()) return object.unconverged_steps;
+  return std::vector<std::int32_t>(cell_count(cube), -1);
+}
+
 namespace {
 
 /// Calls f(to, from) for each cell array of two ObjectCubes, in the order kChecksumCovers names
-/// them (wall_s last): the one list the stacking and splitting of variants go through.
+/// them, then wall_s and unconverged_steps (outside the checksum): the one list the stacking and
+/// splitting of variants go through.
 template <class Into, class From, class F>
 void for_each_cell_array(Into& to, From& from, F f) {
   f(to.outcome, from.outcome);
@@ -461,6 +472,7 @@ void for_each_cell_array(Into& to, From& from, F f) {
   f(to.failure_reason, from.failure_reason);
   f(to.failure_message, from.failure_message);
   f(to.wall_s, from.wall_s);
+  f(to.unconverged_steps, from.unconverged_steps);
 }
 
 }  // namespace
@@ -471,6 +483,9 @@ ObjectCube stacked_cells(const Cube& cube, std::span<const ObjectCube> variants)
     for_each_cell_array(stacked, o, [](auto& to, const auto& from) { to.insert(to.end(), from.begin(), from.end()); });
     // as stored_failure_messages: "" for every cell of a variant that kept no messages
     if (o.failure_message.empty()) stacked.failure_message.resize(stacked.failure_message.size() + cell_count(cube));
+    // as stored_unconverged_steps: -1 (not recorded) for every cell of a variant that kept none
+    if (o.unconverged_steps.empty())
+      stacked.unconverged_steps.resize(stacked.unconverged_steps.size() + cell_count(cube), -1);
   }
   return stacked;
 }

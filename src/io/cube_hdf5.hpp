@@ -53,6 +53,8 @@ Hid file_access(const H5& h);
 
 /// The failure messages as stored: the object's, or "" for every cell when it has none.
 std::vector<std::string> stored_failure_messages(const Cube& cube, const ObjectCube& object);
+/// The unconverged_steps a cube stores for an object: its own, or -1 (not recorded) for every cell.
+std::vector<std::int32_t> stored_unconverged_steps(const Cube& cube, const ObjectCube& object);
 
 /// The cells of one base object's variants end to end, as the [variant, record, scale, rotation]
 /// datasets store them: each cell array is variant 0's, then variant 1's, ...; failure_message

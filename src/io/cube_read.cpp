@@ -213,6 +213,8 @@ ObjectCube read_cells(const H5& h, const Reader& rd, const std::string& g, const
   o.failure_reason = rd.numbers<std::int32_t>(g + "/failure_reason", H5T_INTEGER, H5T_NATIVE_INT32, dims);
   // absent from cubes written before them: no messages, no checksum to verify
   if (rd.has_link(g + "/failure_message")) o.failure_message = rd.strings(g + "/failure_message", dims);
+  if (rd.has_link(g + "/unconverged_steps"))
+    o.unconverged_steps = rd.numbers<std::int32_t>(g + "/unconverged_steps", H5T_INTEGER, H5T_NATIVE_INT32, dims);
   if (rd.has_attribute(g, "datasets_sha256")) {
     verify_checksum(h, g, o, rd.string_attribute(g, "datasets_sha256"));
   } else if (version >= kCubeSchemaVersionChecksummed) {

@@ -22,6 +22,8 @@ class ShakingRun {
   Verdict check_failure();
   bool check_rest();
   void finish();
+  // the steps taken and how their contact solves went, from the World's counters
+  void count_steps();
   double lowest_fixed_point() const;
   void observe_on_cadence() {
     if (settings_.observer && k_ % observe_every_ == 0) settings_.observer(world_);
@@ -199,7 +201,7 @@ ShakingRun::Verdict ShakingRun::check_failure() {
     if (!s.position.allFinite() || !s.orientation.coeffs().allFinite() || !s.velocity.allFinite() ||
         !s.angular_momentum.allFinite()) {
       out_.finite = false;
-      out_.steps = world_.stats().steps;
+      count_steps();
       return Verdict::non_finite;
     }
     const double a = tilt(defs[i].orientation, s.orientation);
@@ -261,8 +263,15 @@ bool ShakingRun::check_rest() {
   return false;
 }
 
+void ShakingRun::count_steps() {
+  const auto& stats = world_.stats();
+  out_.steps = stats.steps;
+  out_.unconverged_steps = stats.unconverged_steps;
+  out_.max_solver_sweeps = stats.max_solver_sweeps;
+}
+
 void ShakingRun::finish() {
-  out_.steps = world_.stats().steps;
+  count_steps();
   for (std::size_t i = 0; i < scene_.bodies.size(); ++i) {
     if (!scene_.bodies[i].fixed) out_.max_slip = std::max(out_.max_slip, world_.slip()[i]);
   }

@@ -1,7 +1,8 @@
 // A failed cell keeps its error text on its way to the cube: run_task stores the message of an
-// exception raised inside the case, the journal (format RIGIDJ03) keeps it, and a journal of the
-// previous format RIGIDJ02 (records without messages), built here byte by byte from its
-// documented layout, is still read.
+// exception raised inside the case, the journal (format RIGIDJ04) keeps it and the count of
+// unconverged contact solves, and journals of the previous formats RIGIDJ03 (no count) and
+// RIGIDJ02 (no message either), built here byte by byte from their documented layouts, are still
+// read.
 #include <gtest/gtest.h>
 #include <zlib.h>
 
@@ -82,11 +83,12 @@ TEST(FailureMessage, TheJournalKeepsMessages) {
 
 std::uint32_t crc(const unsigned char* p, std::size_t n) { return std::uint32_t(crc32(crc32(0L, Z_NULL, 0), p, uInt(n))); }
 
-TEST(FailureMessage, APreviousFormatJournalIsStillRead) {
-  // RIGIDJ02: magic, 64-byte key, CRC-32 of both; records of the 48 bytes of a result without
-  // message, an 8-byte fingerprint (CRC-32 of each half of the key) and a CRC-32 of both
-  const std::string key(64, 'b');
-  const std::string head = "RIGIDJ02" + key;
+// A journal of an older format, byte by byte as that format lays it out: magic, 64-byte key,
+// CRC-32 of both; records of the first `result_bytes` bytes of a result, an 8-byte fingerprint
+// (CRC-32 of each half of the key) and a CRC-32 of both. Tasks 3 and 4, overturned at 1.5 task s.
+std::string write_old_journal(const std::string& magic, std::size_t result_bytes, const std::string& key,
+                              const std::string& name) {
+  const std::string head = magic + key;
   std::vector<unsigned char> bytes(head.begin(), head.end());
   auto append_crc = [&bytes](std::size_t from) {
     const std::uint32_t c = crc(bytes.data() + from, bytes.size() - from);
@@ -101,18 +103,27 @@ TEST(FailureMessage, APreviousFormatJournalIsStillRead) {
     r.task = task;
     r.outcome = static_cast<std::int32_t>(scenario::CellOutcome::overturned);
     r.failure_time_s = 1.5 * double(task);
+    set_message(r, "message of task " + std::to_string(task));
+    r.unconverged_steps = 7;  // beyond every older format's records: must not be read back
     const std::size_t start = bytes.size();
     const auto* p = reinterpret_cast<const unsigned char*>(&r);
-    bytes.insert(bytes.end(), p, p + 48);
+    bytes.insert(bytes.end(), p, p + result_bytes);
     const auto* f = reinterpret_cast<const unsigned char*>(&print);
     bytes.insert(bytes.end(), f, f + 8);
     append_crc(start);
   }
-  const std::string path = temp_path("v2.journal");
+  const std::string path = temp_path(name);
   std::FILE* out = std::fopen(path.c_str(), "wb");
-  ASSERT_TRUE(out);
+  if (!out) return path;
   std::fwrite(bytes.data(), 1, bytes.size(), out);
   std::fclose(out);
+  return path;
+}
+
+TEST(FailureMessage, APreviousFormatJournalIsStillRead) {
+  // RIGIDJ02: the 48 bytes of a result before its message
+  const std::string key(64, 'b');
+  const std::string path = write_old_journal("RIGIDJ02", 48, key, "v2.journal");
   const JournalContents c = read_journal(path, key, 10);
   ASSERT_EQ(c.results.size(), 2u);
   EXPECT_TRUE(c.problems.empty());
@@ -120,6 +131,39 @@ TEST(FailureMessage, APreviousFormatJournalIsStillRead) {
   EXPECT_EQ(c.results[0].task, 3);
   EXPECT_EQ(c.results[1].failure_time_s, 6.0);
   EXPECT_EQ(message_of(c.results[1]), "");
+  EXPECT_EQ(c.results[1].unconverged_steps, -1);
+  fs::remove(path);
+}
+
+TEST(FailureMessage, AJournalWithoutTheSolverCountIsReadAsNotRecorded) {
+  // RIGIDJ03: the 48 bytes and the 232-byte message, no count of unconverged contact solves
+  const std::string key(64, 'c');
+  const std::string path = write_old_journal("RIGIDJ03", 48 + kTaskMessageBytes, key, "v3.journal");
+  const JournalContents c = read_journal(path, key, 10);
+  ASSERT_EQ(c.results.size(), 2u);
+  EXPECT_TRUE(c.problems.empty());
+  EXPECT_FALSE(c.foreign);
+  EXPECT_EQ(c.results[1].task, 4);
+  EXPECT_EQ(c.results[1].failure_time_s, 6.0);
+  EXPECT_EQ(message_of(c.results[1]), "message of task 4");
+  EXPECT_EQ(c.results[0].unconverged_steps, -1) << "a count the format lacks is not recorded, not 0";
+  fs::remove(path);
+}
+
+TEST(FailureMessage, TheSolverCountSurvivesTheJournal) {
+  const std::string path = temp_path("count.journal");
+  const std::string key(64, 'd');
+  {
+    Journal j(path, key);
+    TaskResult r;
+    r.task = 2;
+    r.unconverged_steps = 12;
+    j.append(r);
+    j.flush();
+  }
+  const JournalContents c = read_journal(path, key, 10);
+  ASSERT_EQ(c.results.size(), 1u);
+  EXPECT_EQ(c.results[0].unconverged_steps, 12);
   fs::remove(path);
 }
 

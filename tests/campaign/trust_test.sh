@@ -50,7 +50,7 @@ wait_size() {
   return 1
 }
 header=76  # journal header and record sizes (src/campaign/journal.cpp)
-record=292  # 280-byte TaskResult (with its failure message) + fingerprint + CRC
+record=300  # 288-byte TaskResult (with its failure message and solver count) + fingerprint + CRC
 done_count() { sed -n 's/.* tasks, \([0-9]*\) already done.*/\1/p' "$1" | tail -1; }
 
 # A tiny campaign whose every input kind is a file of its own: a TOML scene naming a model file,

@@ -123,6 +123,7 @@ Cube synthetic() {
     a.failure_reason.push_back(o == O::failed ? 2 : 0);
     // text a CSV or HDF5 string must carry intact: commas, quotes, a line break, UTF-8
     a.failure_message.push_back(o == O::failed ? "cell " + std::to_string(i) + ": \"bad\" state, t = 1.5 s\nΔt → 0" : "");
+    a.unconverged_steps.push_back(ran ? static_cast<std::int32_t>(i % 3) : -1);
   }
   a.max_tilt_deg[3] = payload_nan();
 
@@ -132,6 +133,7 @@ Cube synthetic() {
   for (std::size_t i = 0; i < n; i += 2) b.outcome[i] = static_cast<std::int8_t>(O::not_run);
   b.failure_reason[1] = -7;
   b.failure_message.clear();  // none stored: written as "" per cell
+  b.unconverged_steps.clear();  // none stored: written as -1 (not recorded) per cell
   c.objects = {a, b};
   return c;
 }
@@ -170,6 +172,7 @@ Cube variant_synthetic() {
       rotate(o.wall_s);
       rotate(o.failure_reason);
       rotate(o.failure_message);
+      rotate(o.unconverged_steps);
       o.physics_json = R"({"friction": )" + std::to_string(c.variants.parameters[0].values[v]) + "}";
       o.inputs = std::string(64, static_cast<char>('a' + v)) + "  " + base.scene + "\n";
       if (std::isfinite(base.alpha_rad)) {
@@ -259,6 +262,9 @@ void expect_same(const Cube& a, const Cube& b) {
     const std::vector<std::string> stored =
         x.failure_message.empty() ? std::vector<std::string>(x.outcome.size()) : x.failure_message;
     EXPECT_EQ(stored, y.failure_message) << x.name;
+    const std::vector<std::int32_t> counts =
+        x.unconverged_steps.empty() ? std::vector<std::int32_t>(x.outcome.size(), -1) : x.unconverged_steps;
+    EXPECT_EQ(counts, y.unconverged_steps) << x.name;
   }
 }
 
@@ -502,6 +508,7 @@ TEST_F(CubeFile, WritesOverAnExistingFileAndLeavesNoTemporary) {
     o.outcome.resize(16);
     o.failure_reason.resize(16);
     if (!o.failure_message.empty()) o.failure_message.resize(16);
+    if (!o.unconverged_steps.empty()) o.unconverged_steps.resize(16);
   }
   c.objects.pop_back();
   write_cube(p, c);
@@ -620,7 +627,7 @@ TEST_F(CubeFile, DimensionScalesAreAttached) {
                 bin = open(obj + "pgv_pga_bin");
     for (hid_t s : {record, scale, rotation, bin}) EXPECT_GT(H5DSis_scale(s), 0) << obj;
     for (const char* ds : {"outcome", "rotation_deg", "failure_time_s", "max_tilt_deg", "max_slip_m",
-                           "wall_s", "failure_reason", "failure_message"})
+                           "wall_s", "failure_reason", "failure_message", "unconverged_steps"})
       expect_scales(obj + ds, {record, scale, rotation});
     expect_scales(obj + "probability", {record, scale});
     expect_scales(obj + "fragility", {scale, bin});
@@ -754,8 +761,8 @@ TEST_F(CubeFile, VariantLayoutAsTheSpecificationSaysThroughTheHdf5CApi) {
   EXPECT_GT(H5DSis_scale(scale), 0);
   EXPECT_EQ(read_dataset<std::int32_t>(f, g + "variant", H5T_NATIVE_INT32), (std::vector<std::int32_t>{0, 1, 2}));
   for (const char* ds : {"outcome", "rotation_deg", "failure_time_s", "max_tilt_deg", "max_slip_m", "wall_s",
-                         "failure_reason", "failure_message", "probability", "fragility", "fragility_count",
-                         "alpha_rad", "p_rad_s", "rocking_radius_m", "weakest_azimuth_deg", "physics_json",
+                         "failure_reason", "failure_message", "unconverged_steps", "probability", "fragility",
+                         "fragility_count", "alpha_rad", "p_rad_s", "rocking_radius_m", "weakest_azimuth_deg", "physics_json",
                          "inputs_sha256", "support_polygon_m", "alpha_by_azimuth_rad"}) {
     const hid_t d = H5Dopen2(f, (g + ds).c_str(), H5P_DEFAULT);
     ASSERT_GE(d, 0) << ds;
@@ -957,6 +964,7 @@ TEST_F(CubeFile, CubesFromBeforeMessagesAndChecksumsStillRead) {
   ASSERT_GE(f, 0);
   for (const char* g : {"/objects/rock a", "/objects/rock_b"}) {
     ASSERT_GE(H5Ldelete(f, (std::string(g) + "/failure_message").c_str(), H5P_DEFAULT), 0);
+    ASSERT_GE(H5Ldelete(f, (std::string(g) + "/unconverged_steps").c_str(), H5P_DEFAULT), 0);
     ASSERT_GE(H5Adelete_by_name(f, g, "datasets_sha256", H5P_DEFAULT), 0);
   }
   // what a cube of schema 1 had: no axes checksum either
@@ -964,7 +972,10 @@ TEST_F(CubeFile, CubesFromBeforeMessagesAndChecksumsStillRead) {
   replace_int32_attribute(f, "/", "schema_version", kCubeSchemaVersionWithoutVariants);
   H5Fclose(f);
   const Cube back = read_cube(p);
-  for (const ObjectCube& o : back.objects) EXPECT_TRUE(o.failure_message.empty()) << o.name;
+  for (const ObjectCube& o : back.objects) {
+    EXPECT_TRUE(o.failure_message.empty()) << o.name;
+    EXPECT_TRUE(o.unconverged_steps.empty()) << o.name;
+  }
   EXPECT_EQ(back.objects[0].outcome, synthetic().objects[0].outcome);
   EXPECT_NE(old_cube_warning(p, back).find("schema_version 1 cube, written before checksums"), std::string::npos);
   write_cube(p, back);  // a rewrite (a resume) makes it a cube of the current schema
@@ -1017,6 +1028,7 @@ TEST_F(CubeFile, AKillAtAnyInstantLeavesAValidFile) {
       v->resize(n, 1.0);
     o.outcome.resize(n, static_cast<std::int8_t>(O::survived));
     if (!o.failure_message.empty()) o.failure_message.resize(n);
+    if (!o.unconverged_steps.empty()) o.unconverged_steps.resize(n, 0);
     o.failure_reason.resize(n, 0);
   }
   write_cube(p, small);

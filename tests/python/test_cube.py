@@ -31,6 +31,7 @@ CELL_DATASETS = {  # name: (dtype, units)
     "max_slip_m": ("float64", "m"),
     "wall_s": ("float64", "s"),
     "failure_reason": ("int32", "1"),
+    "unconverged_steps": ("int32", "1"),
 }
 # each object group's own coordinate variables (netCDF-4 dimension scales), name: units
 COORDINATES = {"record": None, "scale": "1", "target_pga": "m s-2", "rotation": "1", "pgv_pga_bin": "1"}

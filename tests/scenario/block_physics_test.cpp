@@ -68,7 +68,7 @@ TEST_P(QuasiStaticTipping, UpliftStartsAtGTanAlphaWithoutSliding) {
   for (double t = 0; t < 30.0; t += dt) {
     world.step(dt, ramp.velocity(t), ramp.velocity(t + dt));
     // the heel lifts: only the two toe corners remain in contact
-    if (world.pairs()[0].subs.size() <= 2) {
+    if (world.pairs()[0].points.size() <= 2) {
       uplift = ramp.rate * (t + dt);
       break;
     }

@@ -5,10 +5,11 @@
 /// read and the journal's valid records are replayed. After each whole-cube rewrite (a
 /// compaction, src/campaign/checkpointer.cpp) the journal starts over with what the cube lacks.
 ///
-/// Format (host byte order): a header of magic "RIGIDJ03", the 64-character key (the campaign's
+/// Format (host byte order): a header of magic "RIGIDJ04", the 64-character key (the campaign's
 /// combined input digest) and a CRC-32 of both; then fixed-size records of a TaskResult (with
-/// its failure message), an 8-byte fingerprint of the key and a CRC-32 (zlib) of both. Journals
-/// of the previous format RIGIDJ02 (records without the message) are read too. Records are checked one by one: a
+/// its failure message and count of unconverged contact solves), an 8-byte fingerprint of the key
+/// and a CRC-32 (zlib) of both. Journals of the previous formats are read too: RIGIDJ03 (records
+/// without the count, read as -1, not recorded) and RIGIDJ02 (without the message either). Records are checked one by one: a
 /// bad one is reported and skipped, the others kept; the fingerprint lets records be trusted
 /// even when the header is damaged.
 #include <cstdint>

@@ -32,10 +32,14 @@ struct TaskResult {
   double max_tilt_deg = 0;
   double max_slip_m = 0;
   double wall_s = 0;
-  /// A failed task's error text, NUL-terminated; last so that the journal's older format (which
-  /// had no message) is a prefix of this one.
+  /// A failed task's error text, NUL-terminated. Fields are only ever added at the end, so that
+  /// each older journal format is a prefix of this one (campaign/journal.hpp).
   char message[kTaskMessageBytes] = {};
+  /// Steps whose rigid contact solve stopped at its sweep cap (scenario::RunOutcome); -1 when
+  /// not simulated or not recorded (a record of an older journal).
+  std::int64_t unconverged_steps = -1;
 };
+static_assert(sizeof(TaskResult) == 288, "TaskResult is written raw: no padding, a layout the journal names");
 
 /// Stores `text` in r.message, cut to fit.
 void set_message(TaskResult& r, std::string_view text);

@@ -86,6 +86,11 @@ struct ObjectCube {
   std::vector<std::int32_t> failure_reason;  ///< scenario::FailureReason codes
   /// The error's text of each failed cell, "" elsewhere; empty vector: none stored (older cubes)
   std::vector<std::string> failure_message;
+  /// Steps of each cell's run whose contact solve stopped at its sweep cap without converging
+  /// (scenario::RunOutcome::unconverged_steps; 0 for penalty contact and the 2D model), -1 where
+  /// not simulated or not recorded; empty vector: none stored (older cubes). A diagnostic, outside
+  /// the cells' checksum.
+  std::vector<std::int32_t> unconverged_steps;
 };
 
 /// Everything written to the file.

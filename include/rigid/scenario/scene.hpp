@@ -117,6 +117,10 @@ struct RunOutcome {
   double max_overlap = 0;     ///< deepest subcontact indentation seen (unit: m)
   bool ended_at_rest = false; ///< stopped early because all blocks were at rest after the motion
   bool finite = true;         ///< false if a NaN or Inf appeared (the run stops there)
+  /// Rigid contact model: steps whose contact solve stopped at its sweep cap without converging
+  /// (dynamics::StepStats); 0 for penalty contact and the 2D model, which have no such solve.
+  long unconverged_steps = 0;
+  int max_solver_sweeps = 0;  ///< most sweeps one step's contact solve took (rigid contact model)
   ActiveEffects effects;      ///< filled by run() (not by the 2D model)
 };
 

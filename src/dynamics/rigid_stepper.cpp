@@ -1,10 +1,10 @@
 // The rigid contact model's time step (physics.md §12): Moreau-Jean time stepping with the
 // existing narrow phase (common plane, subcontacts and their persistent keys) giving the rows.
+#include "rigid/dynamics/rigid_stepper.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
-
-#include "rigid/dynamics/world.hpp"
 
 namespace rigid::dynamics {
 namespace {
@@ -23,47 +23,115 @@ Mat3 world_inverse_inertia(const Mat3& rotation, const Vec3& inertia) {
 
 }  // namespace
 
-void World::collect_rigid_rows(double dt, const Vec3& ground_velocity) {
+RigidStepper::RigidStepper(const WorldCore& world) : impulses_(world.pairs.size()) {
+  const std::size_t n = world.defs.size();
+  const std::size_t pairs = world.pairs.size();
+  for (std::size_t j = 0; j < pairs; ++j) {
+    const std::size_t cap = world.pairs[j].points.capacity();
+    impulses_[j].subs.reserve(cap);
+    impulses_[j].next_subs.reserve(cap);
+  }
+  // the solver's buffers at their final size now, so that a step never allocates (the first
+  // position correction or a new patch would otherwise grow them mid-run)
+  for (auto* bodies : {&solver_bodies_, &free_bodies_, &pseudo_bodies_, &solver_scratch_}) bodies->reserve(n);
+  patches_.reserve(pairs);
+  member_begin_.reserve(pairs + 1);
+  member_pairs_.reserve(pairs);
+  has_compound_ =
+      std::any_of(world.defs.begin(), world.defs.end(), [](const BodyDef& d) { return d.pieces.size() > 1; });
+  if (has_compound_) {
+    merged_patches_.reserve(pairs);
+    merged_members_.reserve(pairs);
+    merged_begin_.reserve(pairs + 1);
+    patch_taken_.reserve(pairs);
+  }
+}
+
+double RigidStepper::subcontact_load(const WorldCore& world, std::size_t pair, std::size_t k) const {
+  return impulses_[pair].subs[k].normal_impulse / world.dt;
+}
+
+void RigidStepper::step(WorldCore& world, double dt, const Vec3& ground_velocity_start,
+                        const Vec3& ground_velocity_end) {
+  // the pedestals move by the exact integral of the ground velocity over the step; the contacts
+  // see that mean velocity, so a block stuck to a pedestal moves exactly with it
+  const Vec3 ground_velocity = 0.5 * (ground_velocity_start + ground_velocity_end);
+  // Moreau's midpoint scheme: half a step of positions with the last velocities, contacts and
+  // impulses at the midpoint, the other half with the new velocities. The impact of a closing
+  // contact is then centred on the instant it closes, and between impacts the scheme is the
+  // symplectic position Verlet (no energy drift), where positions updated with the end velocities
+  // alone lost 1-2 % of a rocking block's energy per impact at a 1 ms step.
+  advance_to_midpoint(world, dt);
+  gather_contacts(world, dt, ground_velocity);
+  const double smallest_radius = set_free_velocities(world, dt, ground_velocity);
+  const bool corrected = solve_impulses(world, dt, smallest_radius);
+  apply_local_damping(world);
+  store_impulses(world, dt, ground_velocity);
+  advance_from_midpoint(world, dt, ground_velocity, ground_velocity_end, corrected);
+  world.time += dt;
+  ++world.stats.steps;
+}
+
+void RigidStepper::advance_to_midpoint(WorldCore& world, double dt) {
+  world.move_pedestals(0.5 * dt, pedestal_velocity_);
+  for (std::size_t i = 0; i < world.defs.size(); ++i) {
+    if (world.defs[i].fixed) continue;
+    auto& s = world.states[i];
+    s.position += 0.5 * dt * s.velocity;
+    if (world.effects.distance_skin) world.travel[i] += 0.5 * dt * (s.velocity - pedestal_velocity_).norm();
+    world.drift_rotation(static_cast<int>(i), 0.5 * dt);
+    world.rotations[i] = s.orientation.toRotationMatrix();
+    world.update_world_vertices(static_cast<int>(i));
+  }
+}
+
+void RigidStepper::gather_contacts(WorldCore& world, double dt, const Vec3& ground_velocity) {
   rows_.clear();
   patches_.clear();
   member_begin_.clear();
   member_pairs_.clear();
-  max_overlap_ = 0;
-  const double restitution = law_.restitution;
-  for (auto& p : pairs_) {
-    const auto& da = defs_[p.a];
-    const auto& db = defs_[p.b];
-    const auto& sa = states_[p.a];
-    const auto& sb = states_[p.b];
+  world.max_overlap = 0;
+  const double restitution = world.law.restitution;
+  for (std::size_t j = 0; j < world.pairs.size(); ++j) {
+    PairContact& p = world.pairs[j];
+    PairImpulses& kept = impulses_[j];
+    const auto& da = world.defs[p.a];
+    const auto& db = world.defs[p.b];
+    const auto& sa = world.states[p.a];
+    const auto& sb = world.states[p.b];
     const Vec3 va = da.fixed ? ground_velocity : sa.velocity;
     const Vec3 vb = db.fixed ? ground_velocity : sb.velocity;
-    const Vec3 wa = angular_velocity(p.a);
-    const Vec3 wb = angular_velocity(p.b);
+    const Vec3 wa = world.angular_velocity(p.a);
+    const Vec3 wb = world.angular_velocity(p.b);
     // every point that can close within the step is inside the margin
     const double small = std::min(da.shape.bounding_radius, db.shape.bounding_radius);
     const double reach = (vb - va).norm() + wa.norm() * da.shape.bounding_radius + wb.norm() * db.shape.bounding_radius;
     const double margin = kMarginFraction * small + 2.0 * dt * reach;
-    if (pair_apart(p, margin)) continue;
-    ++stats_.pair_tests;
+    if (world.pair_apart(p, margin)) {
+      // the friction impulse stays: it is the warm start should the pair touch again
+      kept.subs.clear();
+      continue;
+    }
+    ++world.stats.pair_tests;
     ++p.tests;
     // B is shifted by the margin along last step's normal, into A: pairs open by less than the
     // margin then overlap, and the common plane and subcontacts of the penetrating case apply
     const Vec3 shift = -margin * p.normal;
-    contact::PlacedHull ha{&contact_piece(p.a, p.piece_a), piece_vertices(p.a, p.piece_a), Vec3::Zero(),
-                           rotations_[p.a], sa.position};
-    contact::PlacedHull hb{&contact_piece(p.b, p.piece_b), piece_vertices(p.b, p.piece_b), shift, rotations_[p.b],
-                           sb.position};
+    contact::PlacedHull ha{&world.contact_piece(p.a, p.piece_a), world.piece_vertices(p.a, p.piece_a), Vec3::Zero(),
+                           world.rotations[p.a], sa.position};
+    contact::PlacedHull hb{&world.contact_piece(p.b, p.piece_b), world.piece_vertices(p.b, p.piece_b), shift,
+                           world.rotations[p.b], sb.position};
     const contact::CommonPlane cp = contact::find_common_plane(ha, hb, p.normal, p.hints);
     const Vec3 n = cp.normal;
     const double shift_along_n = -n.dot(shift);  // how much closer the shift brought them along n
     p.normal = n;
     p.overlap = cp.overlap - shift_along_n;
     p.points.clear();
-    p.next_subs.clear();
+    kept.next_subs.clear();
     if (cp.overlap <= 0) {
-      p.subs.clear();
-      p.friction_impulse.setZero();
-      p.twist_impulse = 0;
+      kept.subs.clear();
+      kept.friction_impulse.setZero();
+      kept.twist_impulse = 0;
       continue;
     }
     contact::collect_subcontacts(ha, hb, cp, p.points);
@@ -73,7 +141,7 @@ void World::collect_rigid_rows(double dt, const Vec3& ground_velocity) {
     patch.first_row = static_cast<int>(rows_.size());
     patch.row_count = static_cast<int>(p.points.size());
     patch.normal = n;
-    patch.friction = law_.friction;
+    patch.friction = world.law.friction;
     const double slop = kSlopFraction * small;
     const double touching = -slop;
     Vec3 centre = Vec3::Zero(), all = Vec3::Zero();
@@ -82,8 +150,8 @@ void World::collect_rigid_rows(double dt, const Vec3& ground_velocity) {
       // back to the true configuration: the point sat half-way through the shifted overlap
       pt.overlap -= shift_along_n;
       pt.point -= 0.5 * shift;
-      PairContact::Sub sub{pt.key, Vec3::Zero()};
-      for (const auto& old : p.subs) {
+      PairImpulses::Sub sub{pt.key};
+      for (const auto& old : kept.subs) {
         if (old.key == pt.key) {
           sub = old;
           break;
@@ -110,12 +178,12 @@ void World::collect_rigid_rows(double dt, const Vec3& ground_velocity) {
         // Newton's impact law on a closed contact; a contact merely resting (closing by no more
         // than gravity's pull of a few steps) takes no bounce
         row.target_normal_velocity =
-            restitution > 0 && approach > 10.0 * settings_.gravity * dt ? restitution * approach : 0.0;
-        max_overlap_ = std::max(max_overlap_, pt.overlap);
+            restitution > 0 && approach > 10.0 * world.settings.gravity * dt ? restitution * approach : 0.0;
+        world.max_overlap = std::max(world.max_overlap, pt.overlap);
       }
       row.correction_velocity = pt.overlap > slop ? kCorrectionRate * (pt.overlap - slop) / dt : 0.0;
       row.normal_impulse = sub.normal_impulse;
-      p.next_subs.push_back(sub);
+      kept.next_subs.push_back(sub);
       rows_.push_back(row);
       all += pt.point;
       if (pt.overlap >= touching) {
@@ -123,7 +191,7 @@ void World::collect_rigid_rows(double dt, const Vec3& ground_velocity) {
         ++closed;
       }
     }
-    std::swap(p.subs, p.next_subs);
+    std::swap(kept.subs, kept.next_subs);
     // the patch: the closed points (all of them while none is closed yet)
     centre = closed > 0 ? Vec3(centre / closed) : Vec3(all / double(p.points.size()));
     double spread = 0;
@@ -138,14 +206,15 @@ void World::collect_rigid_rows(double dt, const Vec3& ground_velocity) {
     patch.rb = centre - sb.position;
     set_tangents(patch);
     // last step's friction of the pair, carried into the new tangent plane
-    patch.impulse = Eigen::Vector3d(patch.tangent1.dot(p.friction_impulse), patch.tangent2.dot(p.friction_impulse),
-                                    patch.radius > 0 ? p.twist_impulse : 0.0);
+    patch.impulse =
+        Eigen::Vector3d(patch.tangent1.dot(kept.friction_impulse), patch.tangent2.dot(kept.friction_impulse),
+                        patch.radius > 0 ? kept.twist_impulse : 0.0);
     patches_.push_back(patch);
     member_begin_.push_back(static_cast<int>(member_pairs_.size()));
-    member_pairs_.push_back(static_cast<int>(&p - pairs_.data()));
+    member_pairs_.push_back(static_cast<int>(j));
   }
   member_begin_.push_back(static_cast<int>(member_pairs_.size()));
-  if (has_compound_) merge_piece_patches();
+  if (has_compound_) merge_piece_patches(world);
 }
 
 // Coulomb's law holds for the whole interface of two bodies, not per convex piece: a compound
@@ -154,7 +223,7 @@ void World::collect_rigid_rows(double dt, const Vec3& ground_velocity) {
 // body slide or walk below mu g. Patches of the same two bodies with the same normal become one
 // patch: the rows of all, one friction and twist constraint about the centre of their closed
 // points.
-void World::merge_piece_patches() {
+void RigidStepper::merge_piece_patches(const WorldCore& world) {
   const std::size_t count = patches_.size();
   patch_taken_.assign(count, 0);
   merged_patches_.clear();
@@ -180,7 +249,7 @@ void World::merge_piece_patches() {
     }
     patch.row_count = static_cast<int>(merged_rows_.size()) - patch.first_row;
     if (members > 1) {
-      const Vec3& pa = states_[patch.a].position;
+      const Vec3& pa = world.states[patch.a].position;
       const Vec3& n = patch.normal;
       Vec3 centre = Vec3::Zero(), all = Vec3::Zero();
       int closed = 0;
@@ -202,17 +271,17 @@ void World::merge_piece_patches() {
       }
       patch.radius = spread / (closed > 0 ? closed : double(patch.row_count));
       patch.ra = centre - pa;
-      patch.rb = centre - states_[patch.b].position;
+      patch.rb = centre - world.states[patch.b].position;
       set_tangents(patch);
-      // each member pair keeps its share of the last merged impulse (see step_rigid)
+      // each member pair keeps its share of the last merged impulse (see store_impulses)
       Vec3 friction = Vec3::Zero();
       double twist = 0;
       for (int m = merged_begin_.back(); m < static_cast<int>(merged_members_.size()); ++m) {
-        friction += pairs_[merged_members_[m]].friction_impulse;
-        twist += pairs_[merged_members_[m]].twist_impulse;
+        friction += impulses_[merged_members_[m]].friction_impulse;
+        twist += impulses_[merged_members_[m]].twist_impulse;
       }
-      patch.impulse = Eigen::Vector3d(patch.tangent1.dot(friction), patch.tangent2.dot(friction),
-                                      patch.radius > 0 ? twist : 0.0);
+      patch.impulse =
+          Eigen::Vector3d(patch.tangent1.dot(friction), patch.tangent2.dot(friction), patch.radius > 0 ? twist : 0.0);
     }
     merged_patches_.push_back(patch);
   }
@@ -223,80 +292,72 @@ void World::merge_piece_patches() {
   std::swap(member_begin_, merged_begin_);
 }
 
-void World::step_rigid(double dt, const Vec3& ground_velocity_start, const Vec3& ground_velocity_end) {
-  // the pedestals move by the exact integral of the ground velocity over the step; the contacts
-  // see that mean velocity, so a block stuck to a pedestal moves exactly with it
-  const Vec3 ground_velocity = 0.5 * (ground_velocity_start + ground_velocity_end);
-  const std::size_t n = defs_.size();
-  // Moreau's midpoint scheme: half a step of positions with the last velocities, contacts and
-  // impulses at the midpoint, the other half with the new velocities. The impact of a closing
-  // contact is then centred on the instant it closes, and between impacts the scheme is the
-  // symplectic position Verlet (no energy drift), where positions updated with the end velocities
-  // alone lost 1-2 % of a rocking block's energy per impact at a 1 ms step.
-  move_pedestals(0.5 * dt, pedestal_velocity_);
-  for (std::size_t i = 0; i < n; ++i) {
-    if (defs_[i].fixed) continue;
-    auto& s = states_[i];
-    s.position += 0.5 * dt * s.velocity;
-    if (effects_.distance_skin) travel_[i] += 0.5 * dt * (s.velocity - pedestal_velocity_).norm();
-    drift_rotation(static_cast<int>(i), 0.5 * dt);
-    rotations_[i] = s.orientation.toRotationMatrix();
-    update_world_vertices(static_cast<int>(i));
-  }
-  collect_rigid_rows(dt, ground_velocity);
-
+double RigidStepper::set_free_velocities(const WorldCore& world, double dt, const Vec3& ground_velocity) {
   // free velocities: gravity over the step; the angular momentum is unchanged without torque
+  const std::size_t n = world.defs.size();
   solver_bodies_.resize(n);
   double smallest_radius = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < n; ++i) {
     SolverBody& b = solver_bodies_[i];
-    if (defs_[i].fixed) {
+    const BodyDef& def = world.defs[i];
+    if (def.fixed) {
       b.velocity = ground_velocity;
       b.angular_velocity.setZero();
       b.inverse_mass = 0;
       b.inverse_inertia.setZero();
       continue;
     }
-    const double m = defs_[i].shape.mass;
-    smallest_radius = std::min(smallest_radius, defs_[i].shape.bounding_radius);
-    b.velocity = states_[i].velocity + Vec3(0, 0, -settings_.gravity * dt);
-    b.angular_velocity = angular_velocity(static_cast<int>(i));
+    const double m = def.shape.mass;
+    smallest_radius = std::min(smallest_radius, def.shape.bounding_radius);
+    b.velocity = world.states[i].velocity + Vec3(0, 0, -world.settings.gravity * dt);
+    b.angular_velocity = world.angular_velocity(static_cast<int>(i));
     b.inverse_mass = 1.0 / m;
-    b.inverse_inertia = world_inverse_inertia(rotations_[i], defs_[i].shape.inertia);
+    b.inverse_inertia = world_inverse_inertia(world.rotations[i], def.shape.inertia);
   }
+  return smallest_radius;
+}
+
+bool RigidStepper::solve_impulses(WorldCore& world, double dt, double smallest_radius) {
   prepare(solver_bodies_, rows_, patches_);
-  if (settings_.local_damping > 0) free_bodies_ = solver_bodies_;
+  if (world.settings.local_damping > 0) free_bodies_ = solver_bodies_;
   // warm start: last step's impulses of the same subcontacts
   warm_start(solver_bodies_, rows_, patches_);
   // converged when a sweep changes velocities by less than 1e-7 of what gravity adds in a step,
   // and angular velocities by that over the smallest block's radius (1e-6 let a block resting
   // under a slow ramp creep 1e-6 rad before its uplift acceleration)
   SolverSettings solver;
-  solver.velocity_tolerance = 1e-7 * settings_.gravity * dt;
+  solver.velocity_tolerance = 1e-7 * world.settings.gravity * dt;
   solver.angular_tolerance = solver.velocity_tolerance / smallest_radius;
-  last_solve_ = solve_velocities(solver_bodies_, rows_, patches_, solver, solver_scratch_);
-  const bool correct = std::any_of(rows_.begin(), rows_.end(), [](const ContactRow& r) { return r.correction_velocity > 0; });
+  solver.max_iterations = world.settings.solver_max_sweeps;
+  const SolverResult result = solve_velocities(solver_bodies_, rows_, patches_, solver, solver_scratch_);
+  if (!result.converged) ++world.stats.unconverged_steps;
+  world.stats.max_solver_sweeps = std::max(world.stats.max_solver_sweeps, result.iterations);
+  const bool correct =
+      std::any_of(rows_.begin(), rows_.end(), [](const ContactRow& r) { return r.correction_velocity > 0; });
   if (correct) solve_correction(solver_bodies_, pseudo_bodies_, rows_, solver, solver_scratch_);
+  return correct;
+}
 
-  if (settings_.local_damping > 0) {
-    // Itasca local damping (physics.md §9) on the step's velocity change, which is the unbalanced
-    // force times h: each component is reduced by alpha |change|, never past zero
-    const double alpha = settings_.local_damping;
-    for (std::size_t i = 0; i < n; ++i) {
-      if (defs_[i].fixed) continue;
-      auto damp = [alpha](Vec3& v, const Vec3& before) {
-        for (int c = 0; c < 3; ++c) {
-          const double cut = alpha * std::abs(v[c] - before[c]);
-          v[c] = v[c] > 0 ? std::max(0.0, v[c] - cut) : std::min(0.0, v[c] + cut);
-        }
-      };
-      damp(solver_bodies_[i].velocity, free_bodies_[i].velocity);
-      damp(solver_bodies_[i].angular_velocity, free_bodies_[i].angular_velocity);
-    }
+void RigidStepper::apply_local_damping(const WorldCore& world) {
+  if (world.settings.local_damping <= 0) return;
+  // Itasca local damping (physics.md §9) on the step's velocity change, which is the unbalanced
+  // force times h: each component is reduced by alpha |change|, never past zero
+  const double alpha = world.settings.local_damping;
+  for (std::size_t i = 0; i < world.defs.size(); ++i) {
+    if (world.defs[i].fixed) continue;
+    auto damp = [alpha](Vec3& v, const Vec3& before) {
+      for (int c = 0; c < 3; ++c) {
+        const double cut = alpha * std::abs(v[c] - before[c]);
+        v[c] = v[c] > 0 ? std::max(0.0, v[c] - cut) : std::min(0.0, v[c] + cut);
+      }
+    };
+    damp(solver_bodies_[i].velocity, free_bodies_[i].velocity);
+    damp(solver_bodies_[i].angular_velocity, free_bodies_[i].angular_velocity);
   }
+}
 
-  // impulses back to the pairs (warm start of the next step), contact forces, slip, work
-  for (std::size_t i = 0; i < n; ++i) contact_force_[i].setZero();
+void RigidStepper::store_impulses(WorldCore& world, double dt, const Vec3& ground_velocity) {
+  for (auto& force : world.contact_force) force.setZero();
   Vec3 on_pedestals = Vec3::Zero();
   for (std::size_t j = 0; j < patches_.size(); ++j) {
     const FrictionPatch& patch = patches_[j];
@@ -304,7 +365,7 @@ void World::step_rigid(double dt, const Vec3& ground_velocity_start, const Vec3&
     double total = 0;
     int row = patch.first_row;
     for (int m = member_begin_[j]; m < member_begin_[j + 1]; ++m) {
-      for (auto& sub : pairs_[member_pairs_[m]].subs) {
+      for (auto& sub : impulses_[member_pairs_[m]].subs) {
         const ContactRow& r = rows_[row++];
         sub.normal_impulse = r.normal_impulse;
         impulse += r.normal_impulse * r.normal;
@@ -314,62 +375,63 @@ void World::step_rigid(double dt, const Vec3& ground_velocity_start, const Vec3&
     const Vec3 friction = patch.impulse.x() * patch.tangent1 + patch.impulse.y() * patch.tangent2;
     const double members = member_begin_[j + 1] - member_begin_[j];
     for (int m = member_begin_[j]; m < member_begin_[j + 1]; ++m) {
-      pairs_[member_pairs_[m]].friction_impulse = friction / members;
-      pairs_[member_pairs_[m]].twist_impulse = patch.impulse.z() / members;
+      impulses_[member_pairs_[m]].friction_impulse = friction / members;
+      impulses_[member_pairs_[m]].twist_impulse = patch.impulse.z() / members;
     }
     impulse += friction;
-    contact_force_[patch.b] += impulse / dt;
-    contact_force_[patch.a] -= impulse / dt;
-    if (defs_[patch.a].fixed) on_pedestals -= impulse;
-    if (defs_[patch.b].fixed) on_pedestals += impulse;
-    if (total > 0) ++stats_.contact_steps;
+    world.contact_force[patch.b] += impulse / dt;
+    world.contact_force[patch.a] -= impulse / dt;
+    if (world.defs[patch.a].fixed) on_pedestals -= impulse;
+    if (world.defs[patch.b].fixed) on_pedestals += impulse;
+    if (total > 0) ++world.stats.contact_steps;
     // sliding: the friction on its limit and the patch centre still slipping at the end
-    const double size = std::hypot(patch.impulse.x(), patch.impulse.y(),
-                                   patch.radius > 0 ? patch.impulse.z() / patch.radius : 0.0);
+    const double size =
+        std::hypot(patch.impulse.x(), patch.impulse.y(), patch.radius > 0 ? patch.impulse.z() / patch.radius : 0.0);
     if (total > 0 && size >= patch.friction * total * (1 - 1e-9)) {
       Vec3 u = relative_velocity(solver_bodies_[patch.a], solver_bodies_[patch.b], patch.ra, patch.rb);
       u -= patch.normal.dot(u) * patch.normal;
       const double slip = u.norm() * dt;
       if (slip > 0) {
-        ++stats_.sliding_steps;
-        if (!defs_[patch.a].fixed) slip_[patch.a] += slip;
-        if (!defs_[patch.b].fixed) slip_[patch.b] += slip;
+        ++world.stats.sliding_steps;
+        if (!world.defs[patch.a].fixed) world.slip[patch.a] += slip;
+        if (!world.defs[patch.b].fixed) world.slip[patch.b] += slip;
       }
     }
   }
   // the pedestals push with these impulses while moving at the mean ground velocity
-  pedestal_work_ -= on_pedestals.dot(ground_velocity);
+  world.pedestal_work -= on_pedestals.dot(ground_velocity);
+}
 
-  move_pedestals(0.5 * dt, ground_velocity);
+void RigidStepper::advance_from_midpoint(WorldCore& world, double dt, const Vec3& ground_velocity,
+                                         const Vec3& ground_velocity_end, bool corrected) {
+  world.move_pedestals(0.5 * dt, ground_velocity);
   pedestal_velocity_ = ground_velocity;
-  for (std::size_t i = 0; i < n; ++i) {
-    auto& s = states_[i];
-    if (defs_[i].fixed) {
+  for (std::size_t i = 0; i < world.defs.size(); ++i) {
+    auto& s = world.states[i];
+    if (world.defs[i].fixed) {
       s.velocity = ground_velocity_end;
       continue;
     }
     const SolverBody& b = solver_bodies_[i];
     s.velocity = b.velocity;
     // L = R I R^T w with the orientation the solve used
-    const Mat3& r = rotations_[i];
-    s.angular_momentum = r * defs_[i].shape.inertia.cwiseProduct(r.transpose() * b.angular_velocity);
+    const Mat3& r = world.rotations[i];
+    s.angular_momentum = r * world.defs[i].shape.inertia.cwiseProduct(r.transpose() * b.angular_velocity);
     // the second half with the new velocities, plus the split impulse's pseudo-velocities, which
     // move but carry no momentum
     Vec3 move = 0.5 * dt * s.velocity;
-    if (correct) move += dt * pseudo_bodies_[i].velocity;
+    if (corrected) move += dt * pseudo_bodies_[i].velocity;
     s.position += move;
-    if (effects_.distance_skin) travel_[i] += (move - 0.5 * dt * ground_velocity).norm();
-    drift_rotation(static_cast<int>(i), 0.5 * dt);
-    if (correct) {
+    if (world.effects.distance_skin) world.travel[i] += (move - 0.5 * dt * ground_velocity).norm();
+    world.drift_rotation(static_cast<int>(i), 0.5 * dt);
+    if (corrected) {
       const Vec3 turn = dt * pseudo_bodies_[i].angular_velocity;
       const double angle = turn.norm();
       if (angle > 0) s.orientation = (Quat(Eigen::AngleAxisd(angle, turn / angle)) * s.orientation).normalized();
     }
-    rotations_[i] = s.orientation.toRotationMatrix();
-    update_world_vertices(static_cast<int>(i));
+    world.rotations[i] = s.orientation.toRotationMatrix();
+    world.update_world_vertices(static_cast<int>(i));
   }
-  time_ += dt;
-  ++stats_.steps;
 }
 
 }  // namespace rigid::dynamics
