@@ -72,7 +72,7 @@ struct Master {
       : context(c), job(c.job), options(o), plan(&p), output(c.job.output), ranks(n), shadow(p) {}
 
   const CampaignContext& context;
-  const scenario::Job& job;
+  const job::Job& job;
   const CampaignOptions& options;
   MasterTransport transport;
 

@@ -6,9 +6,9 @@
 #include <fstream>
 
 #include "rigid/core/error.hpp"
-#include "rigid/io/job_file.hpp"
+#include "rigid/job/load.hpp"
 
-namespace rigid::io {
+namespace rigid::job {
 namespace {
 
 namespace fs = std::filesystem;
@@ -155,7 +155,7 @@ TEST_F(JobFile, AbsentOptionalObjectIsLeftOutWithANoteThatEntersTheHash) {
   const std::string extra = "[[object]]\nname = \"scan\"\nscene = \"../models/absent/none.toml\"\noptional = true\n";
   std::string text = kGood;
   text.insert(text.find("[[record]]"), extra);
-  const scenario::Job with_absent = load_job(write(text));
+  const Job with_absent = load_job(write(text));
   ASSERT_EQ(with_absent.objects.size(), 1u);
   ASSERT_EQ(with_absent.notes.size(), 1u);
   EXPECT_NE(with_absent.notes[0].find("none.toml"), std::string::npos) << with_absent.notes[0];
@@ -270,4 +270,4 @@ TEST_F(JobFile, VariantsCountTowardsTheCellLimit) {
 }
 
 }  // namespace
-}  // namespace rigid::io
+}  // namespace rigid::job
