@@ -17,8 +17,8 @@ void check_cell_count(const Job& job, long campaign_line) {
   const double cells = job.cells().size_estimate();
   if (cells > kMaxCells) {
     char buf[160];
-    std::snprintf(buf, sizeof buf, "the job has %.3g cells (objects x variants x records x scales x rotations), more than 1e7",
-                  cells);
+    std::snprintf(buf, sizeof buf,
+                  "the job has %.3g cells (objects x variants x records x scales x rotations), more than 1e7", cells);
     throw InputError(job.path, campaign_line, buf);
   }
 }

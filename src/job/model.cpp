@@ -74,7 +74,8 @@ scenario::Model load_model(const Job& job) {
   for (const auto& r : job.records) {
     io::SetReadOptions read;
     read.align.resample = r.resample;
-    records.push_back(windowed_record(r, r.lab ? io::read_lab_motion(r.spec, job.lab_format) : io::read_motion_set(r.spec, read)));
+    records.push_back(
+        windowed_record(r, r.lab ? io::read_lab_motion(r.spec, job.lab_format) : io::read_motion_set(r.spec, read)));
     // once per record: every case scales this record, and the GMRotI50 measure is costly
     per_g.push_back(motion::target_pga_factor(records.back(), 1.0));
   }

@@ -17,20 +17,27 @@ struct TextSettingInfo {
 
 TextSettingInfo info_of(Setting setting) {
   switch (setting) {
-    case Setting::model: return {"model", "\"dem3d\" or \"rocking2d\"", "dem3d or rocking2d", true};
-    case Setting::contact: return {"contact", "\"rigid\" or \"penalty\"", "rigid or penalty", false};
-    case Setting::effects: return {"effects", "\"auto\" or \"all\"", "auto or all", true};
+    case Setting::model:
+      return {"model", "\"dem3d\" or \"rocking2d\"", "dem3d or rocking2d", true};
+    case Setting::contact:
+      return {"contact", "\"rigid\" or \"penalty\"", "rigid or penalty", false};
+    case Setting::effects:
+      return {"effects", "\"auto\" or \"all\"", "auto or all", true};
     case Setting::accuracy:
       return {"accuracy", scenario::accuracy_preset_list(), scenario::accuracy_preset_list(), true};
-    case Setting::integrator: return {"integrator", "\"splitting\" or \"rk4\"", "splitting or rk4", false};
-    default: return {"", "", "", false};
+    case Setting::integrator:
+      return {"integrator", "\"splitting\" or \"rk4\"", "splitting or rk4", false};
+    default:
+      return {"", "", "", false};
   }
 }
 
 // Parses `text` into the setting's field; false when it is not one of the setting's values.
 bool parse_into(RunOverrides& o, Setting setting, const std::string& text) {
   switch (setting) {
-    case Setting::model: o.model = scenario::parse_model_kind(text); return o.model.has_value();
+    case Setting::model:
+      o.model = scenario::parse_model_kind(text);
+      return o.model.has_value();
     case Setting::contact: {
       contact::ContactModel model;
       if (!contact::parse_contact_model(text, model)) return false;
@@ -45,8 +52,11 @@ bool parse_into(RunOverrides& o, Setting setting, const std::string& text) {
       if (!scenario::find_accuracy_preset(text)) return false;
       o.accuracy = text;
       return true;
-    case Setting::integrator: o.integrator = scenario::parse_integrator(text); return o.integrator.has_value();
-    default: return false;
+    case Setting::integrator:
+      o.integrator = scenario::parse_integrator(text);
+      return o.integrator.has_value();
+    default:
+      return false;
   }
 }
 

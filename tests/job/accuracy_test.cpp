@@ -20,9 +20,10 @@ class JobAccuracy : public ::testing::Test {
   job::Job load(const std::string& run_table) {
     const fs::path dir = fs::path(RIGID_SOURCE_DIR) / "jobs";
     path_ = (dir / ("test_job_accuracy_" + std::to_string(::getpid()) + ".toml")).string();
-    std::ofstream(path_) << "[campaign]\nscales = \"0.1:0.5:0.1\"\n\n[[object]]\nscene = \"../models/demo/block_a02.toml\"\n\n"
-                            "[[record]]\nmotion = \"../waveforms/demo/stochastic_s1-X.AT2\"\n\n"
-                         << run_table;
+    std::ofstream(path_)
+        << "[campaign]\nscales = \"0.1:0.5:0.1\"\n\n[[object]]\nscene = \"../models/demo/block_a02.toml\"\n\n"
+           "[[record]]\nmotion = \"../waveforms/demo/stochastic_s1-X.AT2\"\n\n"
+        << run_table;
     return load_job(path_);
   }
   void TearDown() override {

@@ -84,8 +84,9 @@ TEST_F(RunSettingsInJob, Numbers) {
 }
 
 TEST_F(RunSettingsInJob, GoodValuesReachTheRunSettings) {
-  const Job job = load("model = \"rocking2d\"\ncontact = \"penalty\"\neffects = \"all\"\naccuracy = \"reference\"\n"
-                       "integrator = \"rk4\"\nduration_s = 4.0\nfree_time_s = 2.0\nsafety = 0.3\n");
+  const Job job = load(
+      "model = \"rocking2d\"\ncontact = \"penalty\"\neffects = \"all\"\naccuracy = \"reference\"\n"
+      "integrator = \"rk4\"\nduration_s = 4.0\nfree_time_s = 2.0\nsafety = 0.3\n");
   EXPECT_EQ(job.model, scenario::ModelKind::rocking2d);
   ASSERT_TRUE(job.contact);
   EXPECT_EQ(*job.contact, contact::ContactModel::penalty);

@@ -7,9 +7,7 @@
 namespace rigid::job {
 namespace {
 
-std::vector<io::JobFileObject> two_objects() {
-  return {{"a", "/s/a.toml", ""}, {"b", "/s/b.toml", "/s/b_state.toml"}};
-}
+std::vector<io::JobFileObject> two_objects() { return {{"a", "/s/a.toml", ""}, {"b", "/s/b.toml", "/s/b_state.toml"}}; }
 
 TEST(ExpandVariants, WithoutVariantsTheObjectsAsTheyAre) {
   const std::vector<JobObject> out = expand_variants(two_objects(), scenario::VariantSpace{});

@@ -28,15 +28,15 @@ struct JobFileObject {
 
 /// One record (a ground-motion set) of a campaign.
 struct JobRecord {
-  std::string name;        ///< unique record name
-  std::string spec;        ///< motion-set spec with resolved paths (see io::resolve_set); lab: the file
+  std::string name;  ///< unique record name
+  std::string spec;  ///< motion-set spec with resolved paths (see io::resolve_set); lab: the file
   /// A lab recording ([[record]] lab = "FILE"), read with the job's lab format, instead of an AT2 set
   bool lab = false;
-  double start = 0;        ///< window start (unit: s)
+  double start = 0;                                      ///< window start (unit: s)
   double end = std::numeric_limits<double>::infinity();  ///< window end (unit: s)
-  std::string earthquake;  ///< from the record list, may be empty
-  double listed_pga_g = 0;     ///< GMRotI PGA given by the list, 0 if none (unit: g)
-  double listed_pgv_cm_s = 0;  ///< GMRotI PGV given by the list, 0 if none (unit: cm/s)
+  std::string earthquake;                                ///< from the record list, may be empty
+  double listed_pga_g = 0;                               ///< GMRotI PGA given by the list, 0 if none (unit: g)
+  double listed_pgv_cm_s = 0;                            ///< GMRotI PGV given by the list, 0 if none (unit: cm/s)
   /// align = "resample": components of unequal dt or length resampled to a common dt and padded
   /// (else only lengths within 1 % at equal dt are padded, motion::make_ground_motion)
   bool resample = false;
@@ -64,7 +64,7 @@ struct JobFile {
   std::string text;    ///< its contents, with a note per optional object left out
   std::string output;  ///< [campaign] output, default: the job file's stem + ".h5"
   std::uint64_t seed = 1;
-  long campaign_line = 0;  ///< line of [campaign]
+  long campaign_line = 0;        ///< line of [campaign]
   std::vector<double> scales_g;  ///< stated scales (g), increasing; {kAsRecordedScale} for "as recorded"
   /// A "start:stop:step" range's float sums start + i * step (0.30000000000000004), which the
   /// campaigns before scales_g held the stated decimals ran with: one ulp more or less in the
@@ -74,8 +74,8 @@ struct JobFile {
   int rotations = 2;
   std::vector<double> rotation_angles_deg;  ///< unit: deg; empty: random angles
   int stop_after = 10;
-  double checkpoint_interval = 30;  ///< unit: s
-  double grace = 30;                ///< unit: s
+  double checkpoint_interval = 30;     ///< unit: s
+  double grace = 30;                   ///< unit: s
   std::vector<JobFileObject> objects;  ///< the [[object]]s present (optional absent ones left out)
   scenario::VariantSpace variants;     ///< [sweep] or [[variant]]; count() == 0 without
   std::vector<long> variant_lines;     ///< line of the [sweep] or of each [[variant]]

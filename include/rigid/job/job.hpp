@@ -11,8 +11,8 @@
 #include "rigid/job/cells.hpp"
 #include "rigid/job/run_overrides.hpp"
 #include "rigid/motion/lab_format.hpp"
-#include "rigid/scenario/case.hpp"
 #include "rigid/scenario/accuracy.hpp"
+#include "rigid/scenario/case.hpp"
 #include "rigid/scenario/variant.hpp"
 
 namespace rigid::job {
@@ -56,8 +56,8 @@ struct Job {
   /// Number of [[object]]s.
   int base_objects() const { return static_cast<int>(objects.size()) / variant_count(); }
   std::vector<JobRecord> records;
-  std::string record_list;        ///< the record-list file (resolved path), empty for [[record]] tables
-  std::vector<double> scales_g;   ///< target GMRotI50 PGA of each scale, increasing (unit: g)
+  std::string record_list;       ///< the record-list file (resolved path), empty for [[record]] tables
+  std::vector<double> scales_g;  ///< target GMRotI50 PGA of each scale, increasing (unit: g)
   /// scales = "as recorded": scales_g is {kAsRecordedScale}, every record simulated as it is
   bool as_recorded() const { return scales_g.size() == 1 && scales_g[0] == kAsRecordedScale; }
   /// The job's [lab] table: how its lab records ([[record]] lab = ...) are read and processed
@@ -67,7 +67,7 @@ struct Job {
   std::vector<double> drive_scales_g;
   /// The target PGA (g) the simulations of scale s are driven with.
   double drive_scale_g(std::size_t s) const { return drive_scales_g.empty() ? scales_g[s] : drive_scales_g[s]; }
-  int rotations = 2;              ///< random rotations per (record, scale)
+  int rotations = 2;  ///< random rotations per (record, scale)
   /// Fixed rotation angles instead of random ones (unit: deg), one per rotation index; empty:
   /// random angles keyed by the seed.
   std::vector<double> rotation_angles_deg;
@@ -77,7 +77,7 @@ struct Job {
   /// What the job file's [run] table and the command line set; apply_overrides() derives the
   /// four fields below from it.
   RunOverrides overrides;
-  scenario::RunSettings run;  ///< physics and accuracy settings of every simulation
+  scenario::RunSettings run;                          ///< physics and accuracy settings of every simulation
   std::string accuracy = scenario::kDefaultAccuracy;  ///< accuracy preset of `run`
   /// Which model simulates: the engine, or the 2D Housner reference (driven by the record's x
   /// component; scenes must admit it).
@@ -87,15 +87,13 @@ struct Job {
   /// Line of the job's dt_s (else safety, else [run]) key: where errors about the step point.
   long run_line = 0;
   double checkpoint_interval = 30;  ///< unit: s
-  double grace = 30;              ///< time in-flight tasks get after a stop signal (unit: s)
+  double grace = 30;                ///< time in-flight tasks get after a stop signal (unit: s)
   /// What the reader left out and the user should hear of, one line each (an optional object
   /// whose scene does not exist: [[object]] optional = true).
   std::vector<std::string> notes;
 
   /// The job's cells: objects (with variants) x records x scales x rotations.
-  CellGrid cells() const {
-    return {int(objects.size()), int(records.size()), int(scales_g.size()), rotations};
-  }
+  CellGrid cells() const { return {int(objects.size()), int(records.size()), int(scales_g.size()), rotations}; }
 };
 
 /// Sets the job's run settings, model, contact model and accuracy preset from its overrides:
