@@ -1,11 +1,13 @@
 // `rigid campaign`: run or resume a fragility campaign (MPI master/worker; see campaign/driver).
 #include <cstdlib>
 #include <memory>
+#include <tuple>
 
 #include "campaign_report.hpp"
 #include "commands.hpp"
 #include "number_checks.hpp"
 #include "rigid/campaign/driver.hpp"
+#include "rigid/job/run_overrides.hpp"
 
 namespace rigid::app {
 
@@ -24,6 +26,8 @@ char**& campaign_argv() { return *g_argv; }
 
 struct CampaignCommand {
   campaign::CampaignOptions options;
+  // the run settings given as flags, empty when not given (parsed by job::set_text_setting)
+  std::string model, contact, accuracy, effects;
   std::string progress = "auto";  // auto | bar | log | none
   double log_interval = 10;       // seconds between plain progress lines (unit: s)
 };
@@ -44,14 +48,14 @@ void register_campaign_command(CLI::App& app) {
                   "states, records) that changed since");
   cmd->add_flag("--dry-run", o->dry_run, "Print the task count and an estimate of the work, run nothing");
   cmd->add_flag("--noop", o->noop, "Tasks return at once without simulating; with several ranks only the workers take tasks, so this measures the master's dispatch rate");
-  cmd->add_option("--model", o->model, "dem3d or rocking2d: overrides the job's [run] model (recorded in the cube)");
-  cmd->add_option("--contact", o->contact,
+  cmd->add_option("--model", command->model, "dem3d or rocking2d: overrides the job's [run] model (recorded in the cube)");
+  cmd->add_option("--contact", command->contact,
                   "Contact model rigid or penalty for every object: overrides the scenes' [physics] contact and "
                   "the job's [run] contact (recorded in the cube)");
-  cmd->add_option("--accuracy", o->accuracy,
+  cmd->add_option("--accuracy", command->accuracy,
                   "Accuracy preset fast, balanced or reference: overrides the job's [run] accuracy; the job's explicit "
                   "safety, integrator and dt_s still apply (recorded in the cube; docs/accuracy.md)");
-  cmd->add_option("--effects", o->effects,
+  cmd->add_option("--effects", command->effects,
                   "auto (simulate only the effects the scenes and motions call for) or all (every effect, the "
                   "reference): overrides the job's [run] effects (recorded in the cube)")
       ->check(CLI::IsMember({"auto", "all"}));
@@ -71,6 +75,17 @@ void register_campaign_command(CLI::App& app) {
   cmd->callback([command] {
     campaign::CampaignOptions& options = command->options;
     attach_progress(options, command->progress, command->log_interval);
+    options.remedies = {"--force", "--out"};
+    options.read_overrides = [command] {
+      job::RunOverrides flags;
+      for (const auto& [setting, flag, text] : {std::tuple{job::Setting::model, "--model", &command->model},
+                                                std::tuple{job::Setting::contact, "--contact", &command->contact},
+                                                std::tuple{job::Setting::effects, "--effects", &command->effects},
+                                                std::tuple{job::Setting::accuracy, "--accuracy", &command->accuracy}}) {
+        if (!text->empty()) job::set_text_setting(flags, setting, *text, {"", 0, flag});
+      }
+      return flags;
+    };
     options.on_dry_run = print_dry_run;
     const campaign::CampaignResult result = campaign::run_campaign(campaign_argc(), campaign_argv(), options);
     if (result.cube) {

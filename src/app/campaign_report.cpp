@@ -70,7 +70,7 @@ bool person_watches_stderr() {
 
 // Tasks and core-hours of each object (and variant): what each row of the cube will cost. Many
 // variants are summarised per object (least, median, most) rather than listed.
-void print_object_costs(const scenario::Job& job, long tasks_per_object, const std::vector<double>& wall) {
+void print_object_costs(const job::Job& job, long tasks_per_object, const std::vector<double>& wall) {
   constexpr int kListed = 40;
   std::printf("%-28s %10s %12s\n", "object", "tasks", "core-hours");
   if (int(job.objects.size()) <= kListed) {
@@ -160,9 +160,9 @@ void print_unconverged(const io::Cube& cube) {
   if (cells > 0) std::printf("  %ld steps in %ld cells in all\n", steps, cells);
 }
 
-int print_dry_run(const scenario::Job& job, const scenario::Model& model) {
-  const long tasks_per_object = long(job.records.size()) * long(job.scales_g.size()) * job.rotations;
-  const long cells = long(job.objects.size()) * tasks_per_object;
+int print_dry_run(const job::Job& job, const scenario::Model& model) {
+  const long tasks_per_object = job.cells().per_object();
+  const long cells = job.cells().size();
   double per_object_sim = 0;  // simulated time of one object's tasks
   for (int r = 0; r < model.records(); ++r) per_object_sim += model.simulated_time(r);
   per_object_sim *= double(job.scales_g.size()) * job.rotations;

@@ -24,6 +24,6 @@ void print_unconverged(const io::Cube& cube);
 
 /// Task count and an estimate of the work: every object's first record at its smallest scale is
 /// simulated for a few seconds to measure this machine's cost per step.
-int print_dry_run(const scenario::Job& job, const scenario::Model& model);
+int print_dry_run(const job::Job& job, const scenario::Model& model);
 
 }  // namespace rigid::app

@@ -15,6 +15,8 @@
 #include "rigid/io/json.hpp"
 #include "rigid/io/scene_file.hpp"
 #include "rigid/io/trajectory.hpp"
+#include "rigid/job/job.hpp"
+#include "rigid/job/model.hpp"
 #include "rigid/scenario/accuracy.hpp"
 #include "rigid/scenario/case.hpp"
 #include "rigid/scenario/rocking2d.hpp"
@@ -82,11 +84,28 @@ std::string effects_line(const scenario::ActiveEffects& e) {
   return buf;
 }
 
+// The run settings given as flags, parsed where a job file's are (job::set_text_setting).
+job::RunOverrides run_overrides(const RunOptions& o) {
+  job::RunOverrides overrides;
+  const auto text = [&](job::Setting setting, const char* flag, const std::string& value) {
+    job::set_text_setting(overrides, setting, value, {"", 0, flag});
+  };
+  text(job::Setting::accuracy, "--accuracy", o.accuracy);
+  // 0 = the option was not given (its validator refuses 0)
+  if (o.dt != 0) overrides.dt = o.dt;
+  if (o.safety != 0) overrides.safety = o.safety;
+  if (!o.integrator.empty()) text(job::Setting::integrator, "--integrator", o.integrator);
+  overrides.duration = o.duration;
+  overrides.free_time = o.free_time;
+  text(job::Setting::effects, "--effects", o.effects);
+  text(job::Setting::model, "--model", o.model);
+  return overrides;
+}
+
 // The run's bounds (scenario/run_bounds.hpp) broken by a command-line value: the error names it.
-scenario::Model checked_model(scenario::ModelKind kind, scenario::Scene scene, motion::GroundMotion m,
-                              scenario::RunSettings settings, const RunOptions& o) {
+scenario::Model checked_model(const job::Job& job, scenario::Scene scene, motion::GroundMotion m, const RunOptions& o) {
   try {
-    return scenario::Model(kind, {std::move(scene)}, {std::move(m)}, std::move(settings));
+    return job::assemble_model(job, {std::move(scene)}, {std::move(m)});
   } catch (const InputError& e) {
     if (!e.file().empty()) throw;
     const char* option = o.dt != 0 ? "--dt" : o.safety != 0 ? "--safety" : o.duration != 0 ? "--duration" : "";
@@ -94,33 +113,15 @@ scenario::Model checked_model(scenario::ModelKind kind, scenario::Scene scene, m
   }
 }
 
+// One scene, one motion: a job of one cell, its model built and its case made as a campaign's are.
 void run(const RunOptions& o) {
   scenario::Scene scene = load_scene_with_warnings(o.scene);
   if (!o.state.empty()) io::apply_state(o.state, scene);
-  if (!o.contact.empty() && !contact::parse_contact_model(o.contact, scene.law.model)) {
-    throw InputError("", 0, "--contact must be rigid or penalty");
-  }
-  scenario::RunSettings settings;
-  // the accuracy preset, then the explicit --dt, --safety and --integrator over it
-  const scenario::AccuracyPreset* preset = scenario::find_accuracy_preset(o.accuracy);
-  if (!preset) throw InputError("", 0, "--accuracy must be " + scenario::accuracy_preset_list());
-  scenario::AccuracyOverrides overrides;
-  // 0 = the option was not given (its validator refuses 0)
-  if (o.dt != 0) overrides.dt = o.dt;
-  if (o.safety != 0) overrides.safety = o.safety;
-  if (!o.integrator.empty()) {
-    overrides.rotation = scenario::parse_integrator(o.integrator);
-    if (!overrides.rotation) throw InputError("", 0, "--integrator must be splitting or rk4");
-  }
-  scenario::apply_accuracy(*preset, overrides, settings);
-  settings.duration = o.duration;
-  settings.free_time = o.free_time;
-  if (o.effects != "auto" && o.effects != "all") throw InputError("", 0, "--effects must be auto or all");
-  settings.select_effects = o.effects == "auto";
-
-  const std::optional<scenario::ModelKind> kind = scenario::parse_model_kind(o.model);
-  if (!kind) throw InputError("", 0, "--model must be dem3d or rocking2d");
-  const bool block2d = *kind == scenario::ModelKind::rocking2d;
+  job::RunOverrides overrides;
+  if (!o.contact.empty()) job::set_text_setting(overrides, job::Setting::contact, o.contact, {"", 0, "--contact"});
+  overrides = job::merged(std::move(overrides), run_overrides(o));
+  job::Job job = job::one_cell_job(overrides);
+  const bool block2d = job.model == scenario::ModelKind::rocking2d;
   if (block2d) {
     // the 2D model integrates the rocking equation with its own fixed step (rocking::RockingOptions):
     // a step option given for the 3D engine would be silently ignored
@@ -138,13 +139,14 @@ void run(const RunOptions& o) {
 
   io::TrajectoryRecorder recorder;
   if (!o.trajectory.empty() && !block2d) {
-    settings.observer = [&recorder](const dynamics::World& w) { recorder.record(w); };
-    settings.observe_interval = o.trajectory_interval;
+    job.run.observer = [&recorder](const dynamics::World& w) { recorder.record(w); };
+    job.run.observe_interval = o.trajectory_interval;
   }
-  // the motion is already windowed, scaled and rotated (load_motion): the case takes it as it is
-  const scenario::Model model = checked_model(*kind, std::move(scene), std::move(m), std::move(settings), o);
+  // the motion is already windowed, scaled and rotated (load_motion): the one cell takes it as
+  // it is (scale "as recorded", rotation 0)
+  const scenario::Model model = checked_model(job, std::move(scene), std::move(m), o);
   const auto start = std::chrono::steady_clock::now();
-  const scenario::CaseOutcome outcome = scenario::simulate(model, scenario::Case{});
+  const scenario::CaseOutcome outcome = scenario::simulate(model, job::case_of(job, job::Cell{}));
   if (outcome.error) std::rethrow_exception(outcome.error);
   const scenario::RunOutcome& r = outcome.run;
   // before any report: a non-finite state is no outcome ("survived" would be a wrong answer)

@@ -13,7 +13,7 @@
 #include "rigid/campaign/task.hpp"
 #include "rigid/campaign/transport.hpp"
 #include "rigid/core/error.hpp"
-#include "rigid/io/job_model.hpp"
+#include "rigid/job/model.hpp"
 
 namespace rigid::campaign {
 namespace {
@@ -22,7 +22,7 @@ namespace fs = std::filesystem;
 
 // What every rank loads: the job and the model its cases run on.
 struct Loaded {
-  scenario::Job job;
+  job::Job job;
   std::unique_ptr<scenario::Model> model;
 };
 
@@ -35,7 +35,7 @@ bool load_everywhere(const CampaignOptions& options, int rank, Loaded& loaded) {
     if (rank == 0) {
       for (const std::string& note : loaded.job.notes) log_status("note: {}", note);
     }
-    loaded.model = std::make_unique<scenario::Model>(io::load_model(loaded.job));
+    loaded.model = std::make_unique<scenario::Model>(job::load_model(loaded.job));
   } catch (const InputError& e) {
     ok = 0;
     error = e.what();
@@ -48,7 +48,7 @@ bool load_everywhere(const CampaignOptions& options, int rank, Loaded& loaded) {
   return false;
 }
 
-Plan make_plan(const scenario::Job& job, const scenario::Model& model) {
+Plan make_plan(const job::Job& job, const scenario::Model& model) {
   std::vector<double> cost;  // longest records first within a scale
   for (int r = 0; r < model.records(); ++r) cost.push_back(model.simulated_time(r));
   return Plan(int(job.objects.size()), int(job.records.size()), int(job.scales_g.size()), job.rotations,
@@ -58,7 +58,7 @@ Plan make_plan(const scenario::Job& job, const scenario::Model& model) {
 // Rank 0: lock the output, digest the inputs, restore what is on disk, then run as master.
 // Every outcome is broadcast to the workers first: go (1), dry run (0) or refused (-1).
 CampaignResult run_rank0(const CampaignOptions& options, const Loaded& loaded, int ranks) {
-  const scenario::Job& job = loaded.job;
+  const job::Job& job = loaded.job;
   Plan plan = make_plan(job, *loaded.model);
   int go = 1;
   std::string problem;
@@ -75,9 +75,9 @@ CampaignResult run_rank0(const CampaignOptions& options, const Loaded& loaded, i
         fs::create_directories(fs::path(job.output).parent_path(), ec);
         if (ec) throw InputError(job.output, 0, "cannot create its directory: " + ec.message());
       }
-      lock = std::make_unique<OutputLock>(job.output);
+      lock = std::make_unique<OutputLock>(job.output, options.remedies.other_output);
       inputs = collect_inputs(job, *loaded.model);
-      carried = restore(job.output, job, inputs, plan, options.force);
+      carried = restore(job.output, job, inputs, plan, options.force, options.remedies);
     }
   } catch (const InputError& e) {
     go = -1;
@@ -91,7 +91,7 @@ CampaignResult run_rank0(const CampaignOptions& options, const Loaded& loaded, i
     result.status = options.on_dry_run ? options.on_dry_run(job, *loaded.model) : 0;
     return result;
   }
-  const std::vector<io::RecordMeta> records = io::record_metadata(job, *loaded.model);
+  const std::vector<io::RecordMeta> records = job::record_metadata(job, *loaded.model);
   const CampaignContext context{job, *loaded.model, records, inputs};
   MasterResult master = run_master(context, options, plan, carried, ranks);
   result.status = master.status;

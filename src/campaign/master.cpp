@@ -139,7 +139,7 @@ MasterResult Master::run() {
     const PoolCounts c = pool_.counts();
     log_status("{} tasks, {} already done, {} ranks, output {}", c.size, c.done, ranks_, context_.job.output);
   }
-  const scenario::Job& job = context_.job;
+  const job::Job& job = context_.job;
   const scenario::Model& model = context_.model;
   const bool noop = options_.noop;
   local_.emplace(

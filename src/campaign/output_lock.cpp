@@ -14,7 +14,7 @@
 
 namespace rigid::campaign {
 
-OutputLock::OutputLock(const std::string& output) : path_(output + ".lock") {
+OutputLock::OutputLock(const std::string& output, const std::string& other_output) : path_(output + ".lock") {
   for (;;) {
     const int fd = ::open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
     if (fd < 0) throw InputError(path_, 0, std::string("cannot create the lock file: ") + std::strerror(errno));
@@ -22,8 +22,8 @@ OutputLock::OutputLock(const std::string& output) : path_(output + ".lock") {
       const int err = errno;
       ::close(fd);
       if (err == EWOULDBLOCK) {
-        throw InputError(path_, 0, "another campaign is running on " + output +
-                                       " (it holds this lock); wait for it to end or use another --out");
+        throw InputError(path_, 0, "another campaign is running on " + output + " (it holds this lock); wait for it to end" +
+                                       (other_output.empty() ? "" : " or use another " + other_output));
       }
       if (err == EINTR) continue;
       log_warning(path_ + ": no file locking here (" + std::strerror(err) + "); nothing stops a second campaign on this output");

@@ -5,7 +5,6 @@
 #include <numeric>
 #include <stdexcept>
 
-#include "rigid/core/rng.hpp"
 
 namespace rigid::campaign {
 namespace {
@@ -19,23 +18,6 @@ bool is_result(std::int8_t o) {
 }
 
 }  // namespace
-
-double rotation_angle_deg(std::uint64_t seed, const Cell& c) {
-  std::uint64_t h = splitmix64(seed);
-  for (int v : {c.object, c.record, c.scale, c.rotation}) h = splitmix64(h ^ static_cast<std::uint64_t>(v));
-  return 360.0 * unit_interval(h);
-}
-
-double cell_rotation_deg(const scenario::Job& job, const Cell& c) {
-  if (!job.rotation_angles_deg.empty()) return job.rotation_angles_deg[std::size_t(c.rotation)];
-  // every variant of an object shakes at the same angles (common random numbers): a difference
-  // between variants is then the parameters', not the rotations' sampling noise
-  Cell keyed = c;
-  if (std::size_t(c.object) < job.objects.size() && job.objects[std::size_t(c.object)].base >= 0) {
-    keyed.object = job.objects[std::size_t(c.object)].base;
-  }
-  return rotation_angle_deg(job.seed, keyed);
-}
 
 Plan::Plan(int objects, int records, int scales, int rotations, int stop_after,
            std::vector<double> record_cost)
@@ -69,18 +51,7 @@ void set_message(TaskResult& r, std::string_view text) {
 
 std::string message_of(const TaskResult& r) { return std::string(r.message, strnlen(r.message, kTaskMessageBytes)); }
 
-Cell cell_of(long t, int records, int scales, int rotations) {
-  Cell c;
-  c.rotation = static_cast<int>(t % rotations);
-  t /= rotations;
-  c.scale = static_cast<int>(t % scales);
-  t /= scales;
-  c.record = static_cast<int>(t % records);
-  c.object = static_cast<int>(t / records);
-  return c;
-}
-
-Cell Plan::cell(long t) const { return cell_of(t, records_, scales_, rotations_); }
+Cell Plan::cell(long t) const { return job::CellGrid{objects_, records_, scales_, rotations_}.cell(t); }
 
 bool Plan::available(long t) const {
   if (outcome_[t] != static_cast<std::int8_t>(scenario::CellOutcome::not_run)) return false;
@@ -89,9 +60,7 @@ bool Plan::available(long t) const {
   return cut < 0 || c.scale < cut;
 }
 
-long Plan::task(const Cell& c) const {
-  return ((long(c.object) * records_ + c.record) * scales_ + c.scale) * rotations_ + c.rotation;
-}
+long Plan::task(const Cell& c) const { return job::CellGrid{objects_, records_, scales_, rotations_}.task(c); }
 
 void Plan::update_cutoff(long t, std::int8_t before) {
   const auto overturned = static_cast<std::int8_t>(scenario::CellOutcome::overturned);

@@ -11,7 +11,6 @@
 #include "rigid/campaign/log.hpp"
 #include "rigid/core/error.hpp"
 #include "rigid/io/at2.hpp"
-#include "rigid/io/job_file.hpp"
 #include "rigid/io/json.hpp"
 #include "rigid/scenario/rocking_parameters.hpp"
 
@@ -24,42 +23,52 @@ namespace {
 
 namespace fs = std::filesystem;
 
-InputError changed_file(const std::string& file) {
-  return InputError(file, 0, "changed since the campaign started (resume refused; --force starts anew)");
+InputError changed_file(const std::string& file, const OutputRemedies& remedies) {
+  const std::string anew = remedies.start_anew.empty() ? "" : "; " + remedies.start_anew + " starts anew";
+  return InputError(file, 0, "changed since the campaign started (resume refused" + anew + ")");
+}
+
+// What to do about an output written by another job, in the caller's words.
+std::string other_job_remedy(const OutputRemedies& remedies) {
+  const bool anew = !remedies.start_anew.empty(), elsewhere = !remedies.other_output.empty();
+  if (!anew && !elsewhere) return "";
+  return "; use " + (anew ? remedies.start_anew + " to start a new campaign over it" : std::string()) +
+         (anew && elsewhere ? ", or " : "") + (elsewhere ? "another " + remedies.other_output : std::string());
 }
 
 // Why the cube's results must not be resumed with these inputs, or nothing when they may.
-std::optional<InputError> input_change(const io::Cube& old, const scenario::Job& job, const Inputs& now) {
+std::optional<InputError> input_change(const io::Cube& old, const job::Job& job, const Inputs& now,
+                                       const OutputRemedies& remedies) {
   const io::Digests old_job = io::parse_digests(old.job_inputs);
   if (old.job_hash != job.hash) {
     // the same job file edited is named; another job file or other command-line settings name the output
     if (old_job.size() >= 2 && old_job[1].path == now.job[1].path && old_job[1].sha256 != now.job[1].sha256) {
-      return changed_file(job.path);
+      return changed_file(job.path, remedies);
     }
     return InputError(job.output, 0,
                       "was written by a different job file, accuracy preset or command-line settings (hash " + old.job_hash + ", now " + job.hash +
-                          "); use --force to start a new campaign over it, or another --out");
+                          ")" + other_job_remedy(remedies));
   }
   if (old.inputs_sha256.empty()) {
     log_warning(job.output + " was written before input hashes were stored; its scenes and records are not checked for changes");
     return std::nullopt;
   }
   if (old.inputs_sha256 == now.combined) return std::nullopt;
-  if (auto f = io::first_changed(old_job, now.job)) return changed_file(*f);
+  if (auto f = io::first_changed(old_job, now.job)) return changed_file(*f, remedies);
   for (std::size_t o = 0; o < now.objects.size() && o < old.objects.size(); ++o) {
-    if (auto f = io::first_changed(io::parse_digests(old.objects[o].inputs), now.objects[o])) return changed_file(*f);
+    if (auto f = io::first_changed(io::parse_digests(old.objects[o].inputs), now.objects[o])) return changed_file(*f, remedies);
   }
   for (std::size_t r = 0; r < now.records.size() && r < old.records.size(); ++r) {
-    if (auto f = io::first_changed(io::parse_digests(old.records[r].inputs), now.records[r])) return changed_file(*f);
+    if (auto f = io::first_changed(io::parse_digests(old.records[r].inputs), now.records[r])) return changed_file(*f, remedies);
   }
-  return changed_file(job.output);  // a digest that matches no file list: the cube itself was altered
+  return changed_file(job.output, remedies);  // a digest that matches no file list: the cube itself was altered
 }
 
 }  // namespace
 
-Inputs collect_inputs(const scenario::Job& job, const scenario::Model& model) {
+Inputs collect_inputs(const job::Job& job, const scenario::Model& model) {
   Inputs in;
-  in.job.push_back({"(settings)", io::sha256_hex(io::job_settings_text(job))});
+  in.job.push_back({"(settings)", io::sha256_hex(job::job_settings_text(job))});
   in.job.push_back({job.path, io::file_sha256(job.path)});
   if (!job.record_list.empty()) in.job.push_back({job.record_list, io::file_sha256(job.record_list)});
   for (std::size_t o = 0; o < job.objects.size(); ++o) in.objects.push_back(io::digest_files(model.scene(int(o)).files));
@@ -114,7 +123,7 @@ io::VariantTable variant_table(const scenario::VariantSpace& space) {
 }  // namespace
 
 io::Cube make_cube(const CampaignContext& context, const Plan& plan) {
-  const scenario::Job& job = context.job;
+  const job::Job& job = context.job;
   const scenario::Model& model = context.model;
   const Inputs& inputs = context.inputs;
   io::Cube cube;
@@ -129,10 +138,10 @@ io::Cube make_cube(const CampaignContext& context, const Plan& plan) {
   cube.software_version = RIGID_VERSION " (" RIGID_GIT_HASH ")";
   cube.seed = job.seed;
   cube.variants = variant_table(job.variants);
-  cube.physics_json = io::physics_json(model.scene(0), job);  // object 0's, as before per-object records
+  cube.physics_json = io::physics_json(model.scene(0), job.run, job.accuracy, job.stop_after);  // object 0's, as before per-object records
   const std::vector<std::int8_t> outcome = plan.final_outcomes();
   const std::vector<bool> kept = plan.kept_mask();
-  const long per_object = long(job.records.size()) * long(job.scales_g.size()) * job.rotations;
+  const long per_object = job.cells().per_object();
   const double nan = std::nan("");
   for (std::size_t o = 0; o < job.objects.size(); ++o) {
     io::ObjectCube oc;
@@ -140,7 +149,7 @@ io::Cube make_cube(const CampaignContext& context, const Plan& plan) {
     oc.variant = job.objects[o].variant;
     oc.scene = job.objects[o].scene;
     oc.inputs = io::format_digests(inputs.objects[o]);
-    oc.physics_json = io::physics_json(model.scene(int(o)), job);
+    oc.physics_json = io::physics_json(model.scene(int(o)), job.run, job.accuracy, job.stop_after);
     if (const auto rocking = scenario::rocking_parameters(model.scene(int(o)))) {
       oc.alpha_rad = rocking->alpha;
       oc.p_rad_s = rocking->p;
@@ -170,20 +179,20 @@ io::Cube make_cube(const CampaignContext& context, const Plan& plan) {
   return cube;
 }
 
-std::vector<TaskResult> restore(const std::string& output, const scenario::Job& job, const Inputs& inputs, Plan& plan,
-                                bool force) {
+std::vector<TaskResult> restore(const std::string& output, const job::Job& job, const Inputs& inputs, Plan& plan,
+                                bool force, const OutputRemedies& remedies) {
   const std::string journal = output + ".journal";
   const bool have_cube = fs::exists(output);
   if (have_cube) {
     const io::Cube old = io::read_cube(output);
     if (const std::string w = io::old_cube_warning(output, old); !w.empty()) log_warning(w);
-    if (std::optional<InputError> change = input_change(old, job, inputs)) {
+    if (std::optional<InputError> change = input_change(old, job, inputs, remedies)) {
       if (!force) throw *change;
       fs::remove(output);
       fs::remove(journal);
       return {};
     }
-    const long per_object = long(job.records.size()) * long(job.scales_g.size()) * job.rotations;
+    const long per_object = job.cells().per_object();
     for (std::size_t o = 0; o < old.objects.size() && o < job.objects.size(); ++o) {
       const auto& oc = old.objects[o];
       for (long i = 0; i < per_object && i < long(oc.outcome.size()); ++i) {
@@ -208,7 +217,7 @@ std::vector<TaskResult> restore(const std::string& output, const scenario::Job& 
   JournalContents kept = read_journal(journal, inputs.combined, plan.size());
   if (kept.foreign) {
     // without a cube to name the changed file, the journal itself is the evidence
-    if (!have_cube) throw changed_file(journal);
+    if (!have_cube) throw changed_file(journal, remedies);
     kept.problems.push_back(journal + ": written for other inputs; ignored");
   }
   for (const std::string& p : kept.problems) log_warning(p);

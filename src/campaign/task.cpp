@@ -5,11 +5,7 @@
 
 namespace rigid::campaign {
 
-scenario::Case case_of(const scenario::Job& job, const Cell& cell) {
-  return {cell.object, cell.record, job.drive_scale_g(std::size_t(cell.scale)), cell_rotation_deg(job, cell)};
-}
-
-TaskResult run_task(const scenario::Job& job, const scenario::Model& model, std::int64_t task, bool noop) {
+TaskResult run_task(const job::Job& job, const scenario::Model& model, std::int64_t task, bool noop) {
   TaskResult out;
   out.task = task;
   out.failure_time_s = std::nan("");
@@ -20,8 +16,7 @@ TaskResult run_task(const scenario::Job& job, const scenario::Model& model, std:
     return out;
   }
   const auto start = std::chrono::steady_clock::now();
-  const Cell cell = cell_of(task, int(job.records.size()), int(job.scales_g.size()), job.rotations);
-  const scenario::CaseOutcome c = scenario::simulate(model, case_of(job, cell));
+  const scenario::CaseOutcome c = scenario::simulate(model, job::case_of(job, job.cells().cell(task)));
   out.outcome = static_cast<std::int32_t>(c.outcome);
   out.reason = static_cast<std::int32_t>(c.reason);
   set_message(out, c.message);

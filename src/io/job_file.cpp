@@ -42,9 +42,6 @@ double number(const toml::node& n, const std::string& src, const std::string& wh
   return *v;
 }
 
-// Most cells one job may have: a cell's plan entry, result and journal record cost some
-// hundred bytes, so 1e7 cells is about a gigabyte (and years of simulation).
-constexpr double kMaxCells = 1e7;
 constexpr long kMaxScales = 100000;
 
 // A decimal number as digits x 10^-places ("0.25" -> 25, 2; "1e-1" -> 1, 1), when it is one
@@ -104,7 +101,7 @@ std::optional<std::vector<double>> decimal_range(const std::string& text) {
 /// The stated scales (g); a range also fills `drive` with its float sums (Job::drive_scales_g).
 std::vector<double> parse_scales(const toml::node& n, const std::string& src, std::vector<double>& drive) {
   std::vector<double> out;
-  if (n.value<std::string>() && *n.value<std::string>() == "as recorded") return {scenario::kAsRecordedScale};
+  if (n.value<std::string>() && *n.value<std::string>() == "as recorded") return {kAsRecordedScale};
   if (const auto* arr = n.as_array()) {
     for (const auto& v : *arr) out.push_back(number(v, src, "each scale (g)"));
   } else if (const auto s = n.value<std::string>()) {
@@ -183,48 +180,12 @@ std::string object_name_problem(const std::string& name) {
   return "";
 }
 
-// Refuses a job too large to plan (the plan and results live in memory) before anything is allocated.
-void check_cell_count(const scenario::Job& job, long campaign_line) {
-  const double cells = double(job.objects.size()) * double(job.records.size()) * double(job.scales_g.size()) *
-                       double(job.rotations);
-  if (cells > kMaxCells) {
-    char buf[160];
-    std::snprintf(buf, sizeof buf, "the job has %.3g cells (objects x variants x records x scales x rotations), more than 1e7",
-                  cells);
-    throw InputError(job.path, campaign_line, buf);
-  }
-}
 
-// Every [[object]] in every variant, object-major: what the campaign simulates.
-void expand_variants(scenario::Job& job) {
-  if (job.variants.count() == 0) return;
-  std::vector<scenario::JobObject> expanded;
-  for (std::size_t o = 0; o < job.objects.size(); ++o) {
-    for (int v = 0; v < job.variants.count(); ++v) {
-      scenario::JobObject e = job.objects[o];
-      e.base = int(o);
-      e.variant = v;
-      e.variant_scene = scenario::variant_scene(job.variants, v);
-      expanded.push_back(std::move(e));
-    }
-  }
-  job.objects = std::move(expanded);
-}
-
-}  // namespace
-
-scenario::Job load_job(const std::string& path) {
-  scenario::Job job;
-  job.path = path;
-  if (!fs::exists(path)) throw InputError(path, 0, "job file not found");
-  job.text = read_input_file(path, kMaxTextFileBytes);
-  job.hash = text_hash(job.text);
-  const toml::table root = parse_toml(job.text, path);
-  const fs::path base = fs::path(path).parent_path();
-  reject_unknown(root, {"campaign", "lab", "object", "record", "records", "run", "sweep", "variant"}, path, "the job");
-
+void read_campaign(const toml::table& root, JobFile& job) {
+  const std::string& path = job.path;
   const auto* c = root["campaign"].as_table();
   if (!c) throw InputError(path, 0, "missing [campaign] table");
+  job.campaign_line = line_of(*c);
   reject_unknown(*c, {"name", "seed", "output", "scales", "rotations", "rotation_angles_deg", "stop_after", "checkpoint_interval_s", "grace_s"},
                  path, "[campaign]");
   optional_string(*c, "name", "", path);  // a label for people: type-checked, not used
@@ -272,8 +233,10 @@ scenario::Job load_job(const std::string& path) {
   job.grace = optional_number(*c, "grace_s", job.grace, path);
   if (!(job.checkpoint_interval > 0)) throw InputError(path, line_of(*c), "checkpoint_interval_s must be positive");
   if (!(job.grace >= 0)) throw InputError(path, line_of(*c), "grace_s must not be negative");
+}
 
-  // objects
+void read_objects(const toml::table& root, const fs::path& base, JobFile& job) {
+  const std::string& path = job.path;
   const auto* objects = root["object"].as_array();
   if (!objects || objects->empty()) throw InputError(path, 0, "the job needs at least one [[object]]");
   std::set<std::string> object_names;
@@ -281,7 +244,7 @@ scenario::Job load_job(const std::string& path) {
     const auto* t = node.as_table();
     if (!t) throw InputError(path, line_of(node), "each [[object]] must be a table");
     reject_unknown(*t, {"name", "scene", "state", "optional"}, path, "[[object]]");
-    scenario::JobObject o;
+    JobFileObject o;
     const std::string scene = optional_string(*t, "scene", "", path);
     if (scene.empty()) throw InputError(path, line_of(node), "[[object]] needs scene = \"FILE\"");
     o.scene = (base / scene).lexically_normal().string();
@@ -309,78 +272,70 @@ scenario::Job load_job(const std::string& path) {
     if (!object_names.insert(o.name).second) throw InputError(path, line_of(node), "duplicate object name '" + o.name + "'");
     job.objects.push_back(o);
   }
-
   if (job.objects.empty()) throw InputError(path, 0, "every [[object]] of the job is optional and absent");
-  job.variants = read_variants(root, path, base, job.seed, job.objects.size(), job.variant_lines);
-  expand_variants(job);
+}
 
-  // records: a list file or [[record]] tables
-  if (root.contains("records") == root.contains("record")) {
-    throw InputError(path, 0, "give the records either as records = \"LIST\" or as [[record]] tables");
+void read_listed_records(const toml::node& list, const fs::path& base, JobFile& job) {
+  const auto name = list.value<std::string>();
+  if (!name) throw InputError(job.path, line_of(list), "records must be a record-list file name");
+  const fs::path list_path = base / *name;
+  if (!fs::exists(list_path)) throw InputError(job.path, line_of(list), "record list not found: " + list_path.string());
+  const RecordList rl = read_record_list(list_path.string());
+  job.record_list = list_path.lexically_normal().string();
+  for (const auto& e : rl.records) {
+    JobRecord r;
+    r.spec = resolve_spec(e.file, fs::path(rl.base_dir));
+    r.name = record_name(e.file);
+    r.origin_file = job.record_list;
+    r.origin_line = e.line;
+    r.start = e.start;
+    r.end = e.end;
+    r.earthquake = e.earthquake;
+    r.listed_pga_g = std::isfinite(e.gmroti_pga_g) ? e.gmroti_pga_g : 0.0;
+    r.listed_pgv_cm_s = std::isfinite(e.gmroti_pgv_cm_s) ? e.gmroti_pgv_cm_s : 0.0;
+    r.resample = e.resample;
+    job.records.push_back(r);
   }
-  if (const auto* list = root.get("records")) {
-    const auto name = list->value<std::string>();
-    if (!name) throw InputError(path, line_of(*list), "records must be a record-list file name");
-    const fs::path list_path = base / *name;
-    if (!fs::exists(list_path)) throw InputError(path, line_of(*list), "record list not found: " + list_path.string());
-    const RecordList rl = read_record_list(list_path.string());
-    job.record_list = list_path.lexically_normal().string();
-    for (const auto& e : rl.records) {
-      scenario::JobRecord r;
-      r.spec = resolve_spec(e.file, fs::path(rl.base_dir));
-      r.name = record_name(e.file);
-      r.origin_file = job.record_list;
-      r.origin_line = e.line;
-      r.start = e.start;
-      r.end = e.end;
-      r.earthquake = e.earthquake;
-      r.listed_pga_g = std::isfinite(e.gmroti_pga_g) ? e.gmroti_pga_g : 0.0;
-      r.listed_pgv_cm_s = std::isfinite(e.gmroti_pgv_cm_s) ? e.gmroti_pgv_cm_s : 0.0;
-      r.resample = e.resample;
-      job.records.push_back(r);
+}
+
+void read_record_tables(const toml::table& root, const fs::path& base, JobFile& job) {
+  const std::string& path = job.path;
+  const auto* arr = root["record"].as_array();
+  if (!arr) throw InputError(path, 0, "record must be an array of tables ([[record]])");
+  for (const auto& node : *arr) {
+    const auto* t = node.as_table();
+    if (!t) throw InputError(path, line_of(node), "each [[record]] must be a table");
+    reject_unknown(*t, {"name", "motion", "lab", "start", "end", "earthquake", "align"}, path, "[[record]]");
+    JobRecord r;
+    const std::string motion = optional_string(*t, "motion", "", path);
+    const std::string lab = optional_string(*t, "lab", "", path);
+    if (motion.empty() == lab.empty())
+      throw InputError(path, line_of(node), "[[record]] needs motion = \"NAME-X.AT2\" (or \"H1.AT2,H2.AT2\") or lab = \"FILE\", one of them");
+    r.lab = !lab.empty();
+    r.spec = r.lab ? (fs::path(lab).is_absolute() ? fs::path(lab) : base / lab).lexically_normal().string()
+                   : resolve_spec(motion, base);
+    r.name = optional_string(*t, "name", r.lab ? lab_record_name(lab) : record_name(motion), path);
+    if (r.lab && t->contains("align"))
+      throw InputError(path, line_of(*t->get("align")), "[[record]] align applies to AT2 sets, not to lab = recordings");
+    r.origin_file = path;
+    r.origin_line = line_of(node);
+    r.start = optional_number(*t, "start", 0.0, path);
+    r.end = optional_number(*t, "end", std::numeric_limits<double>::infinity(), path);
+    r.earthquake = optional_string(*t, "earthquake", "", path);
+    if (const auto* align = t->get("align")) {
+      const auto value = align->value<std::string>();
+      if (!value || (*value != "resample" && *value != "auto"))
+        throw InputError(path, line_of(*align), "[[record]] align must be \"auto\" (pad lengths within 1 %) or \"resample\"");
+      r.resample = *value == "resample";
     }
-  } else {
-    const auto* arr = root["record"].as_array();
-    if (!arr) throw InputError(path, 0, "record must be an array of tables ([[record]])");
-    for (const auto& node : *arr) {
-      const auto* t = node.as_table();
-      if (!t) throw InputError(path, line_of(node), "each [[record]] must be a table");
-      reject_unknown(*t, {"name", "motion", "lab", "start", "end", "earthquake", "align"}, path, "[[record]]");
-      scenario::JobRecord r;
-      const std::string motion = optional_string(*t, "motion", "", path);
-      const std::string lab = optional_string(*t, "lab", "", path);
-      if (motion.empty() == lab.empty())
-        throw InputError(path, line_of(node), "[[record]] needs motion = \"NAME-X.AT2\" (or \"H1.AT2,H2.AT2\") or lab = \"FILE\", one of them");
-      r.lab = !lab.empty();
-      r.spec = r.lab ? (fs::path(lab).is_absolute() ? fs::path(lab) : base / lab).lexically_normal().string()
-                     : resolve_spec(motion, base);
-      r.name = optional_string(*t, "name", r.lab ? lab_record_name(lab) : record_name(motion), path);
-      if (r.lab && t->contains("align"))
-        throw InputError(path, line_of(*t->get("align")), "[[record]] align applies to AT2 sets, not to lab = recordings");
-      r.origin_file = path;
-      r.origin_line = line_of(node);
-      r.start = optional_number(*t, "start", 0.0, path);
-      r.end = optional_number(*t, "end", std::numeric_limits<double>::infinity(), path);
-      r.earthquake = optional_string(*t, "earthquake", "", path);
-      if (const auto* align = t->get("align")) {
-        const auto value = align->value<std::string>();
-        if (!value || (*value != "resample" && *value != "auto"))
-          throw InputError(path, line_of(*align), "[[record]] align must be \"auto\" (pad lengths within 1 %) or \"resample\"");
-        r.resample = *value == "resample";
-      }
-      job.records.push_back(r);
-    }
+    job.records.push_back(r);
   }
-  if (job.records.empty()) throw InputError(path, 0, "the job has no records");
-  // the [lab] table: read here, so a bad format stops the job before any work
-  job.lab_format = lab_format_from_table(root, path);
-  if (const auto* lab = root.get("lab")) {
-    const bool used = std::any_of(job.records.begin(), job.records.end(), [](const auto& r) { return r.lab; });
-    if (!used) throw InputError(path, line_of(*lab), "[lab] is given but no [[record]] has lab = \"FILE\"");
-  }
+}
+
+// Every file of every record must exist now, not at the first task; names are made unique.
+void check_records(JobFile& job) {
   std::set<std::string> record_names;
   for (auto& r : job.records) {
-    // every file of the set must exist now, not at the first task
     if (r.lab && !fs::exists(r.spec)) {
       throw InputError(r.origin_file, r.origin_line, "record " + r.name + ": lab recording not found: " + r.spec);
     }
@@ -400,73 +355,76 @@ scenario::Job load_job(const std::string& path) {
     for (int k = 2; !record_names.insert(unique).second; ++k) unique = r.name + "_" + std::to_string(k);
     r.name = unique;
   }
+}
 
-  // simulation settings
-  if (const auto* run = root["run"].as_table()) {
-    reject_unknown(*run, {"model", "duration_s", "free_time_s", "dt_s", "safety", "integrator", "accuracy", "effects", "contact"}, path, "[run]");
-    if (const auto* c = run->get("contact")) {
-      const auto name = c->value<std::string>();
-      contact::ContactModel model;
-      if (!name || !contact::parse_contact_model(*name, model)) {
-        throw InputError(path, line_of(*c), "contact must be \"rigid\" or \"penalty\"");
-      }
-      job.contact = *name;
-    }
-    const std::string model = optional_string(*run, "model", "dem3d", path);
-    const std::optional<scenario::ModelKind> kind = scenario::parse_model_kind(model);
-    if (!kind) {
-      throw InputError(path, line_of(*run), "model must be \"dem3d\" or \"rocking2d\", not \"" + model + "\"");
-    }
-    job.model = *kind;
-    job.run.duration = optional_number(*run, "duration_s", 0.0, path);
-    job.run.free_time = optional_number(*run, "free_time_s", job.run.free_time, path);
-    job.run.step.dt = optional_number(*run, "dt_s", 0.0, path);
-    job.run.step.safety = optional_number(*run, "safety", job.run.step.safety, path);
-    if (job.run.duration < 0 || job.run.free_time < 0 || job.run.step.dt < 0 || !(job.run.step.safety > 0)) {
-      throw InputError(path, line_of(*run), "durations and dt must not be negative, safety must be positive");
-    }
-    const std::string integrator = optional_string(*run, "integrator", "splitting", path);
-    if (integrator == "rk4") {
-      job.run.step.rotation = dynamics::RotationIntegrator::rk4;
-    } else if (integrator != "splitting") {
-      throw InputError(path, line_of(*run), "integrator must be \"splitting\" or \"rk4\"");
-    }
-    // the accuracy preset; the explicit keys dt_s, safety and integrator override its values
-    if (const auto* a = run->get("accuracy")) {
-      const auto name = a->value<std::string>();
-      if (!name || !scenario::find_accuracy_preset(*name)) {
-        throw InputError(path, line_of(*a), "accuracy must be " + scenario::accuracy_preset_list() + ", not " +
-                                                (name ? "\"" + *name + "\"" : std::string("a non-string")));
-      }
-      job.accuracy = *name;
-    }
-    // effect selection: "auto" simulates only what the scene and motion call for
-    if (const auto* e = run->get("effects")) {
-      const auto name = e->value<std::string>();
-      if (!name || (*name != "auto" && *name != "all")) {
-        throw InputError(path, line_of(*e), "effects must be \"auto\" or \"all\", not " +
-                                                (name ? "\"" + *name + "\"" : std::string("a non-string")));
-      }
-      job.run.select_effects = *name == "auto";
-    }
-    if (run->contains("dt_s")) job.accuracy_overrides.dt = job.run.step.dt;
-    if (run->contains("safety")) job.accuracy_overrides.safety = job.run.step.safety;
-    if (run->contains("integrator")) job.accuracy_overrides.rotation = job.run.step.rotation;
-    const toml::node* step_key = run->contains("dt_s") ? run->get("dt_s") : run->get("safety");
-    job.run_line = line_of(step_key ? *step_key : *run);
+// Records: a list file or [[record]] tables, and the [lab] table their lab recordings are read with.
+void read_records(const toml::table& root, const fs::path& base, JobFile& job) {
+  const std::string& path = job.path;
+  if (root.contains("records") == root.contains("record")) {
+    throw InputError(path, 0, "give the records either as records = \"LIST\" or as [[record]] tables");
   }
-  check_cell_count(job, line_of(*c));
-  scenario::apply_accuracy(*scenario::find_accuracy_preset(job.accuracy), job.accuracy_overrides, job.run);
-  job.hash = job_hash(job);
+  if (const auto* list = root.get("records")) {
+    read_listed_records(*list, base, job);
+  } else {
+    read_record_tables(root, base, job);
+  }
+  if (job.records.empty()) throw InputError(path, 0, "the job has no records");
+  // the [lab] table: read here, so a bad format stops the job before any work
+  job.lab_format = lab_format_from_table(root, path);
+  if (const auto* lab = root.get("lab")) {
+    const bool used = std::any_of(job.records.begin(), job.records.end(), [](const auto& r) { return r.lab; });
+    if (!used) throw InputError(path, line_of(*lab), "[lab] is given but no [[record]] has lab = \"FILE\"");
+  }
+  check_records(job);
+}
+
+// [run] as written: keys and types; what the values mean is the job module's (job::RunOverrides).
+RunTable read_run(const toml::table& root, const std::string& path) {
+  RunTable out;
+  const auto* run = root["run"].as_table();
+  if (!run) return out;
+  reject_unknown(*run, {"model", "duration_s", "free_time_s", "dt_s", "safety", "integrator", "accuracy", "effects", "contact"}, path, "[run]");
+  out.line = line_of(*run);
+  const auto text = [&](const char* key) -> std::optional<RunText> {
+    const toml::node* n = run->get(key);
+    if (!n) return std::nullopt;
+    return RunText{n->value<std::string>(), line_of(*n)};
+  };
+  out.contact = text("contact");
+  // model and integrator must be strings; their value errors point at [run]
+  if (run->contains("model")) out.model = RunText{optional_string(*run, "model", "", path), out.line};
+  const auto number = [&](const char* key) -> std::optional<double> {
+    if (!run->contains(key)) return std::nullopt;
+    return optional_number(*run, key, 0.0, path);
+  };
+  out.duration_s = number("duration_s");
+  out.free_time_s = number("free_time_s");
+  out.dt_s = number("dt_s");
+  out.safety = number("safety");
+  if (run->contains("integrator")) out.integrator = RunText{optional_string(*run, "integrator", "", path), out.line};
+  out.accuracy = text("accuracy");
+  out.effects = text("effects");
+  const toml::node* step_key = run->contains("dt_s") ? run->get("dt_s") : run->get("safety");
+  out.step_line = line_of(step_key ? *step_key : *run);
+  return out;
+}
+
+}  // namespace
+
+JobFile read_job_file(const std::string& path) {
+  JobFile job;
+  job.path = path;
+  if (!fs::exists(path)) throw InputError(path, 0, "job file not found");
+  job.text = read_input_file(path, kMaxTextFileBytes);
+  const toml::table root = parse_toml(job.text, path);
+  const fs::path base = fs::path(path).parent_path();
+  reject_unknown(root, {"campaign", "lab", "object", "record", "records", "run", "sweep", "variant"}, path, "the job");
+  read_campaign(root, job);
+  read_objects(root, base, job);
+  job.variants = read_variants(root, path, base, job.seed, job.objects.size(), job.variant_lines);
+  read_records(root, base, job);
+  job.run = read_run(root, path);
   return job;
 }
-
-std::string job_settings_text(const scenario::Job& job) {
-  // cubes from before the presets were computed with balanced's settings and hash the text alone
-  if (job.accuracy == "balanced") return job.text;
-  return job.text + "\n# accuracy: " + job.accuracy + "\n";
-}
-
-std::string job_hash(const scenario::Job& job) { return text_hash(job_settings_text(job)); }
 
 }  // namespace rigid::io

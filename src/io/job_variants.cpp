@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <set>
 
+#include "rigid/contact/contact.hpp"
 #include "rigid/core/error.hpp"
 #include "toml_values.hpp"
 
@@ -44,7 +45,8 @@ struct Reader {
       const auto s = n.value<std::string>();
       if (!s || s->empty()) throw InputError(path, line_of(n), std::string(info.name) + ": each value must be a non-empty string");
       out.text = *s;
-      if (info.key == VariantKey::contact && *s != "rigid" && *s != "penalty") {
+      contact::ContactModel model;
+      if (info.key == VariantKey::contact && !contact::parse_contact_model(*s, model)) {
         throw InputError(path, line_of(n), "contact must be \"rigid\" or \"penalty\", not \"" + *s + "\"");
       }
       if (info.key == VariantKey::scene) {

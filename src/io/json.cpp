@@ -9,9 +9,9 @@ namespace rigid::io {
 
 std::string json_line(const Json& j) { return j.dump(-1, ' ', false, Json::error_handler_t::replace); }
 
-std::string physics_json(const scenario::Scene& scene, const scenario::Job& job) {
+std::string physics_json(const scenario::Scene& scene, const scenario::RunSettings& run, const std::string& accuracy,
+                         int stop_after) {
   const auto& law = scene.law;
-  const auto& run = job.run;
   const bool tilt = scene.failure.kind == scenario::FailureRule::Kind::tilt;
   Json j;
   j["contact"] = contact::contact_model_name(law.model);
@@ -29,8 +29,8 @@ std::string physics_json(const scenario::Scene& scene, const scenario::Job& job)
   j["integrator"] = run.step.rotation == dynamics::RotationIntegrator::rk4 ? "rk4" : "splitting";
   j["duration_s"] = run.duration;
   j["free_time_s"] = run.free_time;
-  j["stop_after"] = job.stop_after;
-  j["accuracy"] = job.accuracy;
+  j["stop_after"] = stop_after;
+  j["accuracy"] = accuracy;
   j["rest_speed_m_s"] = run.rest_speed;
   j["rest_angular_speed_rad_s"] = run.rest_angular_speed;
   j["rest_time_s"] = run.rest_time;

@@ -63,10 +63,10 @@ struct Campaign {
               scenario::RunSettings{}) {
     job.output = output;
     job.hash = "test-job";
-    scenario::JobObject block;
+    job::JobObject block;
     block.name = "block";
     job.objects.push_back(block);
-    scenario::JobRecord r;
+    job::JobRecord r;
     r.name = "quiet";
     job.records.push_back(r);
     for (int s = 0; s < scales; ++s) job.scales_g.push_back(0.1 * (s + 1));
@@ -99,7 +99,7 @@ struct Campaign {
   }
   long size() const { return long(job.scales_g.size()) * job.rotations; }
 
-  scenario::Job job;
+  job::Job job;
   scenario::Model model;
   std::vector<io::RecordMeta> records;
   Inputs inputs;

@@ -27,12 +27,12 @@ std::string temp_path(const std::string& name) {
 }
 
 // A job of one object and one record; cells are scaled to 0.3 g.
-scenario::Job one_cell_job() {
-  scenario::Job job;
-  scenario::JobObject block;
+job::Job one_cell_job() {
+  job::Job job;
+  job::JobObject block;
   block.name = "block";
   job.objects.push_back(block);
-  scenario::JobRecord r;
+  job::JobRecord r;
   r.name = "quiet";
   job.records.push_back(r);
   job.scales_g = {0.3};

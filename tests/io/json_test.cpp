@@ -74,9 +74,11 @@ TEST(PhysicsJson, KeysInOrderAndValuesReadBackExactly) {
   contact::ContactLaw law;
   law.friction = 0.7;
   scenario::Scene scene = scenario::block_on_pedestal(0.1, 0.5, 0.3, law);
-  scenario::Job job;
-  job.run.step.dt = 1.0 / 3.0 * 1e-4;
-  const Json j = Json::parse(physics_json(scene, job));
+  scenario::RunSettings run;
+  run.step.dt = 1.0 / 3.0 * 1e-4;
+  const int stop_after = 7;
+  const std::string accuracy = "fast";
+  const Json j = Json::parse(physics_json(scene, run, accuracy, stop_after));
   std::vector<std::string> keys;
   for (const auto& [k, v] : j.items()) keys.push_back(k);
   EXPECT_EQ(keys, (std::vector<std::string>{
@@ -85,13 +87,13 @@ TEST(PhysicsJson, KeysInOrderAndValuesReadBackExactly) {
                       "duration_s", "free_time_s", "stop_after", "accuracy", "rest_speed_m_s",
                       "rest_angular_speed_rad_s", "rest_time_s", "effects"}));
   EXPECT_EQ(j["friction"].get<double>(), 0.7);
-  EXPECT_EQ(j["dt_s"].get<double>(), job.run.step.dt);
-  EXPECT_EQ(j["step_s"].get<double>(), dynamics::time_step(scene.bodies, scene.law, job.run.step));
+  EXPECT_EQ(j["dt_s"].get<double>(), run.step.dt);
+  EXPECT_EQ(j["step_s"].get<double>(), dynamics::time_step(scene.bodies, scene.law, run.step));
   EXPECT_EQ(j["density"].get<double>(), scene.density);
   EXPECT_EQ(j["failure_rule"], "below");
   EXPECT_EQ(j["failure_tilt_deg"].get<double>(), 0.0);
-  EXPECT_EQ(j["stop_after"].get<int>(), job.stop_after);
-  EXPECT_EQ(j["accuracy"], job.accuracy);
+  EXPECT_EQ(j["stop_after"].get<int>(), stop_after);
+  EXPECT_EQ(j["accuracy"], accuracy);
   EXPECT_EQ(j["effects"], "auto");
   EXPECT_EQ(j["contact"], contact::contact_model_name(law.model));
 }

@@ -6,8 +6,8 @@ and checks it against the dependencies src/CMakeLists.txt declares (read from it
 calls and the `rigid` executable's link line; docs/architecture.md, "Layout and modules"), today:
 
   core <- geometry <- contact <- dynamics;  core <- motion, rocking;
-  scenario <- dynamics, motion, rocking;  study <- scenario;  io <- scenario;  campaign <- io;
-  calibration <- core;  repair <- geometry;  app <- campaign, study, calibration, repair
+  scenario <- dynamics, motion, rocking;  study <- scenario;  io <- scenario;  job <- io;
+  campaign <- job;  calibration <- core;  repair <- geometry;  app <- campaign, study, calibration, repair
 
 (a module may include its own headers and those of every module below it, transitively), and the
 third-party rules: the engine core (geometry .. scenario, study) includes only Eigen and the standard
@@ -59,6 +59,14 @@ THIRD_PARTY = {
     "cli11": {"app"},
 }
 
+# Where modules must sit, whatever CMake declares (module, modules it must be above): the job
+# module (a job and its settings) is above the formats and the engine, below campaign and app.
+REQUIRED_ABOVE = {
+    "job": {"io", "scenario"},
+    "campaign": {"job"},
+    "app": {"job", "campaign"},
+}
+
 # Deliberate exceptions: (module, included header) -> reason. Empty today.
 ALLOWED_EXCEPTIONS = {}
 
@@ -108,8 +116,24 @@ def closure(module):
 INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]')
 
 
-def check(root):
+def order_problems():
+    """The required order (REQUIRED_ABOVE) against the declared graph: each module reaches the
+    modules it must be above, and none of those reaches it back."""
     problems = []
+    for module, below in REQUIRED_ABOVE.items():
+        if module not in DIRECT:
+            problems.append(f"src/CMakeLists.txt: module {module} is missing")
+            continue
+        for other in sorted(below):
+            if other not in closure(module):
+                problems.append(f"src/CMakeLists.txt: {module} must be above {other}")
+            elif other in DIRECT and module in closure(other):
+                problems.append(f"src/CMakeLists.txt: {other} must be below {module}, not above it")
+    return problems
+
+
+def check(root):
+    problems = order_problems()
     checked = 0
     for module in DIRECT:
         allowed = closure(module)

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "rigid/core/error.hpp"
-#include "rigid/io/job_file.hpp"
+#include "rigid/job/load.hpp"
 #include "rigid/scenario/builders.hpp"
 
 namespace rigid {
@@ -313,7 +313,7 @@ TEST(Effects, JobFileChoosesEffectsAndRefusesUnknownValues) {
                            "[[record]]\nmotion = \"../waveforms/demo/stochastic_s1-X.AT2\"\n\n[run]\n";
   auto load = [&](const std::string& run) {
     std::ofstream(path) << head << run;
-    return io::load_job(path.string());
+    return job::load_job(path.string());
   };
   EXPECT_TRUE(load("free_time_s = 5.0\n").run.select_effects);
   EXPECT_TRUE(load("effects = \"auto\"\n").run.select_effects);

@@ -9,15 +9,16 @@
 #include <string_view>
 #include <vector>
 
+#include "rigid/job/cells.hpp"
+#include "rigid/job/job.hpp"
 #include "rigid/scenario/case.hpp"
-#include "rigid/scenario/job.hpp"
 
 namespace rigid::campaign {
 
-/// Coordinates of a cell.
-struct Cell {
-  int object = 0, record = 0, scale = 0, rotation = 0;
-};
+/// Coordinates of a cell (job/cells.hpp numbers them).
+using job::Cell;
+using job::cell_rotation_deg;
+using job::rotation_angle_deg;
 
 /// Bytes kept of a failed task's error text (with its terminating NUL): the text travels in the
 /// fixed-size TaskResult, so a longer message is cut.
@@ -45,17 +46,6 @@ static_assert(sizeof(TaskResult) == 288, "TaskResult is written raw: no padding,
 void set_message(TaskResult& r, std::string_view text);
 /// The text of r.message.
 std::string message_of(const TaskResult& r);
-
-/// The cell of a task index in a grid of (objects x) records x scales x rotations, row-major.
-Cell cell_of(long task, int records, int scales, int rotations);
-
-/// Rotation of the horizontals for a cell (unit: deg, in [0, 360)): SplitMix64 applied to the
-/// job seed and the cell coordinates in turn, so any cell's angle is computed on its own.
-double rotation_angle_deg(std::uint64_t seed, const Cell& cell);
-
-/// The rotation of a cell in a job: its fixed angle when the job lists them, else the random one
-/// of its [[object]] (the same for all of the object's variants).
-double cell_rotation_deg(const scenario::Job& job, const Cell& cell);
 
 class Plan {
  public:

@@ -4,11 +4,12 @@
 #include <string>
 #include <vector>
 
+#include "rigid/campaign/options.hpp"
 #include "rigid/campaign/plan.hpp"
 #include "rigid/io/cube.hpp"
 #include "rigid/io/provenance.hpp"
 #include "rigid/scenario/case.hpp"
-#include "rigid/scenario/job.hpp"
+#include "rigid/job/job.hpp"
 
 namespace rigid::campaign {
 
@@ -23,11 +24,11 @@ struct Inputs {
 };
 
 /// Reads every input file once more (after the model was loaded from them).
-Inputs collect_inputs(const scenario::Job& job, const scenario::Model& model);
+Inputs collect_inputs(const job::Job& job, const scenario::Model& model);
 
 /// What a campaign writes besides the results: the job, its model and its inputs.
 struct CampaignContext {
-  const scenario::Job& job;
+  const job::Job& job;
   const scenario::Model& model;
   const std::vector<io::RecordMeta>& records;
   const Inputs& inputs;
@@ -40,7 +41,8 @@ io::Cube make_cube(const CampaignContext& context, const Plan& plan);
 /// journal's, which are also returned (the new journal carries them until the first checkpoint).
 /// Inputs changed since the cube was written: throws rigid::InputError naming the changed file,
 /// touching neither the cube nor the journal, unless `force`, which removes both and starts anew.
-std::vector<TaskResult> restore(const std::string& output, const scenario::Job& job, const Inputs& inputs, Plan& plan,
-                                bool force);
+/// The errors offer the caller's remedies (CampaignOptions::remedies).
+std::vector<TaskResult> restore(const std::string& output, const job::Job& job, const Inputs& inputs, Plan& plan,
+                                bool force, const OutputRemedies& remedies);
 
 }  // namespace rigid::campaign

@@ -1,27 +1,96 @@
 #pragma once
-/// Campaign job files (TOML). Every problem is reported before any work starts, naming the file
-/// and line: unknown keys, missing files, an empty or non-increasing scale list, impossible
-/// values.
+/// Campaign job files (TOML), read as written: one reader per section, each checking what the
+/// file's format alone decides (unknown keys, types, missing files, an empty or non-increasing
+/// scale list, bad windows), naming the file and line. What the values mean for a run (the
+/// [run] settings, the variants of each object, the cell count) is the job module's
+/// (rigid/job/load.hpp), which turns a JobFile into a job::Job.
+#include <cstdint>
+#include <limits>
+#include <optional>
 #include <string>
+#include <vector>
 
-#include "rigid/scenario/job.hpp"
+#include "rigid/motion/lab_format.hpp"
+#include "rigid/scenario/variant.hpp"
 
 namespace rigid::io {
 
-/// Reads and checks a job file. Scene, state and record-list paths are relative to the job file;
-/// the output path is relative to the current directory.
-scenario::Job load_job(const std::string& path);
+/// The one scale of a campaign "as recorded" ([campaign] scales = "as recorded"): each record at
+/// factor 1, no PGA scaling (a target PGA of 0 scales nothing, scenario::case_motion).
+inline constexpr double kAsRecordedScale = 0.0;
+
+/// One [[object]] as written (paths resolved against the job file).
+struct JobFileObject {
+  std::string name;   ///< its name (default: the scene's stem), checked as an HDF5 group name
+  std::string scene;  ///< scene file (resolved path)
+  std::string state;  ///< saved equilibrium state (resolved path), may be empty
+};
+
+/// One record (a ground-motion set) of a campaign.
+struct JobRecord {
+  std::string name;  ///< unique record name
+  std::string spec;  ///< motion-set spec with resolved paths (see io::resolve_set); lab: the file
+  /// A lab recording ([[record]] lab = "FILE"), read with the job's lab format, instead of an AT2 set
+  bool lab = false;
+  double start = 0;                                      ///< window start (unit: s)
+  double end = std::numeric_limits<double>::infinity();  ///< window end (unit: s)
+  std::string earthquake;                                ///< from the record list, may be empty
+  double listed_pga_g = 0;                               ///< GMRotI PGA given by the list, 0 if none (unit: g)
+  double listed_pgv_cm_s = 0;                            ///< GMRotI PGV given by the list, 0 if none (unit: cm/s)
+  /// align = "resample": components of unequal dt or length resampled to a common dt and padded
+  /// (else only lengths within 1 % at equal dt are padded, motion::make_ground_motion)
+  bool resample = false;
+  std::string origin_file;  ///< where the record is given (job file or record list), for messages
+  long origin_line = 0;     ///< its line there
+};
+
+/// A text-valued [run] key as written: `text` is nothing when the value is not a string.
+struct RunText {
+  std::optional<std::string> text;
+  long line = 0;  ///< where an error about its value points
+};
+
+/// The [run] table as written (every key optional).
+struct RunTable {
+  std::optional<RunText> model, contact, effects, accuracy, integrator;
+  std::optional<double> duration_s, free_time_s, dt_s, safety;
+  long line = 0;       ///< the [run] table's line (0 when the job has none)
+  long step_line = 0;  ///< line of dt_s, else safety, else [run]: where errors about the step point
+};
+
+/// A job file as written.
+struct JobFile {
+  std::string path;    ///< the job file
+  std::string text;    ///< its contents, with a note per optional object left out
+  std::string output;  ///< [campaign] output, default: the job file's stem + ".h5"
+  std::uint64_t seed = 1;
+  long campaign_line = 0;        ///< line of [campaign]
+  std::vector<double> scales_g;  ///< stated scales (g), increasing; {kAsRecordedScale} for "as recorded"
+  /// A "start:stop:step" range's float sums start + i * step (0.30000000000000004), which the
+  /// campaigns before scales_g held the stated decimals ran with: one ulp more or less in the
+  /// drive changes the chaotic outcome of a few cells, so the sums keep those cubes reproducible.
+  /// Empty for a list.
+  std::vector<double> drive_scales_g;
+  int rotations = 2;
+  std::vector<double> rotation_angles_deg;  ///< unit: deg; empty: random angles
+  int stop_after = 10;
+  double checkpoint_interval = 30;     ///< unit: s
+  double grace = 30;                   ///< unit: s
+  std::vector<JobFileObject> objects;  ///< the [[object]]s present (optional absent ones left out)
+  scenario::VariantSpace variants;     ///< [sweep] or [[variant]]; count() == 0 without
+  std::vector<long> variant_lines;     ///< line of the [sweep] or of each [[variant]]
+  std::vector<JobRecord> records;      ///< names made unique
+  std::string record_list;             ///< the record-list file (resolved path), or empty
+  motion::LabFormat lab_format;        ///< the [lab] table
+  RunTable run;
+  std::vector<std::string> notes;  ///< what was left out, one line each
+};
+
+/// Reads a job file. Scene, state and record-list paths are relative to the job file; the
+/// output path is relative to the current directory. Throws rigid::InputError naming file and line.
+JobFile read_job_file(const std::string& path);
 
 /// Stable 64-bit FNV-1a hash of a text, as 16 hex digits.
 std::string text_hash(const std::string& text);
-
-/// The hash that identifies a job's results (Job::hash): text_hash of its text, with the accuracy
-/// preset appended unless it is "balanced" (the settings of every cube written before the presets
-/// existed, whose hashes therefore stay valid). A resume with another preset is refused.
-std::string job_hash(const scenario::Job& job);
-
-/// What job_hash hashes: the job text (with the command-line overrides the driver appends) and
-/// the accuracy preset, i.e. every physics-relevant setting that is not in an input file.
-std::string job_settings_text(const scenario::Job& job);
 
 }  // namespace rigid::io

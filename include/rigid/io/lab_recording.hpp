@@ -16,7 +16,7 @@
 
 namespace rigid::io {
 
-// The format itself is plain data in rigid::motion (motion/lab_format.hpp), so a scenario::Job
+// The format itself is plain data in rigid::motion (motion/lab_format.hpp), so a job::Job
 // can hold one; these names make it part of io's vocabulary too.
 using motion::LabChannel;
 using motion::LabColumn;

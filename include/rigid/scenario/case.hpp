@@ -1,7 +1,7 @@
 #pragma once
 /// The unit of work of Rigid: one case, (object, record, scale, rotation), simulated on an
 /// immutable Model. `rigid run`, campaigns and the dry-run estimate all go through simulate(),
-/// so a case means the same thing whichever command runs it. No I/O: io::load_model builds a
+/// so a case means the same thing whichever command runs it. No I/O: job::load_model builds a
 /// Model from files.
 #include <cstdint>
 #include <exception>

@@ -6,9 +6,9 @@
 #include <fstream>
 
 #include "rigid/core/error.hpp"
-#include "rigid/io/job_file.hpp"
+#include "rigid/job/load.hpp"
 
-namespace rigid::io {
+namespace rigid::job {
 namespace {
 
 namespace fs = std::filesystem;
@@ -155,7 +155,7 @@ TEST_F(JobFile, AbsentOptionalObjectIsLeftOutWithANoteThatEntersTheHash) {
   const std::string extra = "[[object]]\nname = \"scan\"\nscene = \"../models/absent/none.toml\"\noptional = true\n";
   std::string text = kGood;
   text.insert(text.find("[[record]]"), extra);
-  const scenario::Job with_absent = load_job(write(text));
+  const Job with_absent = load_job(write(text));
   ASSERT_EQ(with_absent.objects.size(), 1u);
   ASSERT_EQ(with_absent.notes.size(), 1u);
   EXPECT_NE(with_absent.notes[0].find("none.toml"), std::string::npos) << with_absent.notes[0];
@@ -163,7 +163,8 @@ TEST_F(JobFile, AbsentOptionalObjectIsLeftOutWithANoteThatEntersTheHash) {
   EXPECT_NE(with_absent.hash, load_job(write(kGood)).hash);
   // an optional object that exists is loaded; a non-optional absent one is an error
   std::string present = kGood;
-  present.insert(present.find("[[record]]"), "[[object]]\nname = \"again\"\nscene = \"../models/demo/block_a03.toml\"\noptional = true\n");
+  present.insert(present.find("[[record]]"),
+                 "[[object]]\nname = \"again\"\nscene = \"../models/demo/block_a03.toml\"\noptional = true\n");
   EXPECT_EQ(load_job(write(present)).objects.size(), 2u);
   std::string required = text;
   required.replace(required.find("optional = true"), 15, "optional = false");
@@ -197,7 +198,6 @@ TEST_F(JobFile, MalformedTomlNamesTheLine) {
   expect_error(t, "", 4);
 }
 
-
 // kGood has 8 lines; a [sweep] appended starts on line 9
 TEST_F(JobFile, SweepExpandsEveryObjectIntoItsVariants) {
   const std::string t = std::string(kGood) + "\n[[object]]\nname = \"b\"\nscene = \"../models/demo/block_a03.toml\"\n" +
@@ -226,19 +226,21 @@ TEST_F(JobFile, VariantTablesAndGrid) {
   EXPECT_EQ(list.variants.method, "list");
   EXPECT_EQ(list.variants.variants[1][0].number, 0.7);
   EXPECT_EQ(list.variants.variants[0][1].text, "penalty");
-  const auto grid = load_job(write(std::string(kGood) + "[sweep]\nmethod = \"grid\"\nlevels = 3\nfriction = [0.4, 0.8]\n"
-                                                        "size_scale = { values = [0.9, 1.1] }\n"));
+  const auto grid =
+      load_job(write(std::string(kGood) + "[sweep]\nmethod = \"grid\"\nlevels = 3\nfriction = [0.4, 0.8]\n"
+                                          "size_scale = { values = [0.9, 1.1] }\n"));
   EXPECT_EQ(grid.variants.count(), 6);
 }
 
 TEST_F(JobFile, AlternativeScenesReplaceTheObjectsScenePerVariant) {
-  const auto job = load_job(write(std::string(kGood) + "[sweep]\nmethod = \"grid\"\n"
-                                                       "scene = [\"../models/demo/block_a02.toml\", \"../models/demo/block_a03.toml\"]\n"));
+  const auto job = load_job(write(std::string(kGood) +
+                                  "[sweep]\nmethod = \"grid\"\n"
+                                  "scene = [\"../models/demo/block_a02.toml\", \"../models/demo/block_a03.toml\"]\n"));
   ASSERT_EQ(job.objects.size(), 2u);
   EXPECT_EQ(fs::path(job.objects[0].simulated_scene()).filename(), "block_a02.toml");
   EXPECT_EQ(fs::path(job.objects[1].simulated_scene()).filename(), "block_a03.toml");
   EXPECT_EQ(job.objects[1].scene, job.objects[0].scene);  // the cube's group names the object's own
-  EXPECT_EQ(job.objects[1].name, "block_a02");  // still the [[object]]'s name: one group in the cube
+  EXPECT_EQ(job.objects[1].name, "block_a02");            // still the [[object]]'s name: one group in the cube
   // another [[object]] makes the alternative ambiguous
   expect_error(std::string(kGood) + "[[object]]\nname = \"b\"\nscene = \"../models/demo/block_a03.toml\"\n" +
                    "[sweep]\nmethod = \"grid\"\nscene = [\"../models/demo/block_a03.toml\"]\n",
@@ -255,7 +257,8 @@ TEST_F(JobFile, BadSweepsAreRefusedAtTheirLine) {
   expect_error(job + "[sweep]\ncount = 0\nfriction = [0.4, 0.8]\n", "count must be an integer", 10);
   expect_error(job + "[sweep]\ncount = 4\nrestitution = [0.0, 1.5]\n", "restitution must not be greater than 1", 11);
   expect_error(job + "[sweep]\ncount = 4\nfriction = { values = [] }\n", "the list of values is empty", 11);
-  expect_error(job + "[sweep]\ncount = 4\ncontact = [\"rigid\", \"soft\"]\n", "contact must be \"rigid\" or \"penalty\"", 11);
+  expect_error(job + "[sweep]\ncount = 4\ncontact = [\"rigid\", \"soft\"]\n",
+               "contact must be \"rigid\" or \"penalty\"", 11);
   expect_error(job + "[sweep]\nmethod = \"sobol\"\ncount = 4\nfriction = [0.4, 0.8]\n", "method must be", 10);
   expect_error(job + "[sweep]\ncount = 4\nfriction = [0.4, nan]\n", "friction must be a finite number", 11);
   expect_error(job + "[sweep]\ncount = 4\nscene = [\"no_such_scene.toml\"]\n", "scene: file not found", 11);
@@ -270,4 +273,4 @@ TEST_F(JobFile, VariantsCountTowardsTheCellLimit) {
 }
 
 }  // namespace
-}  // namespace rigid::io
+}  // namespace rigid::job

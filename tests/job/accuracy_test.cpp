@@ -8,21 +8,22 @@
 #include <fstream>
 
 #include "rigid/core/error.hpp"
-#include "rigid/io/job_file.hpp"
+#include "rigid/job/load.hpp"
 
-namespace rigid::io {
+namespace rigid::job {
 namespace {
 
 namespace fs = std::filesystem;
 
 class JobAccuracy : public ::testing::Test {
  protected:
-  scenario::Job load(const std::string& run_table) {
+  job::Job load(const std::string& run_table) {
     const fs::path dir = fs::path(RIGID_SOURCE_DIR) / "jobs";
     path_ = (dir / ("test_job_accuracy_" + std::to_string(::getpid()) + ".toml")).string();
-    std::ofstream(path_) << "[campaign]\nscales = \"0.1:0.5:0.1\"\n\n[[object]]\nscene = \"../models/demo/block_a02.toml\"\n\n"
-                            "[[record]]\nmotion = \"../waveforms/demo/stochastic_s1-X.AT2\"\n\n"
-                         << run_table;
+    std::ofstream(path_)
+        << "[campaign]\nscales = \"0.1:0.5:0.1\"\n\n[[object]]\nscene = \"../models/demo/block_a02.toml\"\n\n"
+           "[[record]]\nmotion = \"../waveforms/demo/stochastic_s1-X.AT2\"\n\n"
+        << run_table;
     return load_job(path_);
   }
   void TearDown() override {
@@ -64,9 +65,9 @@ TEST_F(JobAccuracy, ExplicitKeysOverrideThePreset) {
   EXPECT_EQ(job.run.step.safety, 0.3);
   EXPECT_EQ(job.run.step.rotation, dynamics::RotationIntegrator::rk4);
   EXPECT_EQ(job.run.rest_speed, preset("reference").rest_speed);
-  ASSERT_TRUE(job.accuracy_overrides.safety);
-  ASSERT_TRUE(job.accuracy_overrides.rotation);
-  EXPECT_FALSE(job.accuracy_overrides.dt);
+  ASSERT_TRUE(job.overrides.safety);
+  ASSERT_TRUE(job.overrides.integrator);
+  EXPECT_FALSE(job.overrides.dt);
   const auto fixed = load("[run]\naccuracy = \"fast\"\ndt_s = 1e-5\n");
   EXPECT_EQ(fixed.run.step.dt, 1e-5);
   EXPECT_EQ(fixed.run.rest_time, preset("fast").rest_time);
@@ -88,11 +89,11 @@ TEST_F(JobAccuracy, UnknownPresetIsRefusedWithItsLine) {
 TEST_F(JobAccuracy, ThePresetEntersTheHash) {
   // balanced hashes the text alone (the cubes written before the presets keep their hash)
   const auto balanced = load("[run]\naccuracy = \"balanced\"\n");
-  EXPECT_EQ(balanced.hash, text_hash(balanced.text));
+  EXPECT_EQ(balanced.hash, io::text_hash(balanced.text));
   const auto fast = load("[run]\naccuracy = \"fast\"\n");
-  EXPECT_NE(fast.hash, text_hash(fast.text));
+  EXPECT_NE(fast.hash, io::text_hash(fast.text));
   // the same text under another preset (as --accuracy does) hashes differently
-  scenario::Job other = fast;
+  Job other = fast;
   other.accuracy = "reference";
   EXPECT_NE(job_hash(other), fast.hash);
   other.accuracy = "fast";
@@ -100,4 +101,4 @@ TEST_F(JobAccuracy, ThePresetEntersTheHash) {
 }
 
 }  // namespace
-}  // namespace rigid::io
+}  // namespace rigid::job

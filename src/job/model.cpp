@@ -1,4 +1,4 @@
-#include "rigid/io/job_model.hpp"
+#include "rigid/job/model.hpp"
 
 #include <stdexcept>
 
@@ -10,11 +10,11 @@
 #include "rigid/scenario/rocking_parameters.hpp"
 #include "rigid/scenario/run_bounds.hpp"
 
-namespace rigid::io {
+namespace rigid::job {
 namespace {
 
 // The record's window, a window error naming where the record is given (job file or list, line).
-motion::GroundMotion windowed_record(const scenario::JobRecord& r, const motion::GroundMotion& m) {
+motion::GroundMotion windowed_record(const JobRecord& r, const motion::GroundMotion& m) {
   try {
     return motion::windowed(m, r.start, r.end);
   } catch (const InputError& e) {
@@ -26,11 +26,11 @@ motion::GroundMotion windowed_record(const scenario::JobRecord& r, const motion:
 // that asked for it: a centre of mass outside its block or beyond its support polygon (the
 // block would tip at once), or values a scene file may not have (scene_value_problem), or
 // blocks that start inside each other.
-void apply_job_variant(const scenario::Job& job, const scenario::JobObject& o, scenario::Scene& s) {
+void apply_job_variant(const Job& job, const JobObject& o, scenario::Scene& s) {
   try {
     const bool supported = scenario::rocking_parameters(s).has_value();
     scenario::apply_variant(job.variants, o.variant, s);
-    if (const std::string problem = scene_value_problem(s); !problem.empty()) throw std::invalid_argument(problem);
+    if (const std::string problem = io::scene_value_problem(s); !problem.empty()) throw std::invalid_argument(problem);
     if (supported && !scenario::rocking_parameters(s))
       throw std::invalid_argument("the centre of mass lies outside the support polygon: the block would tip at once");
     try {
@@ -47,39 +47,47 @@ void apply_job_variant(const scenario::Job& job, const scenario::JobObject& o, s
 
 }  // namespace
 
-scenario::Model load_model(const scenario::Job& job) {
+scenario::Model assemble_model(const Job& job, std::vector<scenario::Scene> scenes,
+                               std::vector<motion::GroundMotion> records, std::vector<double> pga_factor_per_g) {
+  for (std::size_t o = 0; o < scenes.size() && o < job.objects.size(); ++o) {
+    if (job.contact) scenes[o].law.model = *job.contact;
+    if (job.objects[o].variant >= 0) apply_job_variant(job, job.objects[o], scenes[o]);
+  }
+  try {
+    return scenario::Model(job.model, std::move(scenes), std::move(records), job.run, std::move(pga_factor_per_g));
+  } catch (const InputError& e) {
+    // the run bounds name no file: the job's [run] settings (or its records' lengths) broke them
+    if (!e.file().empty() || job.path.empty()) throw;
+    throw InputError(job.path, job.run_line, e.what());
+  }
+}
+
+scenario::Model load_model(const Job& job) {
   std::vector<scenario::Scene> scenes;
   for (const auto& o : job.objects) {
-    scenario::Scene s = load_scene(o.simulated_scene());
-    if (!o.state.empty()) apply_state(o.state, s);
-    if (!job.contact.empty()) contact::parse_contact_model(job.contact, s.law.model);
-    if (o.variant >= 0) apply_job_variant(job, o, s);
+    scenario::Scene s = io::load_scene(o.simulated_scene());
+    if (!o.state.empty()) io::apply_state(o.state, s);
     scenes.push_back(std::move(s));
   }
   std::vector<motion::GroundMotion> records;
   std::vector<double> per_g;
   for (const auto& r : job.records) {
-    SetReadOptions read;
+    io::SetReadOptions read;
     read.align.resample = r.resample;
-    records.push_back(windowed_record(r, r.lab ? read_lab_motion(r.spec, job.lab_format) : read_motion_set(r.spec, read)));
+    records.push_back(
+        windowed_record(r, r.lab ? io::read_lab_motion(r.spec, job.lab_format) : io::read_motion_set(r.spec, read)));
     // once per record: every case scales this record, and the GMRotI50 measure is costly
     per_g.push_back(motion::target_pga_factor(records.back(), 1.0));
   }
-  try {
-    return scenario::Model(job.model, std::move(scenes), std::move(records), job.run, std::move(per_g));
-  } catch (const InputError& e) {
-    // the run bounds name no file: the job's [run] settings (or its records' lengths) broke them
-    if (!e.file().empty()) throw;
-    throw InputError(job.path, job.run_line, e.what());
-  }
+  return assemble_model(job, std::move(scenes), std::move(records), std::move(per_g));
 }
 
-std::vector<RecordMeta> record_metadata(const scenario::Job& job, const scenario::Model& model) {
-  std::vector<RecordMeta> metas;
+std::vector<io::RecordMeta> record_metadata(const Job& job, const scenario::Model& model) {
+  std::vector<io::RecordMeta> metas;
   for (std::size_t i = 0; i < job.records.size(); ++i) {
-    const scenario::JobRecord& r = job.records[i];
+    const JobRecord& r = job.records[i];
     const motion::GroundMotion& m = model.record(int(i));
-    RecordMeta meta;
+    io::RecordMeta meta;
     meta.name = r.name;
     meta.source = r.spec;
     meta.earthquake = r.earthquake;
@@ -103,4 +111,4 @@ std::vector<RecordMeta> record_metadata(const scenario::Job& job, const scenario
   return metas;
 }
 
-}  // namespace rigid::io
+}  // namespace rigid::job

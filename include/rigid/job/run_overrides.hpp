@@ -1,0 +1,63 @@
+#pragma once
+/// The settings a user may give for how every case of a job (or the one case of `rigid run`)
+/// simulates, typed: filled at the edge (a job file's [run] table, or command-line flags) and
+/// turned into a run's settings by run_settings() alone. Every text-valued setting is parsed and
+/// checked by set_text_setting(), whichever edge gives it.
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "rigid/contact/contact.hpp"
+#include "rigid/scenario/case.hpp"
+#include "rigid/scenario/scene.hpp"
+
+namespace rigid::job {
+
+/// A setting a user may override.
+enum class Setting { model, contact, effects, accuracy, integrator, duration, free_time, dt, safety };
+
+/// Where a setting's value was given, for its error: a command-line flag (flag not empty), else a
+/// job file and line.
+struct SettingSource {
+  std::string file;
+  long line = 0;
+  std::string flag;  ///< e.g. "--contact"; the edge that reads flags names them
+};
+
+struct RunOverrides {
+  std::optional<scenario::ModelKind> model;      ///< dem3d or rocking2d
+  std::optional<contact::ContactModel> contact;  ///< every object's contact model; none: each scene's
+  std::optional<bool> select_effects;            ///< effects "auto" (true) or "all" (false)
+  std::optional<std::string> accuracy;           ///< accuracy preset name (scenario/accuracy.hpp)
+  std::optional<dynamics::RotationIntegrator> integrator;
+  std::optional<double> duration;   ///< unit: s; 0 = the record plus free_time
+  std::optional<double> free_time;  ///< unit: s
+  std::optional<double> dt;         ///< fixed time step (unit: s); 0 = automatic
+  std::optional<double> safety;     ///< safety factor of the automatic step
+  /// The settings given by a flag, as written ("--model rocking2d"), in the order given: what a
+  /// campaign records in its job text, so a resume under other values is refused.
+  std::vector<std::pair<Setting, std::string>> flags_given;
+};
+
+/// Parses a text-valued setting (model, contact, effects, accuracy, integrator) into `o`; `text`
+/// is nothing when the value is not a string. Throws rigid::InputError naming the flag, or the
+/// file and line, with the values the setting admits.
+void set_text_setting(RunOverrides& o, Setting setting, const std::optional<std::string>& text,
+                      const SettingSource& source);
+
+/// The problem with the numeric settings given (a negative duration, free time or step, a
+/// safety that is not positive), "" when there is none.
+std::string numbers_problem(const RunOverrides& o);
+
+/// `over`'s settings on top of `base`'s.
+RunOverrides merged(RunOverrides base, const RunOverrides& over);
+
+/// The accuracy preset named, or the default one (kDefaultAccuracy).
+std::string accuracy_name(const RunOverrides& o);
+
+/// The settings of a run: the accuracy preset, then dt, safety and integrator over it, then the
+/// durations and the effect selection (observers left empty).
+scenario::RunSettings run_settings(const RunOverrides& o);
+
+}  // namespace rigid::job

@@ -1,0 +1,48 @@
+#include "rigid/job/job.hpp"
+
+namespace rigid::job {
+
+void apply_overrides(Job& job) {
+  job.run = run_settings(job.overrides);
+  job.accuracy = accuracy_name(job.overrides);
+  job.model = job.overrides.model.value_or(scenario::ModelKind::dem3d);
+  job.contact = job.overrides.contact;
+}
+
+Job one_cell_job(const RunOverrides& overrides) {
+  Job job;
+  job.objects.resize(1);
+  job.records.resize(1);
+  job.scales_g = {kAsRecordedScale};
+  job.rotations = 1;
+  job.rotation_angles_deg = {0.0};
+  job.stop_after = 0;
+  job.overrides = overrides;
+  apply_overrides(job);
+  return job;
+}
+
+double cell_rotation_deg(const Job& job, const Cell& c) {
+  if (!job.rotation_angles_deg.empty()) return job.rotation_angles_deg[std::size_t(c.rotation)];
+  // every variant of an object shakes at the same angles (common random numbers): a difference
+  // between variants is then the parameters', not the rotations' sampling noise
+  Cell keyed = c;
+  if (std::size_t(c.object) < job.objects.size() && job.objects[std::size_t(c.object)].base >= 0) {
+    keyed.object = job.objects[std::size_t(c.object)].base;
+  }
+  return rotation_angle_deg(job.seed, keyed);
+}
+
+scenario::Case case_of(const Job& job, const Cell& cell) {
+  return {cell.object, cell.record, job.drive_scale_g(std::size_t(cell.scale)), cell_rotation_deg(job, cell)};
+}
+
+std::string job_settings_text(const Job& job) {
+  // cubes from before the presets were computed with balanced's settings and hash the text alone
+  if (job.accuracy == "balanced") return job.text;
+  return job.text + "\n# accuracy: " + job.accuracy + "\n";
+}
+
+std::string job_hash(const Job& job) { return io::text_hash(job_settings_text(job)); }
+
+}  // namespace rigid::job
