@@ -40,7 +40,7 @@ std::string other_job_remedy(const OutputRemedies& remedies) {
 std::optional<InputError> input_change(const io::Cube& old, const job::Job& job, const Inputs& now,
                                        const OutputRemedies& remedies) {
   const io::Digests old_job = io::parse_digests(old.job_inputs);
-  if (old.job_hash != job.hash) {
+  if (old.job_hash != job.hash && old.job_hash != job::legacy_job_hash(job)) {
     // the same job file edited is named; another job file or other command-line settings name the output
     if (old_job.size() >= 2 && old_job[1].path == now.job[1].path && old_job[1].sha256 != now.job[1].sha256) {
       return changed_file(job.path, remedies);

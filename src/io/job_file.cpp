@@ -23,17 +23,6 @@
 namespace rigid::io {
 namespace fs = std::filesystem;
 
-std::string text_hash(const std::string& text) {
-  std::uint64_t h = 0xcbf29ce484222325ull;
-  for (unsigned char c : text) {
-    h ^= c;
-    h *= 0x100000001b3ull;
-  }
-  char buf[17];
-  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
-  return buf;
-}
-
 namespace {
 
 double number(const toml::node& n, const std::string& src, const std::string& what) {

@@ -1,5 +1,10 @@
 #include "rigid/job/job.hpp"
 
+#include <cstdint>
+#include <cstdio>
+
+#include "rigid/io/provenance.hpp"
+
 namespace rigid::job {
 
 void apply_overrides(Job& job) {
@@ -43,6 +48,18 @@ std::string job_settings_text(const Job& job) {
   return job.text + "\n# accuracy: " + job.accuracy + "\n";
 }
 
-std::string job_hash(const Job& job) { return io::text_hash(job_settings_text(job)); }
+std::string job_hash(const Job& job) { return io::sha256_hex(job_settings_text(job)); }
+
+std::string legacy_job_hash(const Job& job) {
+  // FNV-1a, 64 bits, of the same text
+  std::uint64_t h = 0xcbf29ce484222325ull;
+  for (const unsigned char c : job_settings_text(job)) {
+    h ^= c;
+    h *= 0x100000001b3ull;
+  }
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+  return hex;
+}
 
 }  // namespace rigid::job

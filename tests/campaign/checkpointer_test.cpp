@@ -94,7 +94,7 @@ struct Campaign {
   // Cube and journal read back as a resume reads them.
   Plan resumed() const {
     Plan p = plan();
-    restore(job.output, job, inputs, p, false);
+    restore(job.output, job, inputs, p, false, OutputRemedies{});
     return p;
   }
   long size() const { return long(job.scales_g.size()) * job.rotations; }

@@ -8,6 +8,7 @@
 #include <fstream>
 
 #include "rigid/core/error.hpp"
+#include "rigid/io/provenance.hpp"
 #include "rigid/job/load.hpp"
 
 namespace rigid::job {
@@ -89,15 +90,24 @@ TEST_F(JobAccuracy, UnknownPresetIsRefusedWithItsLine) {
 TEST_F(JobAccuracy, ThePresetEntersTheHash) {
   // balanced hashes the text alone (the cubes written before the presets keep their hash)
   const auto balanced = load("[run]\naccuracy = \"balanced\"\n");
-  EXPECT_EQ(balanced.hash, io::text_hash(balanced.text));
+  EXPECT_EQ(balanced.hash, io::sha256_hex(balanced.text));
   const auto fast = load("[run]\naccuracy = \"fast\"\n");
-  EXPECT_NE(fast.hash, io::text_hash(fast.text));
+  EXPECT_NE(fast.hash, io::sha256_hex(fast.text));
   // the same text under another preset (as --accuracy does) hashes differently
   Job other = fast;
   other.accuracy = "reference";
   EXPECT_NE(job_hash(other), fast.hash);
   other.accuracy = "fast";
   EXPECT_EQ(job_hash(other), fast.hash);
+}
+
+TEST(JobHash, IsTheSha256OfTheSettingsAndKnowsTheOlderHash) {
+  // the published digests of "a": SHA-256 and FNV-1a 64
+  Job job;
+  job.text = "a";
+  job.accuracy = "balanced";
+  EXPECT_EQ(job_hash(job), "ca978112ca1bbdcafac231b39a23dc4da786eff8147c4e72b9807785afee48bb");
+  EXPECT_EQ(legacy_job_hash(job), "af63dc4c8601ec8c");
 }
 
 }  // namespace

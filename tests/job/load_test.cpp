@@ -100,7 +100,7 @@ TEST_F(JobFile, GoodJobLoadsWithTheStudysDefaults) {
   EXPECT_EQ(job.stop_after, 10);
   EXPECT_EQ(job.records.at(0).name, "stochastic_s1");
   EXPECT_EQ(job.objects.at(0).name, "block_a02");
-  EXPECT_EQ(job.hash.size(), 16u);
+  EXPECT_EQ(job.hash.size(), 64u);  // hex SHA-256
 }
 
 // A range's scales are the doubles the decimals start + i * step parse to (the compiler's reading

@@ -106,7 +106,7 @@ struct Cube {
   std::vector<ObjectCube> objects;
   // provenance and settings, stored as root attributes
   std::string job_text;                 ///< the job file as read
-  std::string job_hash;                 ///< hex SHA-256 (or other stable hash) of job_text
+  std::string job_hash;                 ///< hex SHA-256 of the job settings (job::job_hash; 16 hex digits: an older cube)
   std::string software_version;         ///< e.g. "0.1.0 (abc1234)"
   std::string physics_json;             ///< physics and accuracy settings as a JSON object
   /// SHA-256 of the job's settings (job_settings_text) and its files (job file, record list),

@@ -90,7 +90,5 @@ struct JobFile {
 /// output path is relative to the current directory. Throws rigid::InputError naming file and line.
 JobFile read_job_file(const std::string& path);
 
-/// Stable 64-bit FNV-1a hash of a text, as 16 hex digits.
-std::string text_hash(const std::string& text);
 
 }  // namespace rigid::io

@@ -115,9 +115,12 @@ scenario::Case case_of(const Job& job, const Cell& cell);
 /// accuracy preset, i.e. every physics-relevant setting that is not in an input file.
 std::string job_settings_text(const Job& job);
 
-/// The hash that identifies a job's results (Job::hash): io::text_hash of its text, with the
-/// accuracy preset appended unless it is "balanced" (the settings of every cube written before
-/// the presets existed, whose hashes therefore stay valid). A resume with another preset is refused.
+/// The hash that identifies a job's results (Job::hash): the SHA-256 (io::sha256_hex, 64 hex
+/// digits) of job_settings_text. A resume with other settings or another preset is refused.
 std::string job_hash(const Job& job);
+
+/// The hash cubes written before the SHA-256 one carry (FNV-1a 64 of the same text, 16 hex
+/// digits): such a cube still resumes with the job that wrote it.
+std::string legacy_job_hash(const Job& job);
 
 }  // namespace rigid::job
