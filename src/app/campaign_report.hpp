@@ -18,8 +18,8 @@ void print_summary(const io::Cube& cube, const std::string& output);
 /// The failed cells with their error text, the first few of them.
 void print_failures(const io::Cube& cube);
 
-/// The cells some of whose steps' contact solves stopped at the sweep cap, the first few of them
-/// and the total; nothing when there are none.
+/// One line: how many simulated cells had steps whose contact solve stopped at the sweep cap, and
+/// how many such steps; nothing when there are none.
 void print_unconverged(const io::Cube& cube);
 
 /// Task count and an estimate of the work: every object's first record at its smallest scale is
