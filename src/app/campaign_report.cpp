@@ -4,20 +4,18 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <chrono>
-#include <numeric>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <numeric>
 
 #include "rigid/campaign/log.hpp"
 #include "rigid/dynamics/world.hpp"
+#include "rigid/job/cost_estimate.hpp"
 
 namespace rigid::app {
 namespace {
-
-using Clock = std::chrono::steady_clock;
 
 std::string format_duration(double s) {
   if (!std::isfinite(s) || s < 0) return "--:--";
@@ -70,23 +68,25 @@ bool person_watches_stderr() {
 
 // Tasks and core-hours of each object (and variant): what each row of the cube will cost. Many
 // variants are summarised per object (least, median, most) rather than listed.
-void print_object_costs(const job::Job& job, long tasks_per_object, const std::vector<double>& wall) {
+void print_object_costs(const job::Job& job, const job::CostEstimate& e) {
   constexpr int kListed = 40;
   std::printf("%-28s %10s %12s\n", "object", "tasks", "core-hours");
   if (int(job.objects.size()) <= kListed) {
     for (std::size_t o = 0; o < job.objects.size(); ++o) {
-      std::printf("%-28s %10ld %12.3g\n", job.objects[o].label().c_str(), tasks_per_object, wall[o] / 3600.0);
+      std::printf("%-28s %10ld %12.3g\n", job.objects[o].label().c_str(), e.cells_per_object,
+                  e.objects[o].core_seconds / 3600.0);
     }
     return;
   }
   const int V = job.variant_count();
   for (int b = 0; b < job.base_objects(); ++b) {
-    std::vector<double> hours(wall.begin() + long(b) * V, wall.begin() + long(b + 1) * V);
-    for (double& h : hours) h /= 3600.0;
+    std::vector<double> hours;
+    for (int v = 0; v < V; ++v) hours.push_back(e.objects[std::size_t(b) * V + v].core_seconds / 3600.0);
     std::sort(hours.begin(), hours.end());
     std::printf("%-28s %10ld %12.3g  per variant: least %.3g, median %.3g, most %.3g core-hours (%d variants)\n",
-                job.objects[std::size_t(b) * V].name.c_str(), tasks_per_object * V,
-                std::accumulate(hours.begin(), hours.end(), 0.0), hours.front(), hours[hours.size() / 2], hours.back(), V);
+                job.objects[std::size_t(b) * V].name.c_str(), e.cells_per_object * V,
+                std::accumulate(hours.begin(), hours.end(), 0.0), hours.front(), hours[hours.size() / 2], hours.back(),
+                V);
   }
 }
 
@@ -160,30 +160,8 @@ void print_unconverged(const io::Cube& cube) {
 }
 
 int print_dry_run(const job::Job& job, const scenario::Model& model) {
-  const long tasks_per_object = job.cells().per_object();
-  const long cells = job.cells().size();
-  double per_object_sim = 0;  // simulated time of one object's tasks
-  for (int r = 0; r < model.records(); ++r) per_object_sim += model.simulated_time(r);
-  per_object_sim *= double(job.scales_g.size()) * job.rotations;
-  // this machine's cost per step on each object (each variant: stiffness, size and contact model
-  // change the step): a short real case, not its whole record
-  scenario::RunSettings probe = model.run_settings();
-  probe.duration = 2.0;
-  double steps = 0, wall = 0;
-  std::vector<double> object_wall;
-  for (int o = 0; o < model.objects(); ++o) {
-    scenario::Model short_model(model.kind(), {model.scene(o)}, {model.records() ? model.record(0) : motion::GroundMotion{}},
-                                probe, {model.records() ? model.pga_factor_per_g(0) : 0.0});
-    const scenario::Case c{0, 0, job.scales_g.empty() ? 0.0 : job.scales_g.front(), 0.0};
-    const auto start = Clock::now();
-    const scenario::CaseOutcome out = scenario::simulate(short_model, c);
-    const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
-    const double dt = out.run.dt > 0 ? out.run.dt : dynamics::time_step(model.scene(o).bodies, model.scene(o).law, probe.step);
-    const double per_step = out.run.steps > 0 ? seconds / double(out.run.steps) : 0.0;
-    steps += per_object_sim / dt;
-    wall += per_object_sim / dt * per_step;
-    object_wall.push_back(per_object_sim / dt * per_step);
-  }
+  const job::CostEstimate e = job::estimate_cost(job, model);
+  const long cells = e.cells;
   if (job.variants.count() > 0) {
     std::printf("job %s: %d objects x %d variants x %zu records x %zu scales x %d rotations = %ld tasks\n", job.path.c_str(),
                 job.base_objects(), job.variant_count(), job.records.size(), job.scales_g.size(), job.rotations, cells);
@@ -191,9 +169,12 @@ int print_dry_run(const job::Job& job, const scenario::Model& model) {
     std::printf("job %s: %zu objects x %zu records x %zu scales x %d rotations = %ld tasks\n", job.path.c_str(),
                 job.objects.size(), job.records.size(), job.scales_g.size(), job.rotations, cells);
   }
-  std::printf("at most %.4g s simulated, %.4g time steps; about %s of one core (%.3g core-hours) if every task ran to its end\n",
-              per_object_sim * double(job.objects.size()), steps, format_duration(wall).c_str(), wall / 3600.0);
-  print_object_costs(job, tasks_per_object, object_wall);
+  const double wall = e.core_seconds();
+  std::printf(
+      "at most %.4g s simulated, %.4g time steps; about %s of one core (%.3g core-hours) if every task ran to its "
+      "end\n",
+      e.simulated_total(), e.steps(), format_duration(wall).c_str(), wall / 3600.0);
+  print_object_costs(job, e);
   std::printf("wall time if the ranks share the work evenly (one rank hands out tasks and simulates too):");
   for (int ranks : {2, 64, 500}) std::printf("  %d ranks %s", ranks, format_duration(wall / ranks).c_str());
   std::printf("\n(overturned runs stop early and the stop rule skips scales, so the real cost is lower)\n");

@@ -16,13 +16,13 @@
 
 #include "campaign_report.hpp"
 #include "commands.hpp"
-#include "import_scan.hpp"
+#include "import_report.hpp"
 #include "rigid/campaign/driver.hpp"
 #include "rigid/core/error.hpp"
 #include "rigid/io/json.hpp"
 #include "rigid/io/scene_file.hpp"
-#include "rigid/scenario/scene.hpp"
 #include "rigid/io/scene_writer.hpp"
+#include "rigid/scenario/scene.hpp"
 #include "shaketable.hpp"
 #include "shaketable_report.hpp"
 
@@ -105,7 +105,7 @@ std::map<double, std::string> import_bases(const CalibrateOptions& o, const fs::
   std::map<double, std::string> scenes;
   for (double mm : o.flatten_mm) {
     const std::string name = base_name(mm);
-    ImportOptions in;
+    scan::ImportOptions in;
     in.scan = o.scan;
     in.out = (work / name / name).string();
     in.scale = o.scale;
@@ -115,7 +115,7 @@ std::map<double, std::string> import_bases(const CalibrateOptions& o, const fs::
     in.flatten_base = mm * 1e-3;
     in.tilt_deg = o.tilt_deg;
     std::printf("shaketable: base model %s (--flatten-base %g m)\n", name.c_str(), in.flatten_base);
-    import_scan(in);
+    import_and_report(in);
     scenes[mm] = fs::absolute(work / name / (name + ".toml")).lexically_normal().string();
   }
   return scenes;

@@ -7,15 +7,18 @@ calls and the `rigid` executable's link line; docs/architecture.md, "Layout and 
 
   core <- geometry <- contact <- dynamics;  core <- motion, rocking;
   scenario <- dynamics, motion, rocking;  study <- scenario;  io <- scenario;  job <- io;
-  campaign <- job;  calibration <- core;  repair <- geometry;  app <- campaign, study, calibration, repair
+  campaign <- job;  calibration <- core;  repair <- geometry;  scan <- io, repair;
+  app <- campaign, study, calibration, scan
 
 (a module may include its own headers and those of every module below it, transitively), and the
 third-party rules: the engine core (geometry .. scenario, study) includes only Eigen and the standard
 library; only io includes HDF5,
-toml++, nettle and assimp; only repair includes CGAL (linked by app alone: io and the tests that
-link it stay free of CGAL's compile); nlohmann-json is io's and above (io/json.hpp); only campaign includes MPI;
+toml++, nettle and assimp; only repair includes CGAL (linked through scan by app and tests/scan
+alone: io and the tests that link it stay free of CGAL's compile); nlohmann-json is io's and above (io/json.hpp); only campaign includes MPI;
 zlib is io's (gzip lab recordings) and campaign's (journal checksums); spdlog is campaign's and app's (campaign/log.hpp); only app includes CLI11; POSIX headers (unistd.h, sys/...)
-only io, campaign and app. A quoted include that is not "rigid/..." must be a private header of
+only io, scan (its staging folder), campaign and app. The required order (REQUIRED_ABOVE): job above
+io and scenario; scan (the scan import) above io and repair; campaign above job; app above job,
+campaign and scan. A quoted include that is not "rigid/..." must be a private header of
 the module's own src/<module>/ folder.
 
 usage: layering_test.py SOURCE_DIR    exit 0 clean, 1 with one line per violation.
@@ -46,7 +49,7 @@ ENGINE = {"core", "geometry", "contact", "dynamics", "motion", "rocking", "scena
 THIRD_PARTY = {
     "eigen": None,  # every module
     "std": None,
-    "posix": {"io", "campaign", "app"},
+    "posix": {"io", "scan", "campaign", "app"},
     "hdf5": {"io"},
     "toml": {"io"},
     "nettle": {"io"},
@@ -60,11 +63,13 @@ THIRD_PARTY = {
 }
 
 # Where modules must sit, whatever CMake declares (module, modules it must be above): the job
-# module (a job and its settings) is above the formats and the engine, below campaign and app.
+# module (a job and its settings) is above the formats and the engine, below campaign and app; the
+# scan import is above the formats and the repair of scans, below app.
 REQUIRED_ABOVE = {
     "job": {"io", "scenario"},
+    "scan": {"io", "repair"},
     "campaign": {"job"},
-    "app": {"job", "campaign"},
+    "app": {"job", "campaign", "scan"},
 }
 
 # Deliberate exceptions: (module, included header) -> reason. Empty today.
