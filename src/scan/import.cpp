@@ -3,11 +3,14 @@
 // shape costs in accuracy.
 #include "rigid/scan/import.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
+#include <tuple>
 
 #include "rigid/core/error.hpp"
 #include "rigid/geometry/mesh_split.hpp"
