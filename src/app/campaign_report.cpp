@@ -172,13 +172,13 @@ int print_dry_run(const job::Job& job, const scenario::Model& model) {
   double steps = 0, wall = 0;
   std::vector<double> object_wall;
   for (int o = 0; o < model.objects(); ++o) {
-    scenario::Model short_model(model.kind(), {model.scene(o)}, {model.records() ? model.record(0) : motion::GroundMotion{}},
+    scenario::Model short_model(model.engine(), {model.scene(o)}, {model.records() ? model.record(0) : motion::GroundMotion{}},
                                 probe, {model.records() ? model.pga_factor_per_g(0) : 0.0});
     const scenario::Case c{0, 0, job.scales_g.empty() ? 0.0 : job.scales_g.front(), 0.0};
     const auto start = Clock::now();
-    const scenario::CaseOutcome out = scenario::simulate(short_model, c);
+    const scenario::CaseOutcome out = scenario::simulate_case(short_model, c);
     const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
-    const double dt = out.run.dt > 0 ? out.run.dt : dynamics::time_step(model.scene(o).bodies, model.scene(o).law, probe.step);
+    const double dt = out.run.dt_s > 0 ? out.run.dt_s : dynamics::time_step(model.scene(o).bodies, model.scene(o).law, probe.step);
     const double per_step = out.run.steps > 0 ? seconds / double(out.run.steps) : 0.0;
     steps += per_object_sim / dt;
     wall += per_object_sim / dt * per_step;

@@ -26,7 +26,7 @@
 #include "rigid/io/scene_writer.hpp"
 #include "rigid/io/stl.hpp"
 #include "rigid/repair/mesh_repair.hpp"
-#include "rigid/scenario/rocking_parameters.hpp"
+#include "rigid/analysis/rocking_parameters.hpp"
 #include "rigid/scenario/scene.hpp"
 #include "scene_input.hpp"
 
@@ -293,7 +293,7 @@ void print_summary(const ImportOptions& o, const std::vector<std::string>& warni
                    const std::vector<std::pair<std::string, repair::ScanRepair>>& repairs,
                    const std::vector<std::string>& notes, std::size_t scan_facets,
                    const std::vector<ContactReport>& reports,
-                   const std::optional<scenario::RockingParameters>& rocking) {
+                   const std::optional<analysis::RockingParameters>& rocking) {
   const ContactReport& rock_report = reports.front();
   for (const auto& w : warnings) std::fprintf(stderr, "rigid: warning: %s\n", w.c_str());
   for (const auto& [path, r] : repairs) std::printf("%s\n", describe(path, r).c_str());
@@ -435,7 +435,7 @@ void import_scan(const ImportOptions& o) {
   io::Json bodies = io::Json::array();
   for (const auto& r : reports) bodies.push_back(report_json(r));
   report["bodies"] = bodies;
-  const auto rocking = scenario::rocking_parameters(settled);
+  const auto rocking = analysis::rocking_parameters(settled);
   if (rocking) {
     report["alpha_rad"] = rocking->alpha;
     report["static_toppling_g"] = std::tan(rocking->alpha);

@@ -6,11 +6,12 @@ and checks it against the dependencies src/CMakeLists.txt declares (read from it
 calls and the `rigid` executable's link line; docs/architecture.md, "Layout and modules"), today:
 
   core <- geometry <- contact <- dynamics;  core <- motion, rocking;
-  scenario <- dynamics, motion, rocking;  study <- scenario;  io <- scenario;  job <- io;
+  scenario <- dynamics, motion, rocking;  library, analysis <- scenario;  study <- library, analysis;
+  io <- scenario;  job <- io, analysis;
   campaign <- job;  calibration <- core;  repair <- geometry;  app <- campaign, study, calibration, repair
 
 (a module may include its own headers and those of every module below it, transitively), and the
-third-party rules: the engine core (geometry .. scenario, study) includes only Eigen and the standard
+third-party rules: the engine core (geometry .. scenario, library, analysis, study) includes only Eigen and the standard
 library; only io includes HDF5,
 toml++, nettle and assimp; only repair includes CGAL (linked by app alone: io and the tests that
 link it stay free of CGAL's compile); nlohmann-json is io's and above (io/json.hpp); only campaign includes MPI;
@@ -40,7 +41,8 @@ def module_graph(root):
 
 
 DIRECT = {}  # module -> its direct dependencies (main() reads them)
-ENGINE = {"core", "geometry", "contact", "dynamics", "motion", "rocking", "scenario", "study", "calibration"}
+ENGINE = {"core", "geometry", "contact", "dynamics", "motion", "rocking", "scenario", "library", "analysis", "study",
+          "calibration"}
 
 # third-party family -> the modules that may include it
 THIRD_PARTY = {
@@ -62,7 +64,9 @@ THIRD_PARTY = {
 # Where modules must sit, whatever CMake declares (module, modules it must be above): the job
 # module (a job and its settings) is above the formats and the engine, below campaign and app.
 REQUIRED_ABOVE = {
-    "job": {"io", "scenario"},
+    "library": {"scenario"},
+    "analysis": {"scenario"},
+    "job": {"io", "scenario", "analysis"},
     "campaign": {"job"},
     "app": {"job", "campaign"},
 }
