@@ -1,4 +1,4 @@
-// One case through scenario::simulate: the motion a case builds (target PGA, rotation, the 2D
+// One case through scenario::simulate_case: the motion a case builds (target PGA, rotation, the 2D
 // model's unrotated x) checked against measures recomputed on it, the outcome of both models
 // against the 2D Housner threshold of a one-sine pulse (physics.md §2), and an error inside a case
 // becoming a failed outcome that keeps its message.
