@@ -15,7 +15,7 @@
 #include "rigid/io/json.hpp"
 #include "rigid/rocking/housner.hpp"
 #include "rigid/scenario/accuracy.hpp"
-#include "rigid/scenario/builders.hpp"
+#include "rigid/library/builders.hpp"
 
 namespace rigid::app {
 namespace {
@@ -36,14 +36,14 @@ struct GeodeResult {
 };
 GeodeResult run_geode() {
   contact::ContactLaw law;
-  law.model = contact::ContactModel::penalty;
+  law.method = contact::ContactMethod::penalty;
   law.friction = 0;
   law.damping = 0;
-  auto geode = scenario::body_from_soup("geode", scenario::geodesic_sphere(0.15, 2), 2600, false);
+  auto geode = library::body_from_soup("geode", library::geodesic_sphere(0.15, 2), 2600, false);
   const Vec3 lowest = geode.shape.vertices[0];
   geode.orientation = Quat::FromTwoVectors(lowest, -Vec3::UnitZ());
   geode.position = Vec3(0, 0, 0.5 + lowest.norm());
-  auto plane = scenario::box_body("plane", Vec3(-1, -1, -0.2), Vec3(1, 1, 0), 2600, true);
+  auto plane = library::box_body("plane", Vec3(-1, -1, -0.2), Vec3(1, 1, 0), 2600, true);
   dynamics::StepSettings settings;
   settings.dt = 0.000314;
   const auto start = Clock::now();
@@ -55,7 +55,7 @@ GeodeResult run_geode() {
 
 // The peer scene: a 1 m tall block, alpha = 0.2 rad, 0.5 m deep, on a pedestal, one-sine pulse
 // of period 0.5 s, then free rocking until 15 s.
-scenario::GroundDrive one_sine(double amplitude, double period) { return scenario::one_sine_drive(amplitude, period); }
+scenario::GroundDrive one_sine(double amplitude, double period) { return library::one_sine_drive(amplitude, period); }
 
 struct Threshold {
   double g;
@@ -147,10 +147,10 @@ struct PeerFigures {
 // The peer scene's block as 12 triangles (subdivisions 1) or finely meshed (12 n^2 triangles).
 scenario::Scene peer_scene(const contact::ContactLaw& law, const dynamics::StepSettings& step, int subdivisions = 1) {
   const double alpha = 0.2, h = 0.5, b = h * std::tan(alpha), depth = 0.5;
-  scenario::Scene scene = scenario::block_on_pedestal(b, h, depth, law);
+  scenario::Scene scene = library::block_on_pedestal(b, h, depth, law);
   if (subdivisions > 1) {
-    scene.bodies[1] = scenario::body_from_soup(
-        "block", scenario::subdivided_box_soup(Vec3(-b, -0.5 * depth, 0), Vec3(b, 0.5 * depth, 2 * h), subdivisions),
+    scene.bodies[1] = library::body_from_soup(
+        "block", library::subdivided_box_soup(Vec3(-b, -0.5 * depth, 0), Vec3(b, 0.5 * depth, 2 * h), subdivisions),
         2600, false);
   }
   return scenario::equilibrate(scene, step);
@@ -173,8 +173,8 @@ PeerFigures peer_figures(const std::string& name, const contact::ContactLaw& law
       f.overturned_at[k] = r.overturned;
       if (k == 0) {
         f.steps = r.steps;
-        f.dt = r.dt;
-        f.simulated = r.simulated;
+        f.dt = r.dt_s;
+        f.simulated = r.simulated_s;
       }
     }
     f.wall_at[k] = median(wall);
@@ -207,12 +207,12 @@ void bench(int repeat, bool json, const std::string& only) {
   }();
   if (only.empty() || only == "rigid") {
     contact::ContactLaw rigid;
-    rigid.model = contact::ContactModel::rigid;
+    rigid.method = contact::ContactMethod::rigid;
     peers.push_back(peer_figures("rigid", rigid, preset_step, repeat));
   }
   if (only.empty() || only == "penalty") {
     contact::ContactLaw study;
-    study.model = contact::ContactModel::penalty;
+    study.method = contact::ContactMethod::penalty;
     peers.push_back(peer_figures("penalty", study, preset_step, repeat));
     contact::ContactLaw stiff = study;
     stiff.normal_stiffness = stiff.shear_stiffness = 1e10;

@@ -173,7 +173,7 @@ int print_dry_run(const job::Job& job, const scenario::Model& model) {
   std::printf(
       "at most %.4g s simulated, %.4g time steps; about %s of one core (%.3g core-hours) if every task ran to its "
       "end\n",
-      e.simulated_total(), e.steps(), format_duration(wall).c_str(), wall / 3600.0);
+      e.simulated_total_s(), e.steps(), format_duration(wall).c_str(), wall / 3600.0);
   print_object_costs(job, e);
   std::printf("wall time if the ranks share the work evenly (one rank hands out tasks and simulates too):");
   for (int ranks : {2, 64, 500}) std::printf("  %d ranks %s", ranks, format_duration(wall / ranks).c_str());

@@ -6,7 +6,7 @@
 #include "commands.hpp"
 #include "rigid/io/json.hpp"
 #include "rigid/io/scene_file.hpp"
-#include "rigid/scenario/rocking_parameters.hpp"
+#include "rigid/analysis/rocking_parameters.hpp"
 #include "scene_input.hpp"
 
 namespace rigid::app {
@@ -18,7 +18,7 @@ io::Json vec_json(const Vec3& v) { return io::Json::array({v.x(), v.y(), v.z()})
 double degrees(double rad) { return rad * 180.0 / kPi + 0.0; }
 
 // The rocking parameters as they are printed in JSON: angles in rad, directions also in degrees.
-io::Json rocking_json(const scenario::RockingParameters& r) {
+io::Json rocking_json(const analysis::RockingParameters& r) {
   io::Json j;
   j["alpha_rad"] = r.alpha;
   j["static_toppling_g"] = std::tan(r.alpha);
@@ -37,7 +37,7 @@ io::Json rocking_json(const scenario::RockingParameters& r) {
   return j;
 }
 
-void print_rocking(const scenario::RockingParameters& r) {
+void print_rocking(const analysis::RockingParameters& r) {
   std::printf("rocking: alpha %.4g rad (static toppling %.4g g) towards azimuth %.1f deg, R %.4g m, p %.4g rad/s\n",
               r.alpha, std::tan(r.alpha), degrees(r.azimuth), r.radius, r.p);
   std::printf("  support polygon: %zu corners; alpha by azimuth of the ground acceleration (deg: rad):",
@@ -52,7 +52,7 @@ void print_rocking(const scenario::RockingParameters& r) {
 void inspect(const std::string& path, bool json) {
   // loading runs every mesh check (closed, oriented, convex); a failure throws before this point
   const scenario::Scene scene = load_scene_with_warnings(path);
-  const auto rocking = scenario::rocking_parameters(scene);
+  const auto rocking = analysis::rocking_parameters(scene);
   for (const auto& b : scene.bodies) {
     const auto& s = b.shape;
     const Vec3 centroid = scenario::centroid_position(b);
@@ -111,7 +111,7 @@ void inspect(const std::string& path, bool json) {
   }
   if (!json) {
     if (rocking) print_rocking(*rocking);
-    std::printf("contact model: %s (restitution %.3g, rigid model only)\n", contact::contact_model_name(scene.law.model),
+    std::printf("contact model: %s (restitution %.3g, rigid model only)\n", contact::contact_method_name(scene.law.method),
                 scene.law.restitution);
     std::printf("contact: K_N %.3g N/m^1.5, K_S %.3g N/m, friction %.3g, damping %.3g s/m; density %.6g kg/m^3\n",
                 scene.law.normal_stiffness, scene.law.shear_stiffness, scene.law.friction,

@@ -1,5 +1,5 @@
 // `rigid model library`: writes the rock library (models/library) from
-// rigid::scenario::rock_library(): per model its STL meshes, an original Rigid model file, a TOML
+// rigid::library::rock_library(): per model its STL meshes, an original Rigid model file, a TOML
 // scene and the equilibrated state; `--card` measures each model's quasi-static toppling
 // acceleration by tilt tests and prints the card table (markdown) for models/library/README.md.
 #include <algorithm>
@@ -16,8 +16,8 @@
 #include "rigid/io/scene_file.hpp"
 #include "rigid/io/scene_writer.hpp"
 #include "rigid/io/stl.hpp"
-#include "rigid/scenario/rock_library.hpp"
-#include "rigid/scenario/tilt_test.hpp"
+#include "rigid/library/rock_library.hpp"
+#include "rigid/analysis/tilt_test.hpp"
 
 namespace rigid::app {
 namespace {
@@ -38,7 +38,7 @@ std::string fixed_text(double v, int digits) {
   return buf;
 }
 
-void write_model(const scenario::LibraryModel& m, const fs::path& root) {
+void write_model(const library::LibraryModel& m, const fs::path& root) {
   const fs::path dir = root / m.name;
   fs::create_directories(dir);
   std::vector<io::SceneBlock> blocks;  // the original model format: no comments, study defaults for the physics
@@ -84,13 +84,13 @@ std::string join(const std::vector<std::string>& items, const char* sep) {
 
 std::string accel_text(double g) { return std::isfinite(g) ? fixed_text(g, 3) : "> 1"; }
 
-void print_card(const std::vector<scenario::LibraryModel>& models, const fs::path& root, int azimuths) {
+void print_card(const std::vector<library::LibraryModel>& models, const fs::path& root, int azimuths) {
   std::vector<std::string> rows, detail;
   for (const auto& m : models) {
     const fs::path scene_path = root / m.name / (m.name + ".toml");
     const scenario::Scene scene = io::load_scene(scene_path.string());
     std::fprintf(stderr, "card: %s ...\n", m.name.c_str());
-    const auto survey = scenario::tilt_survey(scene, azimuths);
+    const auto survey = analysis::tilt_survey(scene, azimuths);
     std::vector<std::string> heights, masses;
     double top = -std::numeric_limits<double>::infinity(), bottom = std::numeric_limits<double>::infinity();
     int free = 0;
@@ -112,8 +112,8 @@ void print_card(const std::vector<scenario::LibraryModel>& models, const fs::pat
                                           [](const auto& a, const auto& b) { return a.acceleration < b.acceleration; });
     std::string statics = "-";
     if (m.simple_stack) {
-      statics = fixed_text(scenario::static_toppling(m, survey.azimuth_of_minimum), 3) + " (" +
-                fixed_text(scenario::static_toppling(m, -1), 3) + ")";
+      statics = fixed_text(library::static_toppling(m, survey.azimuth_of_minimum), 3) + " (" +
+                fixed_text(library::static_toppling(m, -1), 3) + ")";
     }
     const bool tilt = m.failure.kind == scenario::FailureRule::Kind::tilt;
     rows.push_back("| " + m.name + " | " + std::to_string(free) + " + " + std::to_string(scene.bodies.size() - free) +
@@ -141,9 +141,9 @@ void print_card(const std::vector<scenario::LibraryModel>& models, const fs::pat
 
 void run_library(const LibraryOptions& o) {
   if (o.azimuths < 1) throw InputError("", 0, "--azimuths must be at least 1");
-  std::vector<scenario::LibraryModel> models;
+  std::vector<library::LibraryModel> models;
   std::vector<std::string> known;
-  for (auto& m : scenario::rock_library()) {
+  for (auto& m : library::rock_library()) {
     known.push_back(m.name);
     if (o.only.empty() || std::find(o.only.begin(), o.only.end(), m.name) != o.only.end())
       models.push_back(std::move(m));

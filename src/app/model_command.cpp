@@ -12,7 +12,7 @@
 #include "rigid/io/scene_file.hpp"
 #include "rigid/io/scene_writer.hpp"
 #include "rigid/io/stl.hpp"
-#include "rigid/scenario/builders.hpp"
+#include "rigid/library/builders.hpp"
 
 namespace rigid::app {
 namespace {

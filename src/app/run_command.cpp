@@ -121,7 +121,7 @@ void run(const RunOptions& o) {
   if (!o.contact.empty()) job::set_text_setting(overrides, job::Setting::contact, o.contact, {"", 0, "--contact"});
   overrides = job::merged(std::move(overrides), run_overrides(o));
   job::Job job = job::one_cell_job(overrides);
-  const bool block2d = job.model == scenario::ModelKind::rocking2d;
+  const bool block2d = job.engine == scenario::Engine::rocking2d;
   if (block2d) {
     // the 2D model integrates the rocking equation with its own fixed step (rocking::RockingOptions):
     // a step option given for the 3D engine would be silently ignored
@@ -146,7 +146,7 @@ void run(const RunOptions& o) {
   // it is (scale "as recorded", rotation 0)
   const scenario::Model model = checked_model(job, std::move(scene), std::move(m), o);
   const auto start = std::chrono::steady_clock::now();
-  const scenario::CaseOutcome outcome = scenario::simulate(model, job::case_of(job, job::Cell{}));
+  const scenario::CaseOutcome outcome = scenario::simulate_case(model, job::case_of(job, job::Cell{}));
   if (outcome.error) std::rethrow_exception(outcome.error);
   const scenario::RunOutcome& r = outcome.run;
   // before any report: a non-finite state is no outcome ("survived" would be a wrong answer)
@@ -157,15 +157,15 @@ void run(const RunOptions& o) {
   if (o.json) {
     io::Json j;
     j["overturned"] = r.overturned;
-    j["failure_time_s"] = io::json_or_null(r.failure_time);
+    j["failure_time_s"] = io::json_or_null(r.failure_time_s);
     j["failed_block"] = r.failed_block;
     j["steps"] = r.steps;
-    j["dt_s"] = r.dt;
-    j["simulated_s"] = r.simulated;
+    j["dt_s"] = r.dt_s;
+    j["simulated_s"] = r.simulated_s;
     j["wall_s"] = wall;
-    j["max_tilt_deg"] = r.max_tilt * 180.0 / kPi;
-    j["max_slip_m"] = r.max_slip;
-    j["max_overlap_m"] = r.max_overlap;
+    j["max_tilt_deg"] = r.max_tilt_rad * 180.0 / kPi;
+    j["max_slip_m"] = r.max_slip_m;
+    j["max_overlap_m"] = r.max_overlap_m;
     j["ended_at_rest"] = r.ended_at_rest;
     j["finite"] = r.finite;
     j["unconverged_steps"] = r.unconverged_steps;
@@ -174,9 +174,9 @@ void run(const RunOptions& o) {
     std::printf("%s\n", io::json_line(j).c_str());
   } else {
     std::printf("%s after %.3f s simulated (%ld steps of %.3g s, %.3f s wall)\n",
-                r.overturned ? "OVERTURNED" : "survived", r.simulated, r.steps, r.dt, wall);
-    if (r.failure_time) std::printf("failure: %s at %.4f s\n", r.failed_block.c_str(), *r.failure_time);
-    std::printf("max tilt %.3f deg, max slip %.4g m\n", r.max_tilt * 180.0 / kPi, r.max_slip);
+                r.overturned ? "OVERTURNED" : "survived", r.simulated_s, r.steps, r.dt_s, wall);
+    if (r.failure_time_s) std::printf("failure: %s at %.4f s\n", r.failed_block.c_str(), *r.failure_time_s);
+    std::printf("max tilt %.3f deg, max slip %.4g m\n", r.max_tilt_rad * 180.0 / kPi, r.max_slip_m);
     if (r.unconverged_steps > 0) {
       std::printf("contact solver: %ld steps stopped at the sweep cap without converging (most sweeps %d)\n",
                   r.unconverged_steps, r.max_solver_sweeps);

@@ -15,7 +15,7 @@
 #include "rigid/io/json.hpp"
 #include "rigid/io/lab_recording.hpp"
 #include "rigid/io/scene_file.hpp"
-#include "rigid/scenario/rocking_parameters.hpp"
+#include "rigid/analysis/rocking_parameters.hpp"
 
 namespace rigid::app::shaketable {
 
@@ -198,7 +198,7 @@ std::vector<io::DesignJob::Record> strong_motion_windows(const io::LabTestList& 
 }
 
 double static_toppling_g(const std::string& scene) {
-  const auto rocking = scenario::rocking_parameters(io::load_scene(scene));
+  const auto rocking = analysis::rocking_parameters(io::load_scene(scene));
   if (!rocking) throw InputError(scene, 0, "has no single free block standing on its pedestal (no rocking parameters)");
   return std::tan(rocking->alpha);
 }
@@ -211,7 +211,7 @@ double window_level_g(const std::vector<std::string>& scenes) {
   double weakest = 1e300;
   bool rigid = true;
   for (const std::string& s : scenes) {
-    rigid = rigid && io::load_scene(s).law.model == contact::ContactModel::rigid;
+    rigid = rigid && io::load_scene(s).law.method == contact::ContactMethod::rigid;
     weakest = std::min(weakest, static_toppling_g(s));
   }
   return window_level_g(rigid, weakest);

@@ -55,7 +55,7 @@ void write_csv(const std::string& path, const study::StudyResult& result) {
     const study::Case& c = result.cases[r.case_index];
     const study::Setting& s = result.settings[r.setting_index];
     std::fprintf(f, "%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%ld,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%d\n",
-                 c.scene.c_str(), c.motion.c_str(), s.axis.c_str(), s.label.c_str(), contact::contact_model_name(s.contact),
+                 c.scene.c_str(), c.motion.c_str(), s.axis.c_str(), s.label.c_str(), contact::contact_method_name(s.contact),
                  s.preset.c_str(),
                  csv_number(s.safety).c_str(), scenario::integrator_name(s.rotation), csv_number(s.stiffness).c_str(),
                  csv_number(s.rest_speed).c_str(), csv_number(s.rest_time).c_str(), s.select_effects ? "auto" : "all",

@@ -12,7 +12,7 @@
 #include "rigid/core/error.hpp"
 #include "rigid/io/at2.hpp"
 #include "rigid/io/json.hpp"
-#include "rigid/scenario/rocking_parameters.hpp"
+#include "rigid/analysis/rocking_parameters.hpp"
 
 #if !defined(RIGID_VERSION) || !defined(RIGID_GIT_HASH)
 #error "the build defines RIGID_VERSION and RIGID_GIT_HASH"
@@ -150,7 +150,7 @@ io::Cube make_cube(const CampaignContext& context, const Plan& plan) {
     oc.scene = job.objects[o].scene;
     oc.inputs = io::format_digests(inputs.objects[o]);
     oc.physics_json = io::physics_json(model.scene(int(o)), job.run, job.accuracy, job.stop_after);
-    if (const auto rocking = scenario::rocking_parameters(model.scene(int(o)))) {
+    if (const auto rocking = analysis::rocking_parameters(model.scene(int(o)))) {
       oc.alpha_rad = rocking->alpha;
       oc.p_rad_s = rocking->p;
       oc.rocking_radius_m = rocking->radius;

@@ -16,14 +16,14 @@ TaskResult run_task(const job::Job& job, const scenario::Model& model, std::int6
     return out;
   }
   const auto start = std::chrono::steady_clock::now();
-  const scenario::CaseOutcome c = scenario::simulate(model, job::case_of(job, job.cells().cell(task)));
+  const scenario::CaseOutcome c = scenario::simulate_case(model, job::case_of(job, job.cells().cell(task)));
   out.outcome = static_cast<std::int32_t>(c.outcome);
   out.reason = static_cast<std::int32_t>(c.reason);
   set_message(out, c.message);
   if (c.outcome != scenario::CellOutcome::failed) {
-    if (c.run.failure_time) out.failure_time_s = *c.run.failure_time;
-    out.max_tilt_deg = c.run.max_tilt * 180.0 / kPi;
-    out.max_slip_m = c.run.max_slip;
+    if (c.run.failure_time_s) out.failure_time_s = *c.run.failure_time_s;
+    out.max_tilt_deg = c.run.max_tilt_rad * 180.0 / kPi;
+    out.max_slip_m = c.run.max_slip_m;
     out.unconverged_steps = c.run.unconverged_steps;
   }
   out.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

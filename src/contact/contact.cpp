@@ -7,13 +7,13 @@
 
 namespace rigid::contact {
 
-const char* contact_model_name(ContactModel model) { return model == ContactModel::rigid ? "rigid" : "penalty"; }
+const char* contact_method_name(ContactMethod model) { return model == ContactMethod::rigid ? "rigid" : "penalty"; }
 
-bool parse_contact_model(std::string_view name, ContactModel& model) {
+bool parse_contact_method(std::string_view name, ContactMethod& model) {
   if (name == "rigid") {
-    model = ContactModel::rigid;
+    model = ContactMethod::rigid;
   } else if (name == "penalty") {
-    model = ContactModel::penalty;
+    model = ContactMethod::penalty;
   } else {
     return false;
   }

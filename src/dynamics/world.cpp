@@ -41,7 +41,7 @@ double rigid_time_step(const std::vector<BodyDef>& bodies, double safety) {
 
 double time_step(const std::vector<BodyDef>& bodies, const contact::ContactLaw& law, const StepSettings& settings) {
   if (settings.dt > 0) return settings.dt;
-  if (law.model == contact::ContactModel::rigid) return rigid_time_step(bodies, settings.safety);
+  if (law.method == contact::ContactMethod::rigid) return rigid_time_step(bodies, settings.safety);
   return settings.safety * critical_time_step(bodies, law);
 }
 
@@ -49,7 +49,7 @@ namespace {
 
 // The stepper of the law's contact model, its buffers sized for the core's pairs.
 std::variant<PenaltyStepper, RigidStepper> make_stepper(const WorldCore& core) {
-  if (core.law.model == contact::ContactModel::rigid) return RigidStepper(core);
+  if (core.law.method == contact::ContactMethod::rigid) return RigidStepper(core);
   return PenaltyStepper(core);
 }
 

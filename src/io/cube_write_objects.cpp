@@ -293,7 +293,7 @@ void write_variant_values(Writer& w, const std::string& g, std::span<const Objec
     w.variable(w.strings(g + "/" + name, v, {s.variants}, nullptr, description), g + "/" + name, long_name, by_variant);
   };
   number("alpha_rad", &ObjectCube::alpha_rad, "rad", "rocking angle alpha",
-         "rocking angle alpha of a single block (scenario::rocking_parameters); NaN when none (stacks)");
+         "rocking angle alpha of a single block (analysis::rocking_parameters); NaN when none (stacks)");
   number("p_rad_s", &ObjectCube::p_rad_s, "rad s-1", "rocking frequency parameter p",
          "rocking frequency parameter p of a single block; NaN when none");
   number("rocking_radius_m", &ObjectCube::rocking_radius_m, "m", "rocking radius R",

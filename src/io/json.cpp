@@ -14,7 +14,7 @@ std::string physics_json(const scenario::Scene& scene, const scenario::RunSettin
   const auto& law = scene.law;
   const bool tilt = scene.failure.kind == scenario::FailureRule::Kind::tilt;
   Json j;
-  j["contact"] = contact::contact_model_name(law.model);
+  j["contact"] = contact::contact_method_name(law.method);
   j["restitution"] = law.restitution;
   j["normal_stiffness"] = law.normal_stiffness;
   j["shear_stiffness"] = law.shear_stiffness;

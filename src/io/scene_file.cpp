@@ -346,7 +346,7 @@ scenario::Scene load_toml_scene(const std::string& path) {
                    path, "[physics]");
     if (const auto* c = p->get("contact")) {
       const auto name = c->value<std::string>();
-      if (!name || !contact::parse_contact_model(*name, physics_only.law.model)) {
+      if (!name || !contact::parse_contact_method(*name, physics_only.law.method)) {
         throw InputError(path, line_of(*c), "contact must be \"rigid\" or \"penalty\"");
       }
     }

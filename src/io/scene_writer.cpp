@@ -83,7 +83,7 @@ void write_scene(const std::string& path, const SceneFile& scene) {
     if (!scene.model.empty() || !scene.state.empty()) out << "\n";
     out << "[physics]  # the default contact model; density and the penalty model's values are the study's "
            "(physics.md 11)\ncontact = \""
-        << contact::contact_model_name(law.model) << "\"\ndensity = " << float_text(scene.density)
+        << contact::contact_method_name(law.method) << "\"\ndensity = " << float_text(scene.density)
         << "\nnormal_stiffness = 1e8\nshear_stiffness = 1e8\nfriction = 0.6\ndamping = 2.0\n";
     out << "\n[failure]\n";
     if (scene.tilt_rule_deg) {

@@ -10,7 +10,7 @@ namespace rigid::job {
 void apply_overrides(Job& job) {
   job.run = run_settings(job.overrides);
   job.accuracy = accuracy_name(job.overrides);
-  job.model = job.overrides.model.value_or(scenario::ModelKind::dem3d);
+  job.engine = job.overrides.engine.value_or(scenario::Engine::dem3d);
   job.contact = job.overrides.contact;
 }
 

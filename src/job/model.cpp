@@ -7,7 +7,7 @@
 #include "rigid/io/lab_recording.hpp"
 #include "rigid/io/scene_file.hpp"
 #include "rigid/motion/measures.hpp"
-#include "rigid/scenario/rocking_parameters.hpp"
+#include "rigid/analysis/rocking_parameters.hpp"
 #include "rigid/scenario/run_bounds.hpp"
 
 namespace rigid::job {
@@ -28,10 +28,10 @@ motion::GroundMotion windowed_record(const JobRecord& r, const motion::GroundMot
 // blocks that start inside each other.
 void apply_job_variant(const Job& job, const JobObject& o, scenario::Scene& s) {
   try {
-    const bool supported = scenario::rocking_parameters(s).has_value();
+    const bool supported = analysis::rocking_parameters(s).has_value();
     scenario::apply_variant(job.variants, o.variant, s);
     if (const std::string problem = io::scene_value_problem(s); !problem.empty()) throw std::invalid_argument(problem);
-    if (supported && !scenario::rocking_parameters(s))
+    if (supported && !analysis::rocking_parameters(s))
       throw std::invalid_argument("the centre of mass lies outside the support polygon: the block would tip at once");
     try {
       scenario::check_start_overlap(s);
@@ -50,11 +50,11 @@ void apply_job_variant(const Job& job, const JobObject& o, scenario::Scene& s) {
 scenario::Model assemble_model(const Job& job, std::vector<scenario::Scene> scenes,
                                std::vector<motion::GroundMotion> records, std::vector<double> pga_factor_per_g) {
   for (std::size_t o = 0; o < scenes.size() && o < job.objects.size(); ++o) {
-    if (job.contact) scenes[o].law.model = *job.contact;
+    if (job.contact) scenes[o].law.method = *job.contact;
     if (job.objects[o].variant >= 0) apply_job_variant(job, job.objects[o], scenes[o]);
   }
   try {
-    return scenario::Model(job.model, std::move(scenes), std::move(records), job.run, std::move(pga_factor_per_g));
+    return scenario::Model(job.engine, std::move(scenes), std::move(records), job.run, std::move(pga_factor_per_g));
   } catch (const InputError& e) {
     // the run bounds name no file: the job's [run] settings (or its records' lengths) broke them
     if (!e.file().empty() || job.path.empty()) throw;

@@ -36,11 +36,11 @@ TextSettingInfo info_of(Setting setting) {
 bool parse_into(RunOverrides& o, Setting setting, const std::string& text) {
   switch (setting) {
     case Setting::model:
-      o.model = scenario::parse_model_kind(text);
-      return o.model.has_value();
+      o.engine = scenario::parse_engine(text);
+      return o.engine.has_value();
     case Setting::contact: {
-      contact::ContactModel model;
-      if (!contact::parse_contact_model(text, model)) return false;
+      contact::ContactMethod model;
+      if (!contact::parse_contact_method(text, model)) return false;
       o.contact = model;
       return true;
     }
@@ -87,7 +87,7 @@ RunOverrides merged(RunOverrides base, const RunOverrides& over) {
   const auto take = [](auto& to, const auto& from) {
     if (from) to = from;
   };
-  take(base.model, over.model);
+  take(base.engine, over.engine);
   take(base.contact, over.contact);
   take(base.select_effects, over.select_effects);
   take(base.accuracy, over.accuracy);

@@ -1,6 +1,6 @@
 // rigid_ode_peer: the `rigid bench` peer scene run in ODE (Open Dynamics Engine), as an outside
 // reference for speed and for the overturning threshold. Not part of the engine: it uses none of
-// Rigid's code, only the same scene (src/app/bench_command.cpp, scenario::block_on_pedestal).
+// Rigid's code, only the same scene (src/app/bench_command.cpp, library::block_on_pedestal).
 //
 // Scene: block 2b x 0.5 x 2h, h = 0.5 m, b = h tan(0.2), density 2600, friction 0.6, centred on
 // a 2(b + 0.02) x 0.54 x 0.2 m pedestal whose top is z = 0. The pedestal is a kinematic body

@@ -506,7 +506,7 @@ class Integration {
 
 }  // namespace
 
-RockingResult simulate(const RockingBlock& block, const GroundAcceleration& ground, double end_time,
+RockingResult simulate_rocking(const RockingBlock& block, const GroundAcceleration& ground, double end_time,
                        const RockingOptions& options, const InitialState& initial) {
   validate_block(block);
   validate_run(options, initial, end_time);
@@ -547,7 +547,7 @@ double min_overturning_amplitude(const RockingBlock& block, PulseShape shape, do
   opt.record_trajectory = false;
   const double end = duration + search.free_time;
   auto overturns = [&](double amplitude) {
-    return simulate(block, make_pulse(shape, amplitude, duration), end, opt).overturned;
+    return simulate_rocking(block, make_pulse(shape, amplitude, duration), end, opt).overturned;
   };
 
   // below the uplift acceleration the block never leaves its base, so it is a safe lower bound.

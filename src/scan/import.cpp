@@ -350,7 +350,7 @@ ImportResult import_scan(const ImportOptions& o) {
   io::save_state((dir / scene_file.state).string(), settled);
   io::write_scene(scene_path.string(), scene_file);
 
-  result.rocking = scenario::rocking_parameters(settled);
+  result.rocking = analysis::rocking_parameters(settled);
   const io::Json report = import_json(o, result);
   io::write_output_file((dir / (name + ".import.json")).string(),
                         [&](std::ostream& stream) { stream << report.dump(2) << "\n"; });

@@ -10,23 +10,23 @@
 
 namespace rigid::scenario {
 
-const char* model_kind_name(ModelKind kind) { return kind == ModelKind::rocking2d ? "rocking2d" : "dem3d"; }
+const char* engine_name(Engine engine) { return engine == Engine::rocking2d ? "rocking2d" : "dem3d"; }
 
-std::optional<ModelKind> parse_model_kind(std::string_view text) {
-  if (text == "dem3d") return ModelKind::dem3d;
-  if (text == "rocking2d") return ModelKind::rocking2d;
+std::optional<Engine> parse_engine(std::string_view text) {
+  if (text == "dem3d") return Engine::dem3d;
+  if (text == "rocking2d") return Engine::rocking2d;
   return std::nullopt;
 }
 
-Model::Model(ModelKind kind, std::vector<Scene> scenes, std::vector<motion::GroundMotion> records, RunSettings run,
+Model::Model(Engine engine, std::vector<Scene> scenes, std::vector<motion::GroundMotion> records, RunSettings run,
              std::vector<double> pga_factor_per_g)
-    : kind_(kind),
+    : engine_(engine),
       scenes_(std::move(scenes)),
       records_(std::move(records)),
       run_(std::move(run)),
       pga_factor_per_g_(std::move(pga_factor_per_g)) {
   pga_factor_per_g_.resize(records_.size(), 0.0);
-  if (kind_ == ModelKind::rocking2d) {
+  if (engine_ == Engine::rocking2d) {
     for (const Scene& s : scenes_) blocks2d_.push_back(rocking_block_of(s));
   }
   check_bounds();
@@ -40,7 +40,7 @@ void Model::check_bounds() const {
       throw InputError("", 0, "the simulated time must be finite and not negative (duration, free time)");
     }
   }
-  if (kind_ != ModelKind::dem3d) return;  // the 2D model steps adaptively
+  if (engine_ != Engine::dem3d) return;  // the 2D model steps adaptively
   const double longest = *std::max_element(times.begin(), times.end());
   for (const Scene& s : scenes_) check_run_bounds(s, run_.step, longest);
 }
@@ -59,15 +59,15 @@ motion::GroundMotion case_motion(const Model& model, const Case& c) {
   // fragility (Purvance et al. 2008, physics.md §1) is a function of the
   // record's PGA and PGV alone. Projecting the rotated motion on x instead would weaken the
   // shaking by |cos| of a random angle that the 2D block cannot feel.
-  if (model.kind() == ModelKind::dem3d) t.rotation = c.rotation_deg * kPi / 180.0;
+  if (model.engine() == Engine::dem3d) t.rotation = c.rotation_deg * kPi / 180.0;
   return motion::transformed(model.record(c.record), t);
 }
 
-CaseOutcome simulate(const Model& model, const Case& c) {
+CaseOutcome simulate_case(const Model& model, const Case& c) {
   CaseOutcome out;
   try {
     const motion::GroundMotion m = case_motion(model, c);
-    if (model.kind() == ModelKind::rocking2d) {
+    if (model.engine() == Engine::rocking2d) {
       // no record: the block stands on a still pedestal for the run's duration
       static const std::vector<double> still{0.0, 0.0};
       out.run = m.x.empty() ? run_rocking2d(model.block2d(c.object), still, 0.01, model.run_settings())

@@ -65,15 +65,15 @@ RunOutcome run_rocking2d(const rocking::RockingBlock& block, const std::vector<d
   rocking::RockingOptions options;
   options.overturn_angle = kRocking2dOverturnAngle;
   const auto ground = rocking::GroundAcceleration::sampled(ax, dt);
-  const rocking::RockingResult r = rocking::simulate(block, ground, end, options);
+  const rocking::RockingResult r = rocking::simulate_rocking(block, ground, end, options);
   RunOutcome out;
   out.overturned = r.overturned;
-  if (r.overturned) out.failure_time = r.failure_time;
+  if (r.overturned) out.failure_time_s = r.failure_time;
   out.failed_block = r.overturned ? "block" : "";
-  out.dt = options.time_step;
-  out.simulated = r.end_time;
+  out.dt_s = options.time_step;
+  out.simulated_s = r.end_time;
   out.steps = std::lround(r.end_time / options.time_step);
-  out.max_tilt = r.max_abs_theta;
+  out.max_tilt_rad = r.max_abs_theta;
   out.ended_at_rest = r.stop == rocking::StopReason::at_rest;
   return out;
 }

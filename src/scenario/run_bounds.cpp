@@ -60,7 +60,7 @@ double start_overlap(const dynamics::BodyDef& a, const dynamics::BodyDef& b) {
 
 double largest_time_step(const std::vector<dynamics::BodyDef>& bodies, const contact::ContactLaw& law) {
   const double rigid = dynamics::rigid_time_step(bodies, 1.0);
-  if (law.model == contact::ContactModel::rigid) return rigid;
+  if (law.method == contact::ContactMethod::rigid) return rigid;
   return std::min(rigid, dynamics::critical_time_step(bodies, law));
 }
 
@@ -69,7 +69,7 @@ namespace {
 // Penalty contact too soft to carry a block: under its own weight on four subcontacts
 // (F = K_N d^1.5 each) it would sink deeper than the start-overlap bound.
 void check_penalty_stiffness(const Scene& scene) {
-  if (scene.law.model != contact::ContactModel::penalty) return;
+  if (scene.law.method != contact::ContactMethod::penalty) return;
   for (const auto& body : scene.bodies) {
     if (body.fixed) continue;
     const double sink = std::pow(body.shape.mass * kGravity / (4.0 * scene.law.normal_stiffness), 2.0 / 3.0);
@@ -88,7 +88,7 @@ void check_run_bounds(const Scene& scene, const dynamics::StepSettings& step, do
   check_penalty_stiffness(scene);
   const double dt = dynamics::time_step(scene.bodies, scene.law, step);
   const double largest = largest_time_step(scene.bodies, scene.law);
-  const char* model = contact::contact_model_name(scene.law.model);
+  const char* model = contact::contact_method_name(scene.law.method);
   if (!(dt <= largest)) {
     throw InputError("", 0, "time step " + seconds(dt) + " of " + scene.source + " exceeds the largest the " + model +
                                 " contact model allows (" + seconds(largest) +

@@ -65,7 +65,7 @@ ShakingRun::ShakingRun(const Scene& scene, const GroundDrive& ground, const RunS
       dt_(world_.dt()),
       motion_end_(ground.duration()),
       select_(settings.select_effects) {
-  out_.dt = dt_;
+  out_.dt_s = dt_;
   const double duration = settings.duration > 0 ? settings.duration : motion_end_ + settings.free_time;
   steps_ = static_cast<long>(std::ceil(duration / dt_ - 1e-9));
   observe_every_ = std::max(1L, std::lround(settings.observe_interval / dt_));
@@ -175,7 +175,7 @@ bool ShakingRun::sleep() {
   }
   fx.steps_skipped += k_ - asleep_from;
   fx.asleep_s += double(k_ - asleep_from) * dt_;
-  out_.simulated = double(k_) * dt_;
+  out_.simulated_s = double(k_) * dt_;
   if (!fixed_z_constant_) lowest_fixed_ = lowest_fixed_point();
   return true;
 }
@@ -187,9 +187,9 @@ void ShakingRun::step() {
   ground_end_ = ground_.at(t1);
   world_.step(dt_, ground_start_, ground_end_);
   ++k_;
-  out_.simulated = t1;
+  out_.simulated_s = t1;
   observe_on_cadence();
-  out_.max_overlap = std::max(out_.max_overlap, world_.max_overlap());
+  out_.max_overlap_m = std::max(out_.max_overlap_m, world_.max_overlap());
 }
 
 ShakingRun::Verdict ShakingRun::check_failure() {
@@ -205,12 +205,12 @@ ShakingRun::Verdict ShakingRun::check_failure() {
       return Verdict::non_finite;
     }
     const double a = tilt(defs[i].orientation, s.orientation);
-    out_.max_tilt = std::max(out_.max_tilt, a);
+    out_.max_tilt_rad = std::max(out_.max_tilt_rad, a);
     const bool failed = scene_.failure.kind == FailureRule::Kind::below ? s.position.z() < lowest_fixed_
                                                                         : a > scene_.failure.tilt_angle;
     if (failed && !out_.overturned) {
       out_.overturned = true;
-      out_.failure_time = out_.simulated;
+      out_.failure_time_s = out_.simulated_s;
       out_.failed_block = defs[i].name;
     }
   }
@@ -219,7 +219,7 @@ ShakingRun::Verdict ShakingRun::check_failure() {
 
 // True when the run can end: the motion is over and the blocks have rested for rest_time.
 bool ShakingRun::check_rest() {
-  const double t1 = out_.simulated;
+  const double t1 = out_.simulated_s;
   if (!select_) {
     if (t1 >= motion_end_ && at_rest(world_, settings_.rest_speed, settings_.rest_angular_speed)) {
       // after the motion, a scene at rest stays at rest: nothing more can happen
@@ -273,7 +273,7 @@ void ShakingRun::count_steps() {
 void ShakingRun::finish() {
   count_steps();
   for (std::size_t i = 0; i < scene_.bodies.size(); ++i) {
-    if (!scene_.bodies[i].fixed) out_.max_slip = std::max(out_.max_slip, world_.slip()[i]);
+    if (!scene_.bodies[i].fixed) out_.max_slip_m = std::max(out_.max_slip_m, world_.slip()[i]);
   }
   const auto& stats = world_.stats();
   ActiveEffects& fx = out_.effects;
@@ -284,7 +284,7 @@ void ShakingRun::finish() {
   fx.sliding = stats.sliding_steps > 0;
   fx.end = out_.overturned ? ActiveEffects::End::failure
                            : out_.ended_at_rest ? ActiveEffects::End::at_rest : ActiveEffects::End::full_duration;
-  fx.time_saved_s = std::max(0.0, double(steps_) * dt_ - out_.simulated);
+  fx.time_saved_s = std::max(0.0, double(steps_) * dt_ - out_.simulated_s);
   if (settings_.observer && k_ % observe_every_ != 0) settings_.observer(world_);
 }
 

@@ -201,7 +201,7 @@ void apply_variant(const VariantSpace& space, int v, Scene& scene) {
   }
   contact::ContactLaw& law = scene.law;
   if (const VariantValue* m = value(VariantKey::contact)) {
-    if (!contact::parse_contact_model(m->text, law.model)) {
+    if (!contact::parse_contact_method(m->text, law.method)) {
       throw std::invalid_argument("contact must be \"rigid\" or \"penalty\", not \"" + m->text + "\"");
     }
   }

@@ -8,25 +8,25 @@
 #include "rigid/motion/synth.hpp"
 #include "rigid/rocking/housner.hpp"
 #include "rigid/rocking/newmark.hpp"
-#include "rigid/scenario/builders.hpp"
+#include "rigid/library/builders.hpp"
 #include "rigid/scenario/rocking2d.hpp"
-#include "rigid/scenario/tilt_test.hpp"
+#include "rigid/analysis/tilt_test.hpp"
 #include "rigid/study/accuracy_study.hpp"
 
 namespace rigid::study {
 namespace {
 
 // The study's validation blocks (models/library block_a0N: 1 m tall, 0.5 m deep, alpha 0.1-0.4).
-scenario::LibraryModel library_model(const std::string& name) {
-  for (auto& m : scenario::rock_library()) {
+library::LibraryModel library_model(const std::string& name) {
+  for (auto& m : library::rock_library()) {
     if (m.name == name) return m;
   }
   throw std::logic_error("rock library has no " + name);
 }
 
 // Two boxes stacked on a pedestal: a stocky lower block and a slender upper one.
-scenario::LibraryModel two_block_stack() {
-  scenario::LibraryModel m;
+library::LibraryModel two_block_stack() {
+  library::LibraryModel m;
   m.name = "two_block_stack";
   m.description = "two boxes on a pedestal";
   m.pieces.push_back({"pedestal", geometry::box_soup(Vec3(-0.27, -0.27, -0.2), Vec3(0.27, 0.27, 0)), true});
@@ -76,8 +76,8 @@ std::vector<Case> study_cases(const StudyOptions& o, const motion::GroundMotion&
     Case c;
     c.scene = scene;
     c.law = study_law;
-    const scenario::LibraryModel model = library_model(model_name);
-    c.build = [model](const contact::ContactLaw& law) { return scenario::library_scene(model, law); };
+    const library::LibraryModel model = library_model(model_name);
+    c.build = [model](const contact::ContactLaw& law) { return library::library_scene(model, law); };
     c.library = model;
     return c;
   };
@@ -107,12 +107,12 @@ std::vector<Case> study_cases(const StudyOptions& o, const motion::GroundMotion&
     cases.push_back(qs);
   }
   if (!o.quick) {
-    const scenario::LibraryModel stack = two_block_stack();
+    const library::LibraryModel stack = two_block_stack();
     Case rec;
     rec.scene = "stack";
     rec.motion = "record";
     rec.law = study_law;
-    rec.build = [stack](const contact::ContactLaw& law) { return scenario::library_scene(stack, law); };
+    rec.build = [stack](const contact::ContactLaw& law) { return library::library_scene(stack, law); };
     rec.library = stack;
     rec.ground = x_only_scaled(record, 0.5);
     cases.push_back(rec);
@@ -131,7 +131,7 @@ std::vector<Case> study_cases(const StudyOptions& o, const motion::GroundMotion&
     c.scene = "sliding";
     c.law = study_law;
     c.law.friction = 0.2;
-    c.build = [](const contact::ContactLaw& law) { return scenario::block_on_pedestal(0.4, 0.2, 0.4, law, 2600, 1.0); };
+    c.build = [](const contact::ContactLaw& law) { return library::block_on_pedestal(0.4, 0.2, 0.4, law, 2600, 1.0); };
     c.oracle = Oracle::newmark_slide;
     c.model_quantity = "sliding_displacement_m";
     c.motion = "pulse";
@@ -160,9 +160,9 @@ std::vector<Case> study_cases(const StudyOptions& o, const motion::GroundMotion&
     c.oracle = Oracle::energy_conservation;
     c.oracle_value = 0;
     c.model_quantity = "first_1deg_turn_s";
-    const scenario::LibraryModel model = library_model("geode");
+    const library::LibraryModel model = library_model("geode");
     c.build = [model](const contact::ContactLaw& law) {
-      scenario::Scene s = scenario::library_scene(model, law);
+      scenario::Scene s = library::library_scene(model, law);
       for (auto& b : s.bodies) {
         if (b.fixed) continue;
         const Vec3 lowest = b.shape.vertices[0];  // body frame: any vertex, pointed straight down
@@ -195,7 +195,7 @@ double oracle_value(const Case& c) {
       return rocking::min_overturning_amplitude(block, rocking::PulseShape::one_sine, c.pulse_period, ro) / kGravity;
     }
     case Oracle::g_tan_alpha: return std::tan(scenario::rocking_block_of(c.build(c.law)).alpha);
-    case Oracle::rigid_statics: return scenario::static_toppling(*c.library, 0.0);
+    case Oracle::rigid_statics: return library::static_toppling(*c.library, 0.0);
     case Oracle::newmark_slide: return rocking::newmark_displacement(c.ground.x, c.ground.dt, c.law.friction);
     case Oracle::energy_conservation:
     case Oracle::none: break;

@@ -87,7 +87,7 @@ std::vector<Setting> study_settings(const StudyOptions& o) {
                                                                        : std::vector<double>{kStudyStiffness, 1e9, 1e10}) {
     Setting x;
     x.axis = "stiffness";
-    x.contact = contact::ContactModel::penalty;
+    x.contact = contact::ContactMethod::penalty;
     x.stiffness = k;
     x.label = format("stiffness %.0e", k);
     out.push_back(x);
@@ -98,7 +98,7 @@ std::vector<Setting> study_settings(const StudyOptions& o) {
                                                                        : std::vector<double>{0.05, 0.2, 0.4, 0.8}) {
     Setting x;
     x.axis = "rigid";
-    x.contact = contact::ContactModel::rigid;
+    x.contact = contact::ContactMethod::rigid;
     x.safety = s;
     x.label = format("rigid safety %g", s);
     out.push_back(x);

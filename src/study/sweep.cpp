@@ -6,7 +6,7 @@
 #include <optional>
 #include <utility>
 
-#include "rigid/scenario/tilt_test.hpp"
+#include "rigid/analysis/tilt_test.hpp"
 #include "rigid/study/accuracy_study.hpp"
 #include "trajectory.hpp"
 
@@ -30,9 +30,9 @@ StudyResult run_study(const StudyOptions& o, std::vector<Case> cases_in, std::ve
       auto it = settled.find(key);
       if (it != settled.end()) return it->second;
       contact::ContactLaw law = c.law;
-      law.model = s.contact;
+      law.method = s.contact;
       // no damping in a conservative case: the rigid model's counterpart is an elastic impact
-      if (c.conservative && s.contact == contact::ContactModel::rigid) law.restitution = 1;
+      if (c.conservative && s.contact == contact::ContactMethod::rigid) law.restitution = 1;
       law.normal_stiffness = law.shear_stiffness = s.stiffness;
       scenario::Scene scene = c.build(law);
       if (c.settle) scene = scenario::equilibrate(scene, dynamics::StepSettings{});
@@ -54,17 +54,17 @@ StudyResult run_study(const StudyOptions& o, std::vector<Case> cases_in, std::ve
       scenario::RunSettings rs = run_settings(s);
       rs.duration = c.duration;
       rs.free_time = c.free_time;
-      row.dt = s.contact == contact::ContactModel::rigid ? dynamics::rigid_time_step(scene.bodies, s.safety)
+      row.dt = s.contact == contact::ContactMethod::rigid ? dynamics::rigid_time_step(scene.bodies, s.safety)
                                                           : s.safety * dynamics::critical_time_step(scene.bodies, scene.law);
       if (c.quasi_static) {
-        scenario::TiltTestSettings tts;
+        analysis::TiltTestSettings tts;
         tts.step = rs.step;
         if (o.quick) tts.relative_tolerance = 0.01;
         std::vector<double> walls;
-        scenario::TiltTestResult r;
+        analysis::TiltTestResult r;
         for (int k = 0; k < repeat; ++k) {
           const auto start = Clock::now();
-          r = scenario::tilt_test(scene, 0.0, tts);
+          r = analysis::tilt_test(scene, 0.0, tts);
           walls.push_back(seconds_since(start));
         }
         row.wall = median(walls);
@@ -94,11 +94,11 @@ StudyResult run_study(const StudyOptions& o, std::vector<Case> cases_in, std::ve
         row.repeats = repeat;
         const auto& out = tr.outcome;
         row.steps = out.steps;
-        row.dt = out.dt;
-        row.simulated = out.simulated;
+        row.dt = out.dt_s;
+        row.simulated = out.simulated_s;
         row.overturned = out.overturned;
-        row.failure_time = out.failure_time ? *out.failure_time : kNoValue;
-        row.max_tilt_deg = out.max_tilt * 180.0 / kPi;
+        row.failure_time = out.failure_time_s ? *out.failure_time_s : kNoValue;
+        row.max_tilt_deg = out.max_tilt_rad * 180.0 / kPi;
         row.energy_err = tr.energy_err;
         if (c.oracle == Oracle::newmark_slide) {
           // final relative displacement of the block along x (pedestal frame)
@@ -115,8 +115,8 @@ StudyResult run_study(const StudyOptions& o, std::vector<Case> cases_in, std::ve
         row.traj_rel = e.rel;
         row.error = e.rel;
         row.outcome_match = out.overturned == r0.outcome.overturned;
-        if (out.failure_time && r0.outcome.failure_time) row.failure_time_err = std::abs(*out.failure_time - *r0.outcome.failure_time);
-        row.max_tilt_err = std::abs(out.max_tilt - r0.outcome.max_tilt) * 180.0 / kPi;
+        if (out.failure_time_s && r0.outcome.failure_time_s) row.failure_time_err = std::abs(*out.failure_time_s - *r0.outcome.failure_time_s);
+        row.max_tilt_err = std::abs(out.max_tilt_rad - r0.outcome.max_tilt_rad) * 180.0 / kPi;
       }
       if (&s == &ref_setting) ref_model = row.model_value;
       if (std::isfinite(row.model_value) && std::isfinite(ref_model) && ref_model != 0) {

@@ -19,7 +19,7 @@ namespace {
 
 // The run of the model's one case (its record as it is); an error inside it is thrown again.
 scenario::RunOutcome simulated_run(const scenario::Model& model) {
-  scenario::CaseOutcome out = scenario::simulate(model, scenario::Case{});
+  scenario::CaseOutcome out = scenario::simulate_case(model, scenario::Case{});
   if (out.error) std::rethrow_exception(out.error);
   return out.run;
 }
@@ -71,7 +71,7 @@ Trajectory run_trajectory(const scenario::Scene& scene, const motion::GroundMoti
     const double residual = e - e0;
     tr.energy_err = std::max(tr.energy_err, (conservative ? std::abs(residual) : std::max(0.0, residual)) / scale);
   };
-  const scenario::Model model(scenario::ModelKind::dem3d, {scene}, {ground}, std::move(settings));
+  const scenario::Model model(scenario::Engine::dem3d, {scene}, {ground}, std::move(settings));
   const auto start = Clock::now();
   tr.outcome = simulated_run(model);
   tr.wall = seconds_since(start);
@@ -123,7 +123,7 @@ double pulse_threshold(const scenario::Scene& scene, const scenario::RunSettings
   scenario::RunSettings s = settings;
   s.duration = period + 10.0;
   auto overturns = [&](double a) {
-    return simulated_run(scenario::Model(scenario::ModelKind::dem3d, {scene}, {one_sine(a, period)}, s)).overturned;
+    return simulated_run(scenario::Model(scenario::Engine::dem3d, {scene}, {one_sine(a, period)}, s)).overturned;
   };
   for (int k = 0; k < 8 && overturns(lo); ++k) lo *= 0.8;
   for (int k = 0; k < 8 && !overturns(hi); ++k) hi *= 1.25;

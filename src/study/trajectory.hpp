@@ -27,7 +27,7 @@ struct Trajectory {
   double wall = 0;
 };
 
-/// One case of the scene under `ground` (x component; empty: none), through scenario::simulate.
+/// One case of the scene under `ground` (x component; empty: none), through scenario::simulate_case.
 Trajectory run_trajectory(const scenario::Scene& scene, const motion::GroundMotion& ground,
                           scenario::RunSettings settings, bool conservative, double interval);
 

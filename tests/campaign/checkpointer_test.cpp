@@ -27,9 +27,10 @@
 #include "rigid/campaign/journal.hpp"
 #include "rigid/campaign/session.hpp"
 #include "rigid/io/cube.hpp"
-#include "rigid/scenario/builders.hpp"
+#include "rigid/library/builders.hpp"
 
 namespace rigid::campaign {
+using namespace library;
 namespace {
 
 namespace fs = std::filesystem;
@@ -59,7 +60,7 @@ class TempDir {
 // `output`: what make_cube and restore need, built in memory.
 struct Campaign {
   Campaign(const std::string& output, int scales, int rotations, int stop_after)
-      : model(scenario::ModelKind::dem3d, {scenario::block_on_pedestal(0.2, 0.5, 0.4)}, {quiet_motion()},
+      : model(scenario::Engine::dem3d, {library::block_on_pedestal(0.2, 0.5, 0.4)}, {quiet_motion()},
               scenario::RunSettings{}) {
     job.output = output;
     job.hash = "test-job";

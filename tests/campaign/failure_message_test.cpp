@@ -15,9 +15,10 @@
 
 #include "rigid/campaign/journal.hpp"
 #include "rigid/campaign/task.hpp"
-#include "rigid/scenario/builders.hpp"
+#include "rigid/library/builders.hpp"
 
 namespace rigid::campaign {
+using namespace library;
 namespace {
 
 namespace fs = std::filesystem;
@@ -44,7 +45,7 @@ TEST(FailureMessage, AnExceptionInACaseIsStoredWithTheResult) {
   motion::GroundMotion quiet;  // no acceleration: it cannot be scaled to 0.3 g
   quiet.dt = 0.01;
   quiet.x.assign(100, 0.0);
-  const scenario::Model model(scenario::ModelKind::dem3d, {scenario::block_on_pedestal(0.2, 0.5, 0.4)}, {quiet},
+  const scenario::Model model(scenario::Engine::dem3d, {library::block_on_pedestal(0.2, 0.5, 0.4)}, {quiet},
                               scenario::RunSettings{});
   const TaskResult r = run_task(one_cell_job(), model, 0);
   EXPECT_EQ(r.outcome, static_cast<std::int32_t>(scenario::CellOutcome::failed));

@@ -8,7 +8,7 @@
 #include <new>
 
 #include "rigid/geometry/polyhedron.hpp"
-#include "rigid/scenario/builders.hpp"
+#include "rigid/library/builders.hpp"
 
 namespace {
 std::atomic<long> g_allocations{0};
@@ -30,13 +30,13 @@ void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 namespace rigid {
 namespace {
 
-scenario::Scene rocking_block(contact::ContactModel model, bool compound) {
+scenario::Scene rocking_block(contact::ContactMethod model, bool compound) {
   contact::ContactLaw law;
-  law.model = model;
-  if (!compound) return scenario::block_on_pedestal(0.1, 0.5, 0.5, law);
+  law.method = model;
+  if (!compound) return library::block_on_pedestal(0.1, 0.5, 0.5, law);
   // a 0.5 x 0.5 x 1.0 block (stockier: it rocks on its pedestal without toppling off it) as two
   // glued halves, each resting on the pedestal
-  auto scene = scenario::block_on_pedestal(0.25, 0.5, 0.5, law);
+  auto scene = library::block_on_pedestal(0.25, 0.5, 0.5, law);
   const Vec3 lo(-0.25, -0.25, 0), hi(0.25, 0.25, 1.0);
   geometry::MeshOptions convex;
   convex.require_convex = true;
@@ -53,7 +53,7 @@ scenario::Scene rocking_block(contact::ContactModel model, bool compound) {
   return scene;
 }
 
-class StepAllocation : public ::testing::TestWithParam<std::tuple<contact::ContactModel, bool>> {};
+class StepAllocation : public ::testing::TestWithParam<std::tuple<contact::ContactMethod, bool>> {};
 
 TEST_P(StepAllocation, SteppingARockingBlockAllocatesNothing) {
   const auto scene = rocking_block(std::get<0>(GetParam()), std::get<1>(GetParam()));
@@ -74,10 +74,10 @@ TEST_P(StepAllocation, SteppingARockingBlockAllocatesNothing) {
 }
 
 INSTANTIATE_TEST_SUITE_P(BothModels, StepAllocation,
-                         ::testing::Combine(::testing::Values(contact::ContactModel::penalty, contact::ContactModel::rigid),
+                         ::testing::Combine(::testing::Values(contact::ContactMethod::penalty, contact::ContactMethod::rigid),
                                             ::testing::Bool()),
                          [](const auto& info) {
-                           return std::string(contact::contact_model_name(std::get<0>(info.param))) +
+                           return std::string(contact::contact_method_name(std::get<0>(info.param))) +
                                   (std::get<1>(info.param) ? "_compound" : "");
                          });
 

@@ -9,7 +9,7 @@
 
 #include "rigid/dynamics/contact_solver.hpp"
 #include "rigid/dynamics/world.hpp"
-#include "rigid/scenario/builders.hpp"
+#include "rigid/library/builders.hpp"
 
 namespace rigid {
 namespace {
@@ -196,26 +196,26 @@ TEST(ContactSolver, ASolveCutOffByItsSweepCapSaysItDidNotConverge) {
 }
 
 // A 1 m cube standing on a fixed slab, rigid contacts.
-dynamics::World cube_on_slab(const dynamics::StepSettings& settings, contact::ContactModel model) {
+dynamics::World cube_on_slab(const dynamics::StepSettings& settings, contact::ContactMethod model) {
   contact::ContactLaw law;
-  law.model = model;
+  law.method = model;
   std::vector<dynamics::BodyDef> bodies = {
-      scenario::box_body("slab", Vec3(-2, -2, -1), Vec3(2, 2, 0), 2600, true),
-      scenario::box_body("cube", Vec3(-0.5, -0.5, 0), Vec3(0.5, 0.5, 1), 2600, false)};
+      library::box_body("slab", Vec3(-2, -2, -1), Vec3(2, 2, 0), 2600, true),
+      library::box_body("cube", Vec3(-0.5, -0.5, 0), Vec3(0.5, 0.5, 1), 2600, false)};
   return dynamics::World(std::move(bodies), law, settings);
 }
 
 TEST(ContactSolver, TheWorldCountsTheStepsWhoseSolveHitItsCap) {
   dynamics::StepSettings capped;
   capped.solver_max_sweeps = 1;
-  dynamics::World world = cube_on_slab(capped, contact::ContactModel::rigid);
+  dynamics::World world = cube_on_slab(capped, contact::ContactMethod::rigid);
   // the first step starts without a warm start: its one sweep must stop the cube (as above)
   world.step(world.dt(), Vec3::Zero(), Vec3::Zero());
   EXPECT_EQ(world.stats().unconverged_steps, 1);
   EXPECT_EQ(world.stats().max_solver_sweeps, 1);
 
   // with the default cap, a cube at rest converges every step
-  dynamics::World resting = cube_on_slab(dynamics::StepSettings{}, contact::ContactModel::rigid);
+  dynamics::World resting = cube_on_slab(dynamics::StepSettings{}, contact::ContactMethod::rigid);
   for (int k = 0; k < 200; ++k) resting.step(resting.dt(), Vec3::Zero(), Vec3::Zero());
   EXPECT_EQ(resting.stats().unconverged_steps, 0);
   EXPECT_GE(resting.stats().max_solver_sweeps, 2);  // the first step's solve needs more than one
@@ -223,7 +223,7 @@ TEST(ContactSolver, TheWorldCountsTheStepsWhoseSolveHitItsCap) {
   EXPECT_NEAR(resting.states()[1].position.z(), 0.5, 1e-6) << "the cube should stand still";
 
   // penalty contacts have no such solve
-  dynamics::World springs = cube_on_slab(dynamics::StepSettings{}, contact::ContactModel::penalty);
+  dynamics::World springs = cube_on_slab(dynamics::StepSettings{}, contact::ContactMethod::penalty);
   for (int k = 0; k < 10; ++k) springs.step(springs.dt(), Vec3::Zero(), Vec3::Zero());
   EXPECT_EQ(springs.stats().unconverged_steps, 0);
   EXPECT_EQ(springs.stats().max_solver_sweeps, 0);

@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "rigid/dynamics/world.hpp"
-#include "rigid/scenario/builders.hpp"
+#include "rigid/library/builders.hpp"
 
 namespace rigid {
 namespace {
@@ -31,7 +31,7 @@ class TorqueFreeSpin : public ::testing::TestWithParam<dynamics::RotationIntegra
 
 TEST_P(TorqueFreeSpin, ConservesMomentumAndEnergyAndFlipsAboutIntermediateAxis) {
   // an asymmetric box, spun mostly about its intermediate axis (Dzhanibekov effect)
-  auto body = scenario::box_body("brick", Vec3(0, 0, 0), Vec3(0.3, 0.6, 1.2), 2600, false);
+  auto body = library::box_body("brick", Vec3(0, 0, 0), Vec3(0.3, 0.6, 1.2), 2600, false);
   const Vec3 inertia = body.shape.inertia;  // ascending: axis 1 is the intermediate one
   const Vec3 w_body(0.05, 3.0, 0.0);
   body.angular_velocity = body.orientation * w_body;
@@ -68,7 +68,7 @@ INSTANTIATE_TEST_SUITE_P(Integrators, TorqueFreeSpin,
 
 TEST(FreeFall, MatchesClosedFormAtSeveralSteps) {
   for (double dt : {1e-3, 1e-4}) {
-    auto body = scenario::box_body("b", Vec3(0, 0, 0), Vec3(1, 1, 1), 2600, false);
+    auto body = library::box_body("b", Vec3(0, 0, 0), Vec3(1, 1, 1), 2600, false);
     body.velocity = Vec3(1.0, 0, 2.0);
     dynamics::StepSettings settings;
     settings.dt = dt;

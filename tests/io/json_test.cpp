@@ -12,9 +12,10 @@
 #include "rigid/io/json.hpp"
 #include "rigid/motion/ground_motion.hpp"
 #include "rigid/motion/measures.hpp"
-#include "rigid/scenario/builders.hpp"
+#include "rigid/library/builders.hpp"
 
 namespace rigid::io {
+using namespace library;
 namespace {
 
 std::vector<double> cosine(double amplitude, double phase, std::size_t n, double dt) {
@@ -73,7 +74,7 @@ TEST(MotionInfoJson, HasTheIssueKeys) {
 TEST(PhysicsJson, KeysInOrderAndValuesReadBackExactly) {
   contact::ContactLaw law;
   law.friction = 0.7;
-  scenario::Scene scene = scenario::block_on_pedestal(0.1, 0.5, 0.3, law);
+  scenario::Scene scene = library::block_on_pedestal(0.1, 0.5, 0.3, law);
   scenario::RunSettings run;
   run.step.dt = 1.0 / 3.0 * 1e-4;
   const int stop_after = 7;
@@ -95,7 +96,7 @@ TEST(PhysicsJson, KeysInOrderAndValuesReadBackExactly) {
   EXPECT_EQ(j["stop_after"].get<int>(), stop_after);
   EXPECT_EQ(j["accuracy"], accuracy);
   EXPECT_EQ(j["effects"], "auto");
-  EXPECT_EQ(j["contact"], contact::contact_model_name(law.model));
+  EXPECT_EQ(j["contact"], contact::contact_method_name(law.method));
 }
 
 }  // namespace

@@ -1,7 +1,7 @@
 // The real scans as rocks on a flat pedestal: the quasi-static toppling acceleration (tilt test,
 // eight azimuths, rigid contact) of the two tessellations of one rock, and of its hull against its
 // convex decomposition, agree; both agree with the rigid statics of the settled rock's support
-// polygon (scenario::rocking_parameters). Skipped when ../shared is absent.
+// polygon (analysis::rocking_parameters). Skipped when ../shared is absent.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,9 +11,9 @@
 #include "rigid/geometry/contact_shape.hpp"
 #include "rigid/geometry/polygon2d.hpp"
 #include "rigid/io/mesh_import.hpp"
-#include "rigid/scenario/builders.hpp"
-#include "rigid/scenario/rocking_parameters.hpp"
-#include "rigid/scenario/tilt_test.hpp"
+#include "rigid/library/builders.hpp"
+#include "rigid/analysis/rocking_parameters.hpp"
+#include "rigid/analysis/tilt_test.hpp"
 
 namespace rigid {
 namespace {
@@ -69,7 +69,7 @@ scenario::Scene rock_scene(const std::string& path, bool decompose) {
   scenario::Scene scene;
   scene.law.friction = 1.5;  // tipping, not sliding: the scan topples at 0.19-1.1 g
   const Vec3 half = 0.5 * (hi - lo);
-  scene.bodies.push_back(scenario::box_body("pedestal", Vec3(-half.x() - 0.02, -half.y() - 0.02, -0.2),
+  scene.bodies.push_back(library::box_body("pedestal", Vec3(-half.x() - 0.02, -half.y() - 0.02, -0.2),
                                             Vec3(half.x() + 0.02, half.y() + 0.02, 0), 2600, true));
   dynamics::BodyDef rock;
   rock.name = "rock";
@@ -87,18 +87,18 @@ TEST(ScanToppling, TwoTessellationsHullAndDecompositionToppleAlike) {
   const scenario::Scene ply = rock_scene(scan("sp1_rock_dense.ply"), false);
   const scenario::Scene pieces = rock_scene(scan("sp1_rock.obj"), true);
   const scenario::Scene obj = rock_scene(scan("sp1_rock.obj"), false);  // last: mesh_statics is the OBJ's
-  const auto statics = scenario::rocking_parameters(obj);
-  const auto statics_ply = scenario::rocking_parameters(ply);
+  const auto statics = analysis::rocking_parameters(obj);
+  const auto statics_ply = analysis::rocking_parameters(ply);
   ASSERT_TRUE(statics && statics_ply);
   EXPECT_NEAR(statics_ply->alpha / statics->alpha, 1.0, 0.01);
   for (int k = 0; k < 8; ++k) {
     const double azimuth = 2 * kPi * k / 8;
     const double a_statics = mesh_statics.toppling(azimuth);
-    scenario::TiltTestSettings settings;
+    analysis::TiltTestSettings settings;
     settings.max_acceleration = 1.25 * a_statics;  // what stands there is far from statics anyway
-    const double a_obj = scenario::tilt_test(obj, azimuth, settings).acceleration;
-    const double a_ply = scenario::tilt_test(ply, azimuth, settings).acceleration;
-    const double a_pieces = scenario::tilt_test(pieces, azimuth, settings).acceleration;
+    const double a_obj = analysis::tilt_test(obj, azimuth, settings).acceleration;
+    const double a_ply = analysis::tilt_test(ply, azimuth, settings).acceleration;
+    const double a_pieces = analysis::tilt_test(pieces, azimuth, settings).acceleration;
     // the contact shape's own statics (rigid inspect, the cube): every 45 degrees is every other
     // one of the 16 directions
     const double a_shape = std::tan(statics->alpha_by_azimuth[2 * k]);

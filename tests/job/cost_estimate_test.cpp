@@ -35,17 +35,17 @@ TEST(CostEstimate, CountsTheJobsCellsAndStepsAndMeasuresEachObject) {
 
   EXPECT_EQ(e.cells_per_object, 2 * 3 * 3);
   EXPECT_EQ(e.cells, 2 * 2 * 3 * 3);
-  EXPECT_DOUBLE_EQ(e.simulated_per_object, 18 * 1.5);
-  EXPECT_DOUBLE_EQ(e.simulated_total(), 2 * 18 * 1.5);
+  EXPECT_DOUBLE_EQ(e.simulated_per_object_s, 18 * 1.5);
+  EXPECT_DOUBLE_EQ(e.simulated_total_s(), 2 * 18 * 1.5);
   ASSERT_EQ(e.objects.size(), 2u);
   for (const ObjectCost& o : e.objects) {
-    EXPECT_DOUBLE_EQ(o.dt, 0.001);
+    EXPECT_DOUBLE_EQ(o.dt_s, 0.001);
     EXPECT_NEAR(o.steps, 18 * 1.5 / 0.001, 1e-6);
     EXPECT_GT(o.seconds_per_step, 0);  // a probe ran
     EXPECT_DOUBLE_EQ(o.core_seconds, o.steps * o.seconds_per_step);
   }
   EXPECT_NEAR(e.steps(), 2 * 18 * 1.5 / 0.001, 1e-6);
-  EXPECT_DOUBLE_EQ(e.probe_duration, kProbeDuration);
+  EXPECT_DOUBLE_EQ(e.probe_duration_s, kProbeDuration);
 }
 
 }  // namespace

@@ -87,9 +87,9 @@ TEST_F(RunSettingsInJob, GoodValuesReachTheRunSettings) {
   const Job job = load(
       "model = \"rocking2d\"\ncontact = \"penalty\"\neffects = \"all\"\naccuracy = \"reference\"\n"
       "integrator = \"rk4\"\nduration_s = 4.0\nfree_time_s = 2.0\nsafety = 0.3\n");
-  EXPECT_EQ(job.model, scenario::ModelKind::rocking2d);
+  EXPECT_EQ(job.engine, scenario::Engine::rocking2d);
   ASSERT_TRUE(job.contact);
-  EXPECT_EQ(*job.contact, contact::ContactModel::penalty);
+  EXPECT_EQ(*job.contact, contact::ContactMethod::penalty);
   EXPECT_FALSE(job.run.select_effects);
   EXPECT_EQ(job.accuracy, "reference");
   EXPECT_EQ(job.run.step.rotation, dynamics::RotationIntegrator::rk4);
@@ -130,11 +130,11 @@ TEST(RunSettingsOnCommandLine, FlagsGivenAreKeptAsWritten) {
 
 TEST(RunSettings, CommandLineOverTheJobFile) {
   RunOverrides file, flags;
-  file.model = scenario::ModelKind::rocking2d;
+  file.engine = scenario::Engine::rocking2d;
   file.safety = 0.3;
-  flags.model = scenario::ModelKind::dem3d;
+  flags.engine = scenario::Engine::dem3d;
   const RunOverrides both = merged(file, flags);
-  EXPECT_EQ(both.model, scenario::ModelKind::dem3d);
+  EXPECT_EQ(both.engine, scenario::Engine::dem3d);
   EXPECT_EQ(both.safety, 0.3);
 }
 

@@ -6,19 +6,21 @@ and checks it against the dependencies src/CMakeLists.txt declares (read from it
 calls and the `rigid` executable's link line; docs/architecture.md, "Layout and modules"), today:
 
   core <- geometry <- contact <- dynamics;  core <- motion, rocking;
-  scenario <- dynamics, motion, rocking;  study <- scenario;  io <- scenario;  job <- io;
-  campaign <- job;  calibration <- core;  repair <- geometry;  scan <- io, repair;
+  scenario <- dynamics, motion, rocking;  library, analysis <- scenario;  study <- library, analysis;
+  io <- scenario;  job <- io, analysis;
+  campaign <- job;  calibration <- core;  repair <- geometry;  scan <- io, repair, analysis;
   app <- campaign, study, calibration, scan
 
 (a module may include its own headers and those of every module below it, transitively), and the
-third-party rules: the engine core (geometry .. scenario, study) includes only Eigen and the standard
+third-party rules: the engine core (geometry .. scenario, library, analysis, study) includes only Eigen and the standard
 library; only io includes HDF5,
 toml++, nettle and assimp; only repair includes CGAL (linked through scan by app and tests/scan
 alone: io and the tests that link it stay free of CGAL's compile); nlohmann-json is io's and above (io/json.hpp); only campaign includes MPI;
 zlib is io's (gzip lab recordings) and campaign's (journal checksums); spdlog is campaign's and app's (campaign/log.hpp); only app includes CLI11; POSIX headers (unistd.h, sys/...)
-only io, scan (its staging folder), campaign and app. The required order (REQUIRED_ABOVE): job above
-io and scenario; scan (the scan import) above io and repair; campaign above job; app above job,
-campaign and scan. A quoted include that is not "rigid/..." must be a private header of
+only io, scan (its staging folder), campaign and app. The required order (REQUIRED_ABOVE): library
+and analysis above scenario; job above io, scenario and analysis; scan (the scan import) above io
+and repair; campaign above job; app above job, campaign and scan. A quoted include that is not
+"rigid/..." must be a private header of
 the module's own src/<module>/ folder.
 
 usage: layering_test.py SOURCE_DIR    exit 0 clean, 1 with one line per violation.
@@ -43,7 +45,8 @@ def module_graph(root):
 
 
 DIRECT = {}  # module -> its direct dependencies (main() reads them)
-ENGINE = {"core", "geometry", "contact", "dynamics", "motion", "rocking", "scenario", "study", "calibration"}
+ENGINE = {"core", "geometry", "contact", "dynamics", "motion", "rocking", "scenario", "library", "analysis", "study",
+          "calibration"}
 
 # third-party family -> the modules that may include it
 THIRD_PARTY = {
@@ -66,7 +69,9 @@ THIRD_PARTY = {
 # module (a job and its settings) is above the formats and the engine, below campaign and app; the
 # scan import is above the formats and the repair of scans, below app.
 REQUIRED_ABOVE = {
-    "job": {"io", "scenario"},
+    "library": {"scenario"},
+    "analysis": {"scenario"},
+    "job": {"io", "scenario", "analysis"},
     "scan": {"io", "repair"},
     "campaign": {"job"},
     "app": {"job", "campaign", "scan"},

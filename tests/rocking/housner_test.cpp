@@ -107,8 +107,8 @@ TEST(RockingGroundAcceleration, SampledPulseMatchesAnalyticPulse) {
   const double offset = 2.0;
   std::vector<double> v;
   for (int k = 0; k <= 1000; ++k) v.push_back(A * std::sin(2.0 * kPi * k * dt / T));
-  const RockingResult ra = simulate(b, make_pulse(PulseShape::one_sine, A, T), 6.0);
-  const RockingResult rs = simulate(b, GroundAcceleration::sampled(v, dt, offset), 6.0 + offset);
+  const RockingResult ra = simulate_rocking(b, make_pulse(PulseShape::one_sine, A, T), 6.0);
+  const RockingResult rs = simulate_rocking(b, GroundAcceleration::sampled(v, dt, offset), 6.0 + offset);
   ASSERT_GT(ra.max_abs_theta, 0.0);
   EXPECT_FALSE(ra.overturned);
   EXPECT_EQ(ra.overturned, rs.overturned);
@@ -170,7 +170,7 @@ TEST(FreeRocking, TimeToFirstImpactMatchesLinearisedSolution) {
   for (const double f : {0.05, 0.3, 0.6, 0.95}) {
     for (const double sign : {1.0, -1.0}) {
       const double theta0 = sign * f * b.alpha;
-      const RockingResult r = simulate(b, GroundAcceleration(), 5.0, opt, {0.0, theta0, 0.0});
+      const RockingResult r = simulate_rocking(b, GroundAcceleration(), 5.0, opt, {0.0, theta0, 0.0});
       const auto impacts = of_kind(r, SampleKind::impact_before);
       ASSERT_GE(impacts.size(), 2u);
       const double t_first = std::acosh(1.0 / (1.0 - f)) / b.p;
@@ -199,7 +199,7 @@ TEST(Restitution, ImpactsFollowHousnerAngularMomentumRule) {
   RockingOptions opt;
   opt.record_trajectory = true;
   const double theta0 = 0.6 * b.alpha;
-  const RockingResult res = simulate(b, GroundAcceleration(), 8.0, opt, {0.0, theta0, 0.0});
+  const RockingResult res = simulate_rocking(b, GroundAcceleration(), 8.0, opt, {0.0, theta0, 0.0});
   const auto before = of_kind(res, SampleKind::impact_before);
   const auto after = of_kind(res, SampleKind::impact_after);
   ASSERT_GE(after.size(), 30u);
@@ -232,7 +232,7 @@ TEST(Restitution, ImpactsFollowHousnerAngularMomentumRule) {
 // Zeno: the impact sequence is geometric; the block must come to rest after the ground has ended.
 TEST(Restitution, FreeRockingComesToRest) {
   const RockingBlock b = worked_block();
-  const RockingResult res = simulate(b, GroundAcceleration(), 100.0, {}, {0.0, 0.5 * b.alpha, 0.0});
+  const RockingResult res = simulate_rocking(b, GroundAcceleration(), 100.0, {}, {0.0, 0.5 * b.alpha, 0.0});
   EXPECT_EQ(res.stop, StopReason::at_rest);
   EXPECT_FALSE(res.overturned);
   EXPECT_LT(res.end_time, 100.0);
@@ -257,7 +257,7 @@ TEST(QuasiStatic, SlowRampLiftsAtUpliftAcceleration) {
       const double expected = linear ? g * b.alpha : g * std::tan(b.alpha);
       const GroundAcceleration ramp =
           GroundAcceleration::analytic([=](double t) { return sign * c * t; }, 20.0);
-      const RockingResult r = simulate(b, ramp, 20.0, opt);
+      const RockingResult r = simulate_rocking(b, ramp, 20.0, opt);
       ASSERT_FALSE(std::isnan(r.uplift_time));
       EXPECT_NEAR(c * r.uplift_time / expected, 1.0, 1e-6);
       // a sustained excess over the threshold topples the block, away from the acceleration.
@@ -274,7 +274,7 @@ TEST(QuasiStatic, BelowThresholdTheBlockNeverLifts) {
   const double hold = 0.99 * g * std::tan(b.alpha);
   const GroundAcceleration gm =
       GroundAcceleration::analytic([=](double t) { return -std::min(t, 1.0) * hold; }, 6.0, {1.0});
-  const RockingResult r = simulate(b, gm, 10.0);
+  const RockingResult r = simulate_rocking(b, gm, 10.0);
   EXPECT_EQ(r.max_abs_theta, 0.0);
   EXPECT_EQ(r.impacts, 0);
   EXPECT_TRUE(std::isnan(r.uplift_time));
@@ -293,7 +293,7 @@ TEST(Energy, ConservedBetweenImpactsWithoutGroundMotion) {
       opt.linearised = linear;
       opt.record_trajectory = true;
       const RockingResult res =
-          simulate(b, GroundAcceleration(), 6.0, opt, {0.0, 0.9 * b.alpha, 0.0});
+          simulate_rocking(b, GroundAcceleration(), 6.0, opt, {0.0, 0.9 * b.alpha, 0.0});
       double e_phase = rocking_energy(b, 0.9 * b.alpha, 0.0, linear);
       int checked = 0;
       for (const auto& s : res.trajectory) {
@@ -562,8 +562,8 @@ TEST(RockingSymmetry, MirroredGroundGivesMirroredResponse) {
   const double A = 1.5 * uplift_acceleration(b);
   RockingOptions opt;
   opt.record_trajectory = true;
-  const RockingResult rp = simulate(b, make_pulse(PulseShape::one_sine, A, 1.5), 6.0, opt);
-  const RockingResult rm = simulate(b, make_pulse(PulseShape::one_sine, -A, 1.5), 6.0, opt);
+  const RockingResult rp = simulate_rocking(b, make_pulse(PulseShape::one_sine, A, 1.5), 6.0, opt);
+  const RockingResult rm = simulate_rocking(b, make_pulse(PulseShape::one_sine, -A, 1.5), 6.0, opt);
   ASSERT_EQ(rp.trajectory.size(), rm.trajectory.size());
   ASSERT_GT(rp.impacts, 0);
   EXPECT_EQ(rp.impacts, rm.impacts);
@@ -583,8 +583,8 @@ TEST(RockingDeterminism, SameInputsGiveIdenticalResults) {
                 0.08 * g * std::sin(2.0 * kPi * 4.3 * t + 1.0));
   }
   const GroundAcceleration gm = GroundAcceleration::sampled(v, 0.005);
-  const RockingResult a = simulate(b, gm, 15.0);
-  const RockingResult c = simulate(b, gm, 15.0);
+  const RockingResult a = simulate_rocking(b, gm, 15.0);
+  const RockingResult c = simulate_rocking(b, gm, 15.0);
   EXPECT_GT(a.impacts, 0);
   EXPECT_EQ(a.overturned, c.overturned);
   EXPECT_EQ(a.impacts, c.impacts);
@@ -594,12 +594,12 @@ TEST(RockingDeterminism, SameInputsGiveIdenticalResults) {
 
 TEST(RockingSimulate, RejectsInvalidInput) {
   RockingBlock b = worked_block();
-  EXPECT_THROW(simulate(b, GroundAcceleration(), -1.0), std::invalid_argument);
+  EXPECT_THROW(simulate_rocking(b, GroundAcceleration(), -1.0), std::invalid_argument);
   RockingOptions opt;
   opt.time_step = 0.0;
-  EXPECT_THROW(simulate(b, GroundAcceleration(), 1.0, opt), std::invalid_argument);
+  EXPECT_THROW(simulate_rocking(b, GroundAcceleration(), 1.0, opt), std::invalid_argument);
   b.restitution = 1.5;
-  EXPECT_THROW(simulate(b, GroundAcceleration(), 1.0), std::invalid_argument);
+  EXPECT_THROW(simulate_rocking(b, GroundAcceleration(), 1.0), std::invalid_argument);
 }
 
 }  // namespace

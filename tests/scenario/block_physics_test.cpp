@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "rigid/rocking/housner.hpp"
-#include "rigid/scenario/builders.hpp"
+#include "rigid/library/builders.hpp"
 
 namespace rigid {
 namespace {
@@ -18,7 +18,7 @@ constexpr double kDepth = 0.5;   // block depth (m)
 
 scenario::Scene settled_block(double alpha, const contact::ContactLaw& law = {}) {
   const double h = 0.5 * kHeight;
-  const scenario::Scene s = scenario::block_on_pedestal(h * std::tan(alpha), h, kDepth, law);
+  const scenario::Scene s = library::block_on_pedestal(h * std::tan(alpha), h, kDepth, law);
   return scenario::equilibrate(s, dynamics::StepSettings{});
 }
 
@@ -50,7 +50,7 @@ struct Ramp {
 // contacts (1e10) approach the rigid limit, and that is what the 2 % criterion tests.
 contact::ContactLaw stiff_contacts() {
   contact::ContactLaw law;
-  law.model = contact::ContactModel::penalty;  // the rigid model's own tests: rigid_contact_test.cpp
+  law.method = contact::ContactMethod::penalty;  // the rigid model's own tests: rigid_contact_test.cpp
   law.normal_stiffness = 1e10;
   law.shear_stiffness = 1e10;
   return law;
@@ -155,7 +155,7 @@ TEST(RotationInvariance, RotatingSceneAndMotionTogetherKeepsTheOutcome) {
       }
       const auto r = scenario::run(turned, one_sine(amplitude_g * kGravity, 0.5, turn * Vec3::UnitX()), settings);
       EXPECT_EQ(r.overturned, base.overturned) << "amplitude " << amplitude_g << " g, angle " << angle;
-      EXPECT_NEAR(r.max_tilt, base.max_tilt, 0.01 * base.max_tilt + 1e-4);
+      EXPECT_NEAR(r.max_tilt_rad, base.max_tilt_rad, 0.01 * base.max_tilt_rad + 1e-4);
     }
   }
 }
@@ -179,7 +179,7 @@ TEST_P(HousnerPulse, OneSineThresholdWithinTenPercentOf2DModel) {
   const double a2d = rocking::min_overturning_amplitude(block2d, rocking::PulseShape::one_sine, period);
   ASSERT_TRUE(std::isfinite(a2d));
   contact::ContactLaw law;
-  law.model = contact::ContactModel::penalty;
+  law.method = contact::ContactMethod::penalty;
   law.normal_stiffness = law.shear_stiffness = GetParam().stiffness;
   const scenario::Scene scene = settled_block(alpha, law);
   scenario::RunSettings settings;

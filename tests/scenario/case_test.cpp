@@ -1,4 +1,4 @@
-// One case through scenario::simulate: the motion a case builds (target PGA, rotation, the 2D
+// One case through scenario::simulate_case: the motion a case builds (target PGA, rotation, the 2D
 // model's unrotated x) checked against measures recomputed on it, the outcome of both models
 // against the 2D Housner threshold of a one-sine pulse (physics.md §2), and an error inside a case
 // becoming a failed outcome that keeps its message.
@@ -9,11 +9,12 @@
 #include "rigid/core/error.hpp"
 #include "rigid/motion/measures.hpp"
 #include "rigid/rocking/housner.hpp"
-#include "rigid/scenario/builders.hpp"
+#include "rigid/library/builders.hpp"
 #include "rigid/scenario/case.hpp"
 #include "rigid/scenario/rocking2d.hpp"
 
 namespace rigid::scenario {
+using namespace library;
 namespace {
 
 // Two horizontals of different amplitude and frequency, 20 s at 100 Hz (unit: m/s^2).
@@ -43,7 +44,7 @@ motion::GroundMotion unit_one_sine(double period, double dt = 1e-3) {
 Scene slender_block() { return block_on_pedestal(0.2, 1.0, 0.4); }  // alpha = atan(0.2) ~ 0.197
 
 TEST(CaseMotion, ReachesTheTargetGMRotI50PGA) {
-  const Model model(ModelKind::dem3d, {slender_block()}, {two_sines()}, RunSettings{});
+  const Model model(Engine::dem3d, {slender_block()}, {two_sines()}, RunSettings{});
   for (double target : {0.1, 0.37, 1.5}) {
     const motion::GroundMotion m = case_motion(model, Case{0, 0, target, 0.0});
     EXPECT_NEAR(motion::horizontal_measures(m).gmroti50_pga / kGravity, target, 1e-9 * target);
@@ -52,8 +53,8 @@ TEST(CaseMotion, ReachesTheTargetGMRotI50PGA) {
 
 TEST(CaseMotion, PrecomputedFactorGivesTheSameMotion) {
   const motion::GroundMotion record = two_sines();
-  const Model computed(ModelKind::dem3d, {slender_block()}, {record}, RunSettings{});
-  const Model given(ModelKind::dem3d, {slender_block()}, {record}, RunSettings{},
+  const Model computed(Engine::dem3d, {slender_block()}, {record}, RunSettings{});
+  const Model given(Engine::dem3d, {slender_block()}, {record}, RunSettings{},
                     {motion::target_pga_factor(record, 1.0)});
   const Case c{0, 0, 0.42, 33.0};
   EXPECT_EQ(case_motion(computed, c).x, case_motion(given, c).x);
@@ -62,7 +63,7 @@ TEST(CaseMotion, PrecomputedFactorGivesTheSameMotion) {
 
 TEST(CaseMotion, RotationTurnsTheHorizontalsCounterClockwise) {
   const motion::GroundMotion record = unit_one_sine(0.5);
-  const Model model(ModelKind::dem3d, {slender_block()}, {record}, RunSettings{});
+  const Model model(Engine::dem3d, {slender_block()}, {record}, RunSettings{});
   const motion::GroundMotion m = case_motion(model, Case{0, 0, 0.0, 90.0});
   ASSERT_TRUE(m.has_y);
   for (std::size_t i = 0; i < record.x.size(); ++i) {
@@ -73,7 +74,7 @@ TEST(CaseMotion, RotationTurnsTheHorizontalsCounterClockwise) {
 
 TEST(CaseMotion, TheTwoDimensionalModelIgnoresTheRotation) {
   const motion::GroundMotion record = unit_one_sine(0.5);
-  const Model model(ModelKind::rocking2d, {slender_block()}, {record}, RunSettings{});
+  const Model model(Engine::rocking2d, {slender_block()}, {record}, RunSettings{});
   EXPECT_EQ(case_motion(model, Case{0, 0, 0.0, 90.0}).x, record.x);
 }
 
@@ -86,40 +87,40 @@ TEST(Simulate, BothModelsBracketTheHousnerThreshold) {
   ASSERT_TRUE(std::isfinite(threshold));
   RunSettings run;
   run.free_time = 10.0;  // as the 2D threshold search: slow overturning after the pulse is caught
-  for (ModelKind kind : {ModelKind::dem3d, ModelKind::rocking2d}) {
+  for (Engine kind : {Engine::dem3d, Engine::rocking2d}) {
     const Model model(kind, {scene}, {unit_one_sine(period)}, run);
-    const CaseOutcome below = simulate(model, Case{0, 0, 0.95 * threshold / kGravity, 0.0});
-    const CaseOutcome above = simulate(model, Case{0, 0, 1.05 * threshold / kGravity, 0.0});
-    EXPECT_EQ(below.outcome, CellOutcome::survived) << model_kind_name(kind);
-    EXPECT_EQ(above.outcome, CellOutcome::overturned) << model_kind_name(kind);
+    const CaseOutcome below = simulate_case(model, Case{0, 0, 0.95 * threshold / kGravity, 0.0});
+    const CaseOutcome above = simulate_case(model, Case{0, 0, 1.05 * threshold / kGravity, 0.0});
+    EXPECT_EQ(below.outcome, CellOutcome::survived) << engine_name(kind);
+    EXPECT_EQ(above.outcome, CellOutcome::overturned) << engine_name(kind);
     EXPECT_EQ(below.reason, FailureReason::none);
-    EXPECT_TRUE(above.run.failure_time.has_value());
+    EXPECT_TRUE(above.run.failure_time_s.has_value());
   }
 }
 
 TEST(Simulate, AnErrorInACaseIsAFailedOutcomeWithItsMessage) {
   motion::GroundMotion quiet = unit_one_sine(0.5);
   for (double& a : quiet.x) a = 0.0;  // nothing to scale: a target PGA cannot be reached
-  const Model model(ModelKind::dem3d, {slender_block()}, {quiet}, RunSettings{});
-  const CaseOutcome out = simulate(model, Case{0, 0, 0.3, 0.0});
+  const Model model(Engine::dem3d, {slender_block()}, {quiet}, RunSettings{});
+  const CaseOutcome out = simulate_case(model, Case{0, 0, 0.3, 0.0});
   EXPECT_EQ(out.outcome, CellOutcome::failed);
   EXPECT_EQ(out.reason, FailureReason::exception);
   EXPECT_NE(out.message.find("horizontal acceleration is zero"), std::string::npos) << out.message;
   EXPECT_TRUE(out.error);
 }
 
-TEST(ModelKind, NamesRoundTripAndOthersAreRefused) {
-  for (ModelKind k : {ModelKind::dem3d, ModelKind::rocking2d}) EXPECT_EQ(parse_model_kind(model_kind_name(k)), k);
-  EXPECT_FALSE(parse_model_kind("rocking3d"));
-  EXPECT_FALSE(parse_model_kind(""));
+TEST(Engine, NamesRoundTripAndOthersAreRefused) {
+  for (Engine k : {Engine::dem3d, Engine::rocking2d}) EXPECT_EQ(parse_engine(engine_name(k)), k);
+  EXPECT_FALSE(parse_engine("rocking3d"));
+  EXPECT_FALSE(parse_engine(""));
 }
 
 TEST(Model, RocksInTwoDimensionsOnlyABoxOnABox) {
   Scene two_free = slender_block();
   for (auto& b : two_free.bodies) b.fixed = false;
-  const auto make = [&](ModelKind kind) { return Model(kind, {two_free}, {}, RunSettings{}); };
-  EXPECT_THROW(make(ModelKind::rocking2d), InputError);
-  EXPECT_NO_THROW(make(ModelKind::dem3d));
+  const auto make = [&](Engine kind) { return Model(kind, {two_free}, {}, RunSettings{}); };
+  EXPECT_THROW(make(Engine::rocking2d), InputError);
+  EXPECT_NO_THROW(make(Engine::dem3d));
 }
 
 }  // namespace

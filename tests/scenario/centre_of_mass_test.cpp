@@ -18,12 +18,14 @@
 #include "rigid/geometry/polyhedron.hpp"
 #include "rigid/io/scene_file.hpp"
 #include "rigid/io/stl.hpp"
-#include "rigid/scenario/builders.hpp"
-#include "rigid/scenario/rocking_parameters.hpp"
+#include "rigid/library/builders.hpp"
+#include "rigid/analysis/rocking_parameters.hpp"
 #include "rigid/scenario/scene.hpp"
-#include "rigid/scenario/tilt_test.hpp"
+#include "rigid/analysis/tilt_test.hpp"
 
 namespace rigid::scenario {
+using namespace library;
+using namespace analysis;
 namespace {
 
 constexpr double kB = 0.2, kH = 0.5, kDepth = 0.4;  // block 0.4 wide, 1.0 tall: tan alpha = 0.4

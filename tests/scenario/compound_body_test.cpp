@@ -10,11 +10,13 @@
 #include <vector>
 
 #include "rigid/geometry/polyhedron.hpp"
-#include "rigid/scenario/builders.hpp"
+#include "rigid/library/builders.hpp"
 #include "rigid/scenario/scene.hpp"
-#include "rigid/scenario/tilt_test.hpp"
+#include "rigid/analysis/tilt_test.hpp"
 
 namespace rigid::scenario {
+using namespace library;
+using namespace analysis;
 namespace {
 
 using geometry::ClosedMesh;
@@ -217,9 +219,9 @@ TriangleSoup flat_based_rock(int around, int up) {
   return geometry::convex_hull(points);
 }
 
-Scene rock_on_pedestal(int around, int up, contact::ContactModel model) {
+Scene rock_on_pedestal(int around, int up, contact::ContactMethod model) {
   Scene scene;
-  scene.law.model = model;
+  scene.law.method = model;
   scene.law.friction = 1.2;  // it must tip, not slide: sliding starts at a = mu g
   scene.bodies.push_back(box_body("pedestal", Vec3(-0.5, -0.5, -0.5), Vec3(0.5, 0.5, -0.3), 2600, true));
   dynamics::BodyDef rock;
@@ -234,8 +236,8 @@ Scene rock_on_pedestal(int around, int up, contact::ContactModel model) {
 TEST(TessellationIndependence, PenaltyContactCarriesTheSameRockOnTheSameIndentation) {
   // 32 vs 128 base vertices: per-vertex springs would sink the coarse rock (128/32)^(2/3) = 2.5
   // times deeper; per-patch springs (four subcontacts' worth) sink both by (m g / 4 K_N)^(2/3)
-  const Scene coarse = rock_on_pedestal(32, 16, contact::ContactModel::penalty);
-  const Scene fine = rock_on_pedestal(128, 64, contact::ContactModel::penalty);
+  const Scene coarse = rock_on_pedestal(32, 16, contact::ContactMethod::penalty);
+  const Scene fine = rock_on_pedestal(128, 64, contact::ContactMethod::penalty);
   const Scene settled_coarse = equilibrate(coarse, {}), settled_fine = equilibrate(fine, {});
   auto sink = [](const Scene& before, const Scene& after) { return before.bodies[1].position.z() - after.bodies[1].position.z(); };
   const double m = coarse.bodies[1].shape.mass;
@@ -250,8 +252,8 @@ TEST(TessellationIndependence, PenaltyContactCarriesTheSameRockOnTheSameIndentat
 }
 
 TEST(TessellationIndependence, RigidContactTiltTestIsTheSameForBothMeshes) {
-  const Scene coarse = rock_on_pedestal(32, 16, contact::ContactModel::rigid);
-  const Scene fine = rock_on_pedestal(128, 64, contact::ContactModel::rigid);
+  const Scene coarse = rock_on_pedestal(32, 16, contact::ContactMethod::rigid);
+  const Scene fine = rock_on_pedestal(128, 64, contact::ContactMethod::rigid);
   // rigid statics of the base ellipse (semi-axes 0.8 a, 0.8 b at z = -0.3 c... relative to the
   // centroid): along x the rock leans over the base's end at 0.24 m
   const double a_coarse = tilt_test(coarse, 0.0).acceleration, a_fine = tilt_test(fine, 0.0).acceleration;

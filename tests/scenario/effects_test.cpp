@@ -14,7 +14,7 @@
 
 #include "rigid/core/error.hpp"
 #include "rigid/job/load.hpp"
-#include "rigid/scenario/builders.hpp"
+#include "rigid/library/builders.hpp"
 
 namespace rigid {
 namespace {
@@ -29,7 +29,7 @@ const scenario::Scene& settled_block(double alpha) {
   for (const auto& [a, s] : cache) {
     if (a == alpha) return s;
   }
-  const auto s = scenario::block_on_pedestal(kHalfHeight * std::tan(alpha), kHalfHeight, kDepth);
+  const auto s = library::block_on_pedestal(kHalfHeight * std::tan(alpha), kHalfHeight, kDepth);
   cache.emplace_back(alpha, scenario::equilibrate(s, dynamics::StepSettings{}));
   return cache.back().second;
 }
@@ -73,8 +73,8 @@ TEST(Effects, QuietStretchesSleepAndGiveTheSameAnswer) {
   const auto sel = run(scene, drive, true);
   ASSERT_FALSE(all.overturned);
   EXPECT_FALSE(sel.overturned);
-  EXPECT_GT(all.max_tilt, 0.02) << "the pulse must make the block rock (elastic tilt is ~1e-3 rad)";
-  EXPECT_NEAR(sel.max_tilt, all.max_tilt, 0.01 * all.max_tilt);
+  EXPECT_GT(all.max_tilt_rad, 0.02) << "the pulse must make the block rock (elastic tilt is ~1e-3 rad)";
+  EXPECT_NEAR(sel.max_tilt_rad, all.max_tilt_rad, 0.01 * all.max_tilt_rad);
   EXPECT_FALSE(all.effects.selected);
   EXPECT_EQ(all.effects.sleep_intervals, 0);
   EXPECT_EQ(all.effects.steps_skipped, 0);
@@ -84,7 +84,7 @@ TEST(Effects, QuietStretchesSleepAndGiveTheSameAnswer) {
   EXPECT_GE(sel.effects.sleep_intervals, 2);
   EXPECT_GT(sel.effects.asleep_s, 10.0);
   EXPECT_LT(double(sel.steps), 0.5 * double(all.steps));
-  EXPECT_EQ(sel.effects.steps_skipped, std::lround(sel.effects.asleep_s / sel.dt));
+  EXPECT_EQ(sel.effects.steps_skipped, std::lround(sel.effects.asleep_s / sel.dt_s));
 }
 
 TEST(Effects, ABlockThatToppplesStillTopplesAtTheSameTimeAfterAQuietStart) {
@@ -94,13 +94,13 @@ TEST(Effects, ABlockThatToppplesStillTopplesAtTheSameTimeAfterAQuietStart) {
   const auto sel = run(scene, drive, true);
   ASSERT_TRUE(all.overturned);
   ASSERT_TRUE(sel.overturned);
-  ASSERT_TRUE(all.failure_time && sel.failure_time);
-  EXPECT_GT(*all.failure_time, 4.0);
+  ASSERT_TRUE(all.failure_time_s && sel.failure_time_s);
+  EXPECT_GT(*all.failure_time_s, 4.0);
   // within 1 % of the pulse period
-  EXPECT_NEAR(*sel.failure_time, *all.failure_time, 0.005);
+  EXPECT_NEAR(*sel.failure_time_s, *all.failure_time_s, 0.005);
   EXPECT_GT(sel.effects.asleep_s, 2.5) << "the quiet start must be slept through";
   EXPECT_EQ(sel.effects.end, scenario::ActiveEffects::End::failure);
-  EXPECT_NEAR(sel.effects.time_saved_s, 12.0 + 5.0 - *sel.failure_time, 2 * sel.dt);
+  EXPECT_NEAR(sel.effects.time_saved_s, 12.0 + 5.0 - *sel.failure_time_s, 2 * sel.dt_s);
 }
 
 TEST(Effects, NoSleepOnAMovingGroundBeforeTheOutcomeIsDecided) {
@@ -111,8 +111,8 @@ TEST(Effects, NoSleepOnAMovingGroundBeforeTheOutcomeIsDecided) {
   const auto all = run(scene, drive, false);
   const auto sel = run(scene, drive, true);
   ASSERT_TRUE(all.overturned && sel.overturned);
-  EXPECT_EQ(std::memcmp(&*all.failure_time, &*sel.failure_time, sizeof(double)), 0);
-  EXPECT_EQ(std::memcmp(&all.max_tilt, &sel.max_tilt, sizeof(double)), 0);
+  EXPECT_EQ(std::memcmp(&*all.failure_time_s, &*sel.failure_time_s, sizeof(double)), 0);
+  EXPECT_EQ(std::memcmp(&all.max_tilt_rad, &sel.max_tilt_rad, sizeof(double)), 0);
   EXPECT_EQ(sel.effects.sleep_intervals, 0);
   EXPECT_EQ(sel.steps, all.steps);
 }
@@ -130,7 +130,7 @@ TEST(Effects, VerticalWorkOnlyWithAVerticalComponent) {
 TEST(Effects, SelectionIsExactBeforeAnyBlockSleeps) {
   // A block dropped from 0.4 m (bounding spheres apart at first: the skin culls the pair), onto a
   // pedestal shaken horizontally: no vertical work, skin, slip bookkeeping, none may change a bit.
-  scenario::Scene scene = scenario::block_on_pedestal(0.1, 0.5, 0.5);
+  scenario::Scene scene = library::block_on_pedestal(0.1, 0.5, 0.5);
   scene.bodies[1].position.z() += 0.4;
   const auto drive = drive_from(1.5, [](double t) { return Vec3(3.0 * std::sin(9 * t), 2.0 * std::cos(7 * t), 0); });
   scenario::RunSettings s;
@@ -149,10 +149,10 @@ TEST(Effects, SelectionIsExactBeforeAnyBlockSleeps) {
     ASSERT_EQ(std::memcmp(x.velocity.data(), y.velocity.data(), 3 * sizeof(double)), 0) << "frame " << f;
     ASSERT_EQ(std::memcmp(x.angular_momentum.data(), y.angular_momentum.data(), 3 * sizeof(double)), 0) << "frame " << f;
   }
-  EXPECT_EQ(std::memcmp(&out[0].max_tilt, &out[1].max_tilt, sizeof(double)), 0);
-  EXPECT_EQ(std::memcmp(&out[0].max_slip, &out[1].max_slip, sizeof(double)), 0);
-  EXPECT_EQ(std::memcmp(&out[0].max_overlap, &out[1].max_overlap, sizeof(double)), 0);
-  EXPECT_GT(out[1].max_slip, 0) << "the test should exercise sliding";
+  EXPECT_EQ(std::memcmp(&out[0].max_tilt_rad, &out[1].max_tilt_rad, sizeof(double)), 0);
+  EXPECT_EQ(std::memcmp(&out[0].max_slip_m, &out[1].max_slip_m, sizeof(double)), 0);
+  EXPECT_EQ(std::memcmp(&out[0].max_overlap_m, &out[1].max_overlap_m, sizeof(double)), 0);
+  EXPECT_GT(out[1].max_slip_m, 0) << "the test should exercise sliding";
   EXPECT_TRUE(out[1].effects.sliding);
   EXPECT_GT(out[1].effects.pair_steps_culled, 100) << "the falling block's pair should be culled";
   EXPECT_EQ(out[1].steps, out[0].steps);
@@ -177,7 +177,7 @@ TEST(Effects, FixedFixedPairsAreNeverTestedAndFarPairsAreCulled) {
   }
   EXPECT_GT(sel.effects.pair_steps_culled, 3 * sel.steps - 10);
   EXPECT_EQ(sel.overturned, all.overturned);
-  EXPECT_NEAR(sel.max_tilt, all.max_tilt, 0.01 * all.max_tilt);
+  EXPECT_NEAR(sel.max_tilt_rad, all.max_tilt_rad, 0.01 * all.max_tilt_rad);
   EXPECT_GT(sel.effects.sleep_intervals, 0) << "two blocks, each on its own pedestal, may sleep";
 }
 
@@ -253,20 +253,20 @@ TEST(Effects, RunEndsWhenAtRestOnACoastingPedestal) {
   const auto all = run(scene, drive, false);
   const auto sel = run(scene, drive, true);
   EXPECT_FALSE(all.ended_at_rest);
-  EXPECT_NEAR(all.simulated, 9.0, 2 * all.dt);
+  EXPECT_NEAR(all.simulated_s, 9.0, 2 * all.dt_s);
   EXPECT_TRUE(sel.ended_at_rest);
   EXPECT_EQ(sel.effects.end, scenario::ActiveEffects::End::at_rest);
-  EXPECT_LE(sel.simulated, 4.0 + 0.5 + 2 * sel.dt);
-  EXPECT_NEAR(sel.effects.time_saved_s, 9.0 - sel.simulated, 2 * sel.dt);
+  EXPECT_LE(sel.simulated_s, 4.0 + 0.5 + 2 * sel.dt_s);
+  EXPECT_NEAR(sel.effects.time_saved_s, 9.0 - sel.simulated_s, 2 * sel.dt_s);
   EXPECT_EQ(sel.overturned, all.overturned);
 }
 
 TEST(Effects, StacksDoNotSleep) {
   // a block on a block: no simple threshold, so no sleeping, but the run still ends at rest
   scenario::Scene scene;
-  scene.bodies.push_back(scenario::box_body("pedestal", Vec3(-0.4, -0.4, -0.2), Vec3(0.4, 0.4, 0), 2600, true));
-  scene.bodies.push_back(scenario::box_body("lower", Vec3(-0.3, -0.3, 0), Vec3(0.3, 0.3, 0.3), 2600, false));
-  scene.bodies.push_back(scenario::box_body("upper", Vec3(-0.2, -0.2, 0.3), Vec3(0.2, 0.2, 0.6), 2600, false));
+  scene.bodies.push_back(library::box_body("pedestal", Vec3(-0.4, -0.4, -0.2), Vec3(0.4, 0.4, 0), 2600, true));
+  scene.bodies.push_back(library::box_body("lower", Vec3(-0.3, -0.3, 0), Vec3(0.3, 0.3, 0.3), 2600, false));
+  scene.bodies.push_back(library::box_body("upper", Vec3(-0.2, -0.2, 0.3), Vec3(0.2, 0.2, 0.6), 2600, false));
   scene = scenario::equilibrate(scene, dynamics::StepSettings{});
   const auto r = run(scene, drive_from(3.0, [](double) { return Vec3::Zero(); }), true);
   EXPECT_FALSE(r.effects.sleep_possible);
@@ -280,9 +280,9 @@ TEST(Effects, TwoRunsAreBitIdentical) {
   const auto& scene = settled_block(kAlpha);
   const auto a = run(scene, drive, true);
   const auto b = run(scene, drive, true);
-  EXPECT_EQ(std::memcmp(&a.max_tilt, &b.max_tilt, sizeof(double)), 0);
-  EXPECT_EQ(std::memcmp(&a.max_slip, &b.max_slip, sizeof(double)), 0);
-  EXPECT_EQ(std::memcmp(&a.simulated, &b.simulated, sizeof(double)), 0);
+  EXPECT_EQ(std::memcmp(&a.max_tilt_rad, &b.max_tilt_rad, sizeof(double)), 0);
+  EXPECT_EQ(std::memcmp(&a.max_slip_m, &b.max_slip_m, sizeof(double)), 0);
+  EXPECT_EQ(std::memcmp(&a.simulated_s, &b.simulated_s, sizeof(double)), 0);
   EXPECT_EQ(a.steps, b.steps);
   EXPECT_EQ(a.effects.steps_skipped, b.effects.steps_skipped);
   EXPECT_EQ(a.overturned, b.overturned);

@@ -12,15 +12,15 @@
 #include <vector>
 
 #include "rigid/rocking/housner.hpp"
-#include "rigid/scenario/builders.hpp"
-#include "rigid/scenario/rock_library.hpp"
+#include "rigid/library/builders.hpp"
+#include "rigid/library/rock_library.hpp"
 
 namespace rigid {
 namespace {
 
 contact::ContactLaw rigid_law(double friction = 0.6) {
   contact::ContactLaw law;
-  law.model = contact::ContactModel::rigid;
+  law.method = contact::ContactMethod::rigid;
   law.friction = friction;
   return law;
 }
@@ -29,10 +29,10 @@ contact::ContactLaw rigid_law(double friction = 0.6) {
 // the block on every side), with rigid contact.
 scenario::Scene rigid_block(double alpha, double height, double depth, double friction = 0.6, double margin = 0.02) {
   const double h = 0.5 * height;
-  return scenario::block_on_pedestal(h * std::tan(alpha), h, depth, rigid_law(friction), 2600, margin);
+  return library::block_on_pedestal(h * std::tan(alpha), h, depth, rigid_law(friction), 2600, margin);
 }
 
-scenario::GroundDrive one_sine(double amplitude, double period) { return scenario::one_sine_drive(amplitude, period); }
+scenario::GroundDrive one_sine(double amplitude, double period) { return library::one_sine_drive(amplitude, period); }
 
 bool overturns(const scenario::Scene& scene, double amplitude, double period) {
   scenario::RunSettings settings;
@@ -262,9 +262,9 @@ double bisect_threshold(const scenario::Scene& scene, double lo, double hi, doub
 
 double mesh_threshold(const contact::ContactLaw& law, int subdivisions) {
   const double alpha = 0.2, h = 0.5, b = h * std::tan(alpha), depth = 0.5;
-  scenario::Scene scene = scenario::block_on_pedestal(b, h, depth, law);
+  scenario::Scene scene = library::block_on_pedestal(b, h, depth, law);
   const Vec3 lo(-b, -0.5 * depth, 0), hi(b, 0.5 * depth, 2 * h);
-  scene.bodies[1] = scenario::body_from_soup("block", scenario::subdivided_box_soup(lo, hi, subdivisions), 2600, false);
+  scene.bodies[1] = library::body_from_soup("block", library::subdivided_box_soup(lo, hi, subdivisions), 2600, false);
   scene = scenario::equilibrate(scene, dynamics::StepSettings{});
   return bisect_threshold(scene, 0.2 * kGravity, 0.5 * kGravity, 0.5);
 }
@@ -285,10 +285,10 @@ class RigidLibraryModel : public ::testing::TestWithParam<std::string> {};
 // settled with rigid contact, stands 20 s on a still pedestal: each free block moves less than
 // 0.1 mm and turns less than 1e-4 rad.
 TEST_P(RigidLibraryModel, StandsTwentySecondsWithinATenthOfAMillimetre) {
-  const auto library = scenario::rock_library();
-  const auto it = std::find_if(library.begin(), library.end(), [](const scenario::LibraryModel& m) { return m.name == GetParam(); });
+  const auto library = library::rock_library();
+  const auto it = std::find_if(library.begin(), library.end(), [](const library::LibraryModel& m) { return m.name == GetParam(); });
   ASSERT_NE(it, library.end());
-  const scenario::Scene settled = scenario::equilibrate(scenario::library_scene(*it, rigid_law()), dynamics::StepSettings{});
+  const scenario::Scene settled = scenario::equilibrate(library::library_scene(*it, rigid_law()), dynamics::StepSettings{});
   dynamics::World world(settled.bodies, settled.law, dynamics::StepSettings{});
   const double dt = world.dt();
   const long steps = std::lround(20.0 / dt);
@@ -311,7 +311,7 @@ TEST_P(RigidLibraryModel, StandsTwentySecondsWithinATenthOfAMillimetre) {
 
 INSTANTIATE_TEST_SUITE_P(Library, RigidLibraryModel, ::testing::ValuesIn([] {
                            std::vector<std::string> names;
-                           for (const auto& m : scenario::rock_library()) names.push_back(m.name);
+                           for (const auto& m : library::rock_library()) names.push_back(m.name);
                            return names;
                          }()),
                          [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });
@@ -324,8 +324,8 @@ TEST(RigidDeterminism, SameRunSameBits) {
   const auto b = scenario::run(scene, one_sine(0.31 * kGravity, 0.5), settings);
   EXPECT_EQ(a.overturned, b.overturned);
   EXPECT_EQ(a.steps, b.steps);
-  EXPECT_EQ(a.max_tilt, b.max_tilt);
-  EXPECT_EQ(a.failure_time.value_or(-1), b.failure_time.value_or(-1));
+  EXPECT_EQ(a.max_tilt_rad, b.max_tilt_rad);
+  EXPECT_EQ(a.failure_time_s.value_or(-1), b.failure_time_s.value_or(-1));
 }
 
 }  // namespace

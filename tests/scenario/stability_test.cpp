@@ -33,7 +33,7 @@
 #include <string>
 #include <vector>
 
-#include "rigid/scenario/builders.hpp"
+#include "rigid/library/builders.hpp"
 #include "support/rng.hpp"
 
 namespace rigid {
@@ -48,11 +48,11 @@ constexpr double kDensity = 2600;
 // scene building
 
 BodyDef hull_body(const std::string& name, const std::vector<Vec3>& points, bool fixed) {
-  return scenario::body_from_soup(name, convex_hull(points), kDensity, fixed);
+  return library::body_from_soup(name, convex_hull(points), kDensity, fixed);
 }
 
 BodyDef box(const std::string& name, const Vec3& lo, const Vec3& hi, bool fixed) {
-  return scenario::box_body(name, lo, hi, kDensity, fixed);
+  return library::box_body(name, lo, hi, kDensity, fixed);
 }
 
 // the 8 corners of the box [lo, hi]
@@ -281,7 +281,7 @@ Outcome check_case(const Case& c) {
   if (::testing::Test::HasFatalFailure()) return penalty;
   Case rigid = c;
   rigid.name += " [rigid]";
-  rigid.law.model = contact::ContactModel::rigid;
+  rigid.law.method = contact::ContactMethod::rigid;
   rigid.step.dt = 0;
   check_one_model(rigid);
   return penalty;
@@ -291,7 +291,7 @@ Outcome check_case(const Case& c) {
 std::vector<BodyDef> settled_block(double b, double h, double depth, const contact::ContactLaw& law,
                                    double margin = 0.02, double pedestal_height = 0.2) {
   const scenario::Scene s =
-      scenario::block_on_pedestal(b, h, depth, law, kDensity, margin, pedestal_height);
+      library::block_on_pedestal(b, h, depth, law, kDensity, margin, pedestal_height);
   return scenario::equilibrate(s, dynamics::StepSettings{}).bodies;
 }
 
@@ -389,7 +389,7 @@ TEST(Stability, BlockOnSlopeHeldByWedge) {
 TEST(Stability, ExactlyCoplanarFaceFace) {
   Case c;
   c.name = "coplanar face-face";
-  const scenario::Scene s = scenario::block_on_pedestal(0.15, 0.3, 0.3, c.law, kDensity, 0.0);
+  const scenario::Scene s = library::block_on_pedestal(0.15, 0.3, 0.3, c.law, kDensity, 0.0);
   c.bodies = s.bodies;
   const Vec3 diagonal = Vec3(1, 1, 0).normalized();
   c.ground = sampled(3.0, 1e-3, [&](double t) -> Vec3 {
@@ -469,7 +469,7 @@ TEST(Stability, VeryStiffContactsAutomaticStep) {
   c.name = "K = 1e11";
   c.law.normal_stiffness = c.law.shear_stiffness = 1e11;
   const double h = 0.5, b = h * std::tan(0.2);
-  c.bodies = scenario::block_on_pedestal(b, h, 0.5, c.law).bodies;
+  c.bodies = library::block_on_pedestal(b, h, 0.5, c.law).bodies;
   c.ground = sampled(2.0, 1e-3, [](double t) -> Vec3 { return one_sine(t, 0.25 * kGravity, 0.5, Vec3::UnitX(), 0.2); });
   c.duration = 2.0;
   check_case(c);
@@ -554,7 +554,7 @@ TEST(Stability, DegenerateMeshSlivers) {
   std::printf("slivers: %zu facets, worst aspect (longest edge / height) %.3g\n", soup.size(), worst_aspect);
   ASSERT_GT(worst_aspect, 1e5) << "the mesh should have slivers";
   c.bodies.push_back(box("pedestal", Vec3(-0.3, -0.3, -0.2), Vec3(0.3, 0.3, 0), true));
-  c.bodies.push_back(scenario::body_from_soup("sliver block", soup, kDensity, false));
+  c.bodies.push_back(library::body_from_soup("sliver block", soup, kDensity, false));
   c.ground = sampled(3.0, 1e-3, [](double t) -> Vec3 {
     return sine(t, 0.45 * kGravity, 2.0, Vec3(1, 0.4, 0).normalized(), 0.3, 2.8);
   });
@@ -581,7 +581,7 @@ TEST(Stability, DegenerateMeshNearlyCoplanarFacets) {
   }
   const geometry::TriangleSoup soup = convex_hull(points);
   c.bodies.push_back(box("pedestal", Vec3(-0.3, -0.3, -0.2), Vec3(0.3, 0.3, 0), true));
-  c.bodies.push_back(scenario::body_from_soup("bowl block", soup, kDensity, false));
+  c.bodies.push_back(library::body_from_soup("bowl block", soup, kDensity, false));
   std::printf("nearly coplanar: %zu facets, %zu faces after merging, %zu vertices\n", soup.size(),
               c.bodies[1].shape.faces.size(), c.bodies[1].shape.vertices.size());
   ASSERT_GT(c.bodies[1].shape.faces.size(), 100u) << "the base facets should stay separate";
@@ -607,7 +607,7 @@ TEST(Stability, DegenerateMeshTenThousandFacets) {
   const geometry::TriangleSoup soup = convex_hull(points);
   ASSERT_EQ(soup.size(), 10000u);
   c.bodies.push_back(box("pedestal", Vec3(-0.5, -0.4, -0.2), Vec3(0.5, 0.4, 0), true));
-  c.bodies.push_back(scenario::body_from_soup("ellipsoid", soup, kDensity, false));
+  c.bodies.push_back(library::body_from_soup("ellipsoid", soup, kDensity, false));
   c.ground = sampled(3.0, 1e-3, [](double t) -> Vec3 {
     return sine(t, 0.3 * kGravity, 1.5, Vec3(1, 0.5, 0).normalized(), 0.3, 2.7);
   });

@@ -8,12 +8,14 @@
 #include <cmath>
 #include <set>
 
-#include "rigid/scenario/builders.hpp"
-#include "rigid/scenario/rocking_parameters.hpp"
-#include "rigid/scenario/tilt_test.hpp"
+#include "rigid/library/builders.hpp"
+#include "rigid/analysis/rocking_parameters.hpp"
+#include "rigid/analysis/tilt_test.hpp"
 #include "rigid/scenario/variant.hpp"
 
 namespace rigid::scenario {
+using namespace library;
+using namespace analysis;
 namespace {
 
 constexpr double kB = 0.2, kH = 0.5, kDepth = 0.4;  // block 0.4 wide, 1.0 tall: tan alpha = 0.4
@@ -125,7 +127,7 @@ TEST(VariantPhysics, ContactLawParameters) {
   apply_variant(s, 0, scene);
   EXPECT_EQ(scene.law.friction, 0.35);
   EXPECT_EQ(scene.law.restitution, 0.2);
-  EXPECT_EQ(scene.law.model, contact::ContactModel::penalty);
+  EXPECT_EQ(scene.law.method, contact::ContactMethod::penalty);
   Scene outside = block_on_pedestal(kB, kH, kDepth);
   EXPECT_THROW(apply_variant(one(VariantKey::com_offset_x, 0.3), 0, outside), std::invalid_argument);
 }

@@ -10,7 +10,7 @@
 namespace rigid::contact {
 
 /// How contacts resist interpenetration.
-enum class ContactModel {
+enum class ContactMethod {
   /// The study's penalty springs (physics.md §3): F_n = K_N d^1.5 (1 + D dd/dt) per subcontact,
   /// incremental shear springs capped by Coulomb; explicit time step limited by the stiffness.
   penalty,
@@ -21,16 +21,16 @@ enum class ContactModel {
 };
 
 /// "penalty" or "rigid".
-const char* contact_model_name(ContactModel model);
+const char* contact_method_name(ContactMethod model);
 /// Parses "penalty" or "rigid"; false for anything else.
-bool parse_contact_model(std::string_view name, ContactModel& model);
+bool parse_contact_method(std::string_view name, ContactMethod& model);
 
 /// Contact law: the model, and the parameters of each (penalty values: the original study's,
 /// physics.md §11).
 struct ContactLaw {
   /// Which contact model (rigid by default: the rigid-block answer at the lower cost, docs/performance.md,
   /// "Rigid contact: what it changes"); the stiffness and damping below belong to the penalty model only.
-  ContactModel model = ContactModel::rigid;
+  ContactMethod method = ContactMethod::rigid;
   /// Normal restitution e_n of the rigid model's Newton impact law (unit: 1): 0 = plastic impact,
   /// Housner's assumption, under which a rocking block keeps r = 1 - 1.5 sin^2 alpha of its
   /// angular velocity per impact (physics.md §2).

@@ -66,7 +66,7 @@ struct ObjectCube {
   /// The object's own physics and run settings (contact model and law, density, failure rule,
   /// time step, accuracy, effects) as a JSON object; empty in cubes written before it existed
   std::string physics_json;
-  /// Rocking parameters of a single-block object (scenario::rocking_parameters), NaN when the
+  /// Rocking parameters of a single-block object (analysis::rocking_parameters), NaN when the
   /// object has none (stacks): written as attributes alpha_rad, p_rad_s only when finite.
   double alpha_rad = std::numeric_limits<double>::quiet_NaN();
   double p_rad_s = std::numeric_limits<double>::quiet_NaN();

@@ -11,7 +11,7 @@ namespace rigid::job {
 
 /// One object's cost (one per Job::objects, variants included).
 struct ObjectCost {
-  double dt = 0;                ///< its time step (unit: s)
+  double dt_s = 0;              ///< its time step
   double seconds_per_step = 0;  ///< measured on this machine (unit: s of wall time per step)
   double steps = 0;             ///< steps of all its cells run to their end
   double core_seconds = 0;      ///< steps x seconds_per_step (unit: s of one core)
@@ -21,12 +21,12 @@ struct CostEstimate {
   long cells = 0;             ///< of the job: objects x records x scales x rotations
   long cells_per_object = 0;  ///< records x scales x rotations
   /// Simulated time of one object's cells if every run reaches the end of its record (unit: s).
-  double simulated_per_object = 0;
+  double simulated_per_object_s = 0;
   /// The simulated time of each object's probe: one case, its first record at its smallest scale
   /// (unit: s).
-  double probe_duration = 0;
+  double probe_duration_s = 0;
   std::vector<ObjectCost> objects;
-  double simulated_total() const { return simulated_per_object * double(objects.size()); }
+  double simulated_total_s() const { return simulated_per_object_s * double(objects.size()); }
   double steps() const;         ///< of every cell
   double core_seconds() const;  ///< of every cell (unit: s of one core)
 };

@@ -81,9 +81,9 @@ struct Job {
   std::string accuracy = scenario::kDefaultAccuracy;  ///< accuracy preset of `run`
   /// Which model simulates: the engine, or the 2D Housner reference (driven by the record's x
   /// component; scenes must admit it).
-  scenario::ModelKind model = scenario::ModelKind::dem3d;
+  scenario::Engine engine = scenario::Engine::dem3d;
   /// Contact model for every object; nothing: each scene's own [physics] contact.
-  std::optional<contact::ContactModel> contact;
+  std::optional<contact::ContactMethod> contact;
   /// Line of the job's dt_s (else safety, else [run]) key: where errors about the step point.
   long run_line = 0;
   double checkpoint_interval = 30;  ///< unit: s

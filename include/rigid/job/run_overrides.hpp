@@ -26,8 +26,8 @@ struct SettingSource {
 };
 
 struct RunOverrides {
-  std::optional<scenario::ModelKind> model;      ///< dem3d or rocking2d
-  std::optional<contact::ContactModel> contact;  ///< every object's contact model; none: each scene's
+  std::optional<scenario::Engine> engine;     ///< dem3d or rocking2d (the `model` key)
+  std::optional<contact::ContactMethod> contact;  ///< every object's contact model; none: each scene's
   std::optional<bool> select_effects;            ///< effects "auto" (true) or "all" (false)
   std::optional<std::string> accuracy;           ///< accuracy preset name (scenario/accuracy.hpp)
   std::optional<dynamics::RotationIntegrator> integrator;

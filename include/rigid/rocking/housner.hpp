@@ -49,7 +49,7 @@ struct RockingBlock {
   /// mass (unit: kg) and the moment of inertia about the pivot axis I_O (unit: kg m^2);
   /// p² = m g R / I_O, r = 1 − (2 m R² / I_O) sin²α (physics.md §2). Throws std::invalid_argument
   /// unless 0 < α < π/2, R > 0, mass > 0 and I_O ≥ m R² (parallel-axis theorem). The returned r
-  /// is negative for squat blocks, where Housner's no-bounce impact does not apply; simulate()
+  /// is negative for squat blocks, where Housner's no-bounce impact does not apply; simulate_rocking()
   /// rejects it, so override restitution deliberately in that case.
   static RockingBlock general(double alpha, double R, double mass, double inertia_pivot);
 };
@@ -97,7 +97,7 @@ class GroundAcceleration {
   double end_ = 0.0;                  // last instant of motion (unit: s)
 };
 
-/// Integration and modelling settings for simulate(). Defaults are for the reference use: an
+/// Integration and modelling settings for simulate_rocking(). Defaults are for the reference use: an
 /// accuracy well beyond that of the 3D engine at a cost of milliseconds per record.
 struct RockingOptions {
   /// Largest RK4 step (unit: s). Steps are shortened so they end exactly on every breakpoint of
@@ -158,7 +158,7 @@ struct TrajectorySample {
   SampleKind kind = SampleKind::step;
 };
 
-/// Why simulate() stopped.
+/// Why simulate_rocking() stopped.
 enum class StopReason {
   end_time,    ///< reached the requested end time
   overturned,  ///< |θ| reached the overturn angle
@@ -192,7 +192,7 @@ struct RockingResult {
 /// bisected on the ground history. Deterministic: same inputs, same bits. Throws
 /// std::invalid_argument for an invalid block (α outside (0, π/2), p ≤ 0, r outside [0, 1]),
 /// options or initial state, and std::logic_error if time stops advancing (an internal guard).
-RockingResult simulate(const RockingBlock& block, const GroundAcceleration& ground, double end_time,
+RockingResult simulate_rocking(const RockingBlock& block, const GroundAcceleration& ground, double end_time,
                        const RockingOptions& options = {}, const InitialState& initial = {});
 
 /// Ground acceleration magnitude that lifts the block from rest (unit: m/s^2): g tanα, or g α for

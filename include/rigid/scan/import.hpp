@@ -13,7 +13,7 @@
 #include "rigid/core/types.hpp"
 #include "rigid/geometry/contact_shape.hpp"
 #include "rigid/repair/mesh_repair.hpp"
-#include "rigid/scenario/rocking_parameters.hpp"
+#include "rigid/analysis/rocking_parameters.hpp"
 
 namespace rigid::scan {
 
@@ -64,7 +64,7 @@ struct ImportResult {
   std::vector<ContactReport> bodies;  ///< the rock, then the pedestal when scanned or split off
   Vec3 shift = Vec3::Zero();          ///< the move that put the base at z = 0 over the origin (unit: m)
   /// The settled rock's rocking parameters; none when it does not rest on three support points.
-  std::optional<scenario::RockingParameters> rocking;
+  std::optional<analysis::RockingParameters> rocking;
   std::vector<std::string> written;  ///< the files written, sorted (DIR/NAME.toml, ...)
 };
 

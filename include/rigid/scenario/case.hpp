@@ -1,6 +1,6 @@
 #pragma once
 /// The unit of work of Rigid: one case, (object, record, scale, rotation), simulated on an
-/// immutable Model. `rigid run`, campaigns and the dry-run estimate all go through simulate(),
+/// immutable Model. `rigid run`, campaigns and the dry-run estimate all go through simulate_case(),
 /// so a case means the same thing whichever command runs it. No I/O: job::load_model builds a
 /// Model from files.
 #include <cstdint>
@@ -17,13 +17,13 @@
 namespace rigid::scenario {
 
 /// Which model simulates a case.
-enum class ModelKind {
+enum class Engine {
   dem3d,      ///< the 3D engine (dynamics::World)
   rocking2d,  ///< the 2D Housner reference, driven by the record's unrotated x component
 };
-const char* model_kind_name(ModelKind kind);
+const char* engine_name(Engine engine);
 /// "dem3d" or "rocking2d"; nothing for any other text.
-std::optional<ModelKind> parse_model_kind(std::string_view text);
+std::optional<Engine> parse_engine(std::string_view text);
 
 /// Everything cases share: the scenes, the records (windowed, unscaled), how to simulate.
 /// Built once, then only read, so any number of threads may simulate on it.
@@ -31,13 +31,13 @@ class Model {
  public:
   /// `pga_factor_per_g`: per record, motion::target_pga_factor(record, 1.0) when the caller has
   /// it (a campaign computes it once per record, since cases scale one record many times); empty
-  /// or 0 = computed by each case that asks for a target PGA. Throws rigid::InputError when kind
+  /// or 0 = computed by each case that asks for a target PGA. Throws rigid::InputError when engine
   /// = rocking2d and a scene is not a box block on a box pedestal, and (no file named) when a run
   /// would break the bounds of run_bounds.hpp (step above the contact model's, too many steps).
-  Model(ModelKind kind, std::vector<Scene> scenes, std::vector<motion::GroundMotion> records, RunSettings run,
+  Model(Engine engine, std::vector<Scene> scenes, std::vector<motion::GroundMotion> records, RunSettings run,
         std::vector<double> pga_factor_per_g = {});
 
-  ModelKind kind() const { return kind_; }
+  Engine engine() const { return engine_; }
   int objects() const { return int(scenes_.size()); }
   int records() const { return int(records_.size()); }
   const Scene& scene(int object) const { return scenes_[std::size_t(object)]; }
@@ -52,7 +52,7 @@ class Model {
 
  private:
   void check_bounds() const;
-  ModelKind kind_;
+  Engine engine_;
   std::vector<Scene> scenes_;
   std::vector<motion::GroundMotion> records_;
   RunSettings run_;
@@ -103,6 +103,6 @@ motion::GroundMotion case_motion(const Model& model, const Case& c);
 
 /// Simulates a case. Never throws: an error inside the simulation becomes outcome = failed with
 /// its reason and message.
-CaseOutcome simulate(const Model& model, const Case& c);
+CaseOutcome simulate_case(const Model& model, const Case& c);
 
 }  // namespace rigid::scenario

@@ -22,7 +22,7 @@ inline constexpr double kRocking2dOverturnAngle = kPi / 2;
 
 /// Runs the 2D model on the x acceleration `ax` (unit: m/s^2, sampled every dt s from t = 0) for
 /// the duration the settings give (motion plus free time, or `duration`). The outcome uses the
-/// 3D fields: max_tilt = max |theta|, max_slip = 0, steps = integration steps.
+/// 3D fields: max_tilt_rad = max |theta|, max_slip_m = 0, steps = integration steps.
 RunOutcome run_rocking2d(const rocking::RockingBlock& block, const std::vector<double>& ax, double dt,
                          const RunSettings& settings);
 

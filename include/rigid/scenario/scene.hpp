@@ -107,14 +107,14 @@ struct ActiveEffects {
 /// What one run produced.
 struct RunOutcome {
   bool overturned = false;
-  std::optional<double> failure_time;  ///< unit: s
+  std::optional<double> failure_time_s;
   std::string failed_block;            ///< name of the first block that failed
   long steps = 0;             ///< steps computed (steps skipped asleep not counted)
-  double dt = 0;              ///< unit: s
-  double simulated = 0;       ///< unit: s
-  double max_tilt = 0;        ///< largest tilt of any free block (unit: rad)
-  double max_slip = 0;        ///< largest accumulated frictional slip of any free block (unit: m)
-  double max_overlap = 0;     ///< deepest subcontact indentation seen (unit: m)
+  double dt_s = 0;
+  double simulated_s = 0;     ///< simulated time
+  double max_tilt_rad = 0;    ///< largest tilt of any free block
+  double max_slip_m = 0;      ///< largest accumulated frictional slip of any free block
+  double max_overlap_m = 0;   ///< deepest subcontact indentation seen
   bool ended_at_rest = false; ///< stopped early because all blocks were at rest after the motion
   bool finite = true;         ///< false if a NaN or Inf appeared (the run stops there)
   /// Rigid contact model: steps whose contact solve stopped at its sweep cap without converging

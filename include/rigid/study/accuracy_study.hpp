@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "rigid/motion/ground_motion.hpp"
-#include "rigid/scenario/rock_library.hpp"
+#include "rigid/library/rock_library.hpp"
 #include "rigid/scenario/scene.hpp"
 
 namespace rigid::study {
@@ -45,7 +45,7 @@ struct Setting {
   dynamics::RotationIntegrator rotation = dynamics::RotationIntegrator::splitting;
   double stiffness = kStudyStiffness;
   /// the default model on the numerical axes; the model axis sets it explicitly, with stiffness
-  contact::ContactModel contact = contact::ContactLaw{}.model;
+  contact::ContactMethod contact = contact::ContactLaw{}.method;
   double rest_speed = 1e-3;          ///< unit: m/s
   double rest_angular_speed = 1e-3;  ///< unit: rad/s
   double rest_time = 0.5;            ///< unit: s
@@ -81,7 +81,7 @@ struct Case {
   Oracle oracle = Oracle::none;
   double oracle_value = kNoValue;
   std::string model_quantity;   ///< what a row's model_value is
-  std::optional<scenario::LibraryModel> library;  ///< for the rigid-statics oracle
+  std::optional<library::LibraryModel> library;  ///< for the rigid-statics oracle
 };
 
 /// The study's cases: slender and stocky blocks (one-sine pulse, the record scaled, a quasi-static

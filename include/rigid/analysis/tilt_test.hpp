@@ -5,10 +5,9 @@
 #include <string>
 #include <vector>
 
-#include "rigid/scenario/rock_library.hpp"
 #include "rigid/scenario/scene.hpp"
 
-namespace rigid::scenario {
+namespace rigid::analysis {
 
 /// Settings of the quasi-static tilt test.
 struct TiltTestSettings {
@@ -52,7 +51,7 @@ struct TiltTestResult {
 /// ramp alone lags the onset of toppling (the rock needs time to rotate that far), the hold tests
 /// do not. For a rigid rectangular block of slenderness alpha the answer is g tan(alpha); the
 /// study's soft Hertz contacts lower it by 1-3 % (docs/validation.md, "What contact compliance does").
-TiltTestResult tilt_test(const Scene& settled, double azimuth, const TiltTestSettings& settings = {});
+TiltTestResult tilt_test(const scenario::Scene& settled, double azimuth, const TiltTestSettings& settings = {});
 
 /// Tilt tests in `azimuths` directions evenly spaced from +x (8: every 45 degrees).
 struct TiltSurvey {
@@ -60,16 +59,7 @@ struct TiltSurvey {
   double minimum = 0;          ///< smallest toppling acceleration (unit: g)
   double azimuth_of_minimum = 0;  ///< unit: rad
 };
-TiltSurvey tilt_survey(const Scene& settled, int azimuths = 8, const TiltTestSettings& settings = {});
+TiltSurvey tilt_survey(const scenario::Scene& settled, int azimuths = 8, const TiltTestSettings& settings = {});
 
-/// Rigid-statics toppling acceleration of a simple stack (LibraryModel::simple_stack) at build
-/// time, an independent estimate: for every interface, the free pieces above it rock as one rigid
-/// body about the edge of the contact polygon (the intersection of the two touching faces), and
-/// topple when the resultant of gravity and the inertial force leaves the polygon. In direction
-/// `azimuth` of the ground acceleration that is a/g = s / h, with h the height of the combined
-/// centroid above the interface and s the distance from its projection to the polygon edge along
-/// -azimuth. Returns the minimum over the interfaces (unit: g); azimuth < 0 means the minimum over
-/// all directions. Throws std::invalid_argument for a model that is not a simple stack.
-double static_toppling(const LibraryModel& model, double azimuth, double density = 2600);
 
-}  // namespace rigid::scenario
+}  // namespace rigid::analysis

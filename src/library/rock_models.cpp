@@ -1,14 +1,17 @@
 // The rock library's models: the study's rectangular blocks, the geode, and nine synthetic
 // analogues of its Yucca Mountain objects, each piece a convex hull of a shaped, seeded cloud.
-#include "rigid/scenario/rock_library.hpp"
+#include "rigid/library/rock_library.hpp"
 
 #include <cmath>
 #include <cstdio>
 
-#include "rigid/scenario/builders.hpp"
+#include "rigid/library/builders.hpp"
 #include "rock_shapes.hpp"
 
-namespace rigid::scenario {
+namespace rigid::library {
+
+// scenes, drives and the run are scenario's; this module builds on them
+using namespace scenario;
 namespace {
 
 using geometry::TriangleSoup;
@@ -370,4 +373,4 @@ Scene library_scene(const LibraryModel& model, const contact::ContactLaw& law, d
   return s;
 }
 
-}  // namespace rigid::scenario
+}  // namespace rigid::library

@@ -9,7 +9,7 @@
 
 #include "rigid/core/rng.hpp"
 
-namespace rigid::scenario::shapes {
+namespace rigid::library::shapes {
 namespace {
 
 using P2 = geometry::Point2;
@@ -254,4 +254,4 @@ TriangleSoup rotated(const TriangleSoup& soup, const Mat3& r) {
   return out;
 }
 
-}  // namespace rigid::scenario::shapes
+}  // namespace rigid::library::shapes

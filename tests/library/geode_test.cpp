@@ -5,23 +5,23 @@
 
 #include <cmath>
 
-#include "rigid/scenario/builders.hpp"
+#include "rigid/library/builders.hpp"
 
 namespace rigid {
 namespace {
 
 TEST(Geode, BouncesAtLeastNineTimesBeforeMarkedRotation) {
   contact::ContactLaw law;
-  law.model = contact::ContactModel::penalty;  // the study's test of its own (penalty) model
+  law.method = contact::ContactMethod::penalty;  // the study's test of its own (penalty) model
   law.friction = 0;
   law.damping = 0;
-  auto geode = scenario::body_from_soup("geode", scenario::geodesic_sphere(0.15, 2), 2600, false);
+  auto geode = library::body_from_soup("geode", library::geodesic_sphere(0.15, 2), 2600, false);
   // put one vertex straight below the centroid, 0.5 m above the plane
   const Vec3 lowest_body = geode.shape.vertices[0];
   const Quat down = Quat::FromTwoVectors(lowest_body, -Vec3::UnitZ());
   geode.orientation = down;
   geode.position = Vec3(0, 0, 0.5 + lowest_body.norm());
-  auto plane = scenario::box_body("plane", Vec3(-1, -1, -0.2), Vec3(1, 1, 0), 2600, true);
+  auto plane = library::box_body("plane", Vec3(-1, -1, -0.2), Vec3(1, 1, 0), 2600, true);
   dynamics::StepSettings settings;
   settings.dt = 0.000314;  // the study's step
   dynamics::World world({plane, geode}, law, settings);

@@ -7,7 +7,7 @@
 #include "rigid/geometry/polygon2d.hpp"
 #include "rigid/geometry/polyhedron.hpp"
 
-namespace rigid::scenario::shapes {
+namespace rigid::library::shapes {
 
 using geometry::Polygon2;
 using geometry::TriangleSoup;
@@ -84,4 +84,4 @@ TriangleSoup support_under(const std::vector<Vec3>& top, const HeightPlane& surf
 
 TriangleSoup rotated(const TriangleSoup& soup, const Mat3& r);
 
-}  // namespace rigid::scenario::shapes
+}  // namespace rigid::library::shapes

@@ -1,10 +1,13 @@
-#include "rigid/scenario/builders.hpp"
+#include "rigid/library/builders.hpp"
 
 #include <array>
 #include <cmath>
 #include <map>
 
-namespace rigid::scenario {
+namespace rigid::library {
+
+// scenes, drives and the run are scenario's; this module builds on them
+using namespace scenario;
 
 dynamics::BodyDef body_from_soup(const std::string& name, const geometry::TriangleSoup& soup,
                                  double density, bool fixed) {
@@ -110,4 +113,4 @@ geometry::TriangleSoup geodesic_sphere(double radius, int frequency) {
   return soup;
 }
 
-}  // namespace rigid::scenario
+}  // namespace rigid::library

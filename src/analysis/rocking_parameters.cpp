@@ -1,4 +1,4 @@
-#include "rigid/scenario/rocking_parameters.hpp"
+#include "rigid/analysis/rocking_parameters.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,10 @@
 
 #include "rigid/geometry/polygon2d.hpp"
 
-namespace rigid::scenario {
+namespace rigid::analysis {
+
+// scenes, drives and the run are scenario's; this module builds on them
+using namespace scenario;
 namespace {
 
 using P2 = geometry::Point2;
@@ -140,4 +143,4 @@ std::optional<RockingParameters> rocking_parameters(const Scene& scene, double c
   return best;
 }
 
-}  // namespace rigid::scenario
+}  // namespace rigid::analysis

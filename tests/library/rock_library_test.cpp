@@ -14,21 +14,21 @@
 #include "rigid/contact/contact.hpp"
 #include "rigid/io/scene_file.hpp"
 #include "rigid/io/stl.hpp"
-#include "rigid/scenario/builders.hpp"
-#include "rigid/scenario/rock_library.hpp"
-#include "rigid/scenario/tilt_test.hpp"
+#include "rigid/library/builders.hpp"
+#include "rigid/library/rock_library.hpp"
+#include "rigid/analysis/tilt_test.hpp"
 
 namespace rigid {
 namespace {
 
 namespace fs = std::filesystem;
 
-const std::vector<scenario::LibraryModel>& library() {
-  static const std::vector<scenario::LibraryModel> lib = scenario::rock_library();
+const std::vector<library::LibraryModel>& library() {
+  static const std::vector<library::LibraryModel> lib = library::rock_library();
   return lib;
 }
 
-const scenario::LibraryModel& model(const std::string& name) {
+const library::LibraryModel& model(const std::string& name) {
   for (const auto& m : library()) {
     if (m.name == name) return m;
   }
@@ -78,7 +78,7 @@ TEST(RockLibrary, EveryPieceIsClosedAndConvexAndFixedPiecesComeFirst) {
 }
 
 TEST(RockLibrary, IsTheSameOnEveryCall) {
-  const auto again = scenario::rock_library();
+  const auto again = library::rock_library();
   ASSERT_EQ(again.size(), library().size());
   for (std::size_t i = 0; i < again.size(); ++i) {
     ASSERT_EQ(again[i].pieces.size(), library()[i].pieces.size());
@@ -115,7 +115,7 @@ contact::PlacedHull placed(const dynamics::BodyDef& b, std::vector<Vec3>& world)
 
 TEST(RockLibrary, PiecesTouchWithoutInterpenetrating) {
   for (const auto& m : library()) {
-    const scenario::Scene s = scenario::library_scene(m);
+    const scenario::Scene s = library::library_scene(m);
     const std::size_t n = s.bodies.size();
     std::vector<double> nearest(n, std::numeric_limits<double>::infinity());
     for (std::size_t i = 0; i < n; ++i) {
@@ -211,11 +211,11 @@ INSTANTIATE_TEST_SUITE_P(Analogues, RockAnalogue,
 
 TEST(StaticToppling, RectangularBlockIsTanAlpha) {
   const auto& m = model("block_a02");
-  EXPECT_NEAR(scenario::static_toppling(m, 0.0), std::tan(0.2), 1e-12);
-  EXPECT_NEAR(scenario::static_toppling(m, kPi), std::tan(0.2), 1e-12);
-  EXPECT_NEAR(scenario::static_toppling(m, 0.5 * kPi), 0.25 / 0.5, 1e-12);  // half-depth / half-height
-  EXPECT_NEAR(scenario::static_toppling(m, -1), std::tan(0.2), 1e-12);
-  EXPECT_THROW(scenario::static_toppling(model("five_stack_wall"), 0.0), std::invalid_argument);
+  EXPECT_NEAR(library::static_toppling(m, 0.0), std::tan(0.2), 1e-12);
+  EXPECT_NEAR(library::static_toppling(m, kPi), std::tan(0.2), 1e-12);
+  EXPECT_NEAR(library::static_toppling(m, 0.5 * kPi), 0.25 / 0.5, 1e-12);  // half-depth / half-height
+  EXPECT_NEAR(library::static_toppling(m, -1), std::tan(0.2), 1e-12);
+  EXPECT_THROW(library::static_toppling(model("five_stack_wall"), 0.0), std::invalid_argument);
 }
 
 // g tan(alpha) is rigid-block statics (physics.md §2). At the study's stiffness the Hertz contacts
@@ -223,20 +223,20 @@ TEST(StaticToppling, RectangularBlockIsTanAlpha) {
 // "What contact compliance does"); near-rigid contacts (1e10) must give the closed form.
 TEST(TiltTest, RectangularBlockTopplesAtGTanAlpha) {
   const double alpha = 0.2, h = 0.5, b = h * std::tan(alpha);
-  const scenario::Scene study = scenario::equilibrate(scenario::block_on_pedestal(b, h, 0.5), {});
-  const auto r = scenario::tilt_test(study, 0.0);
+  const scenario::Scene study = scenario::equilibrate(library::block_on_pedestal(b, h, 0.5), {});
+  const auto r = analysis::tilt_test(study, 0.0);
   std::printf("alpha 0.2, K = 1e8: %.4f g (g tan alpha = %.4f g), bracket [%.4f, %.4f], ramp alone %.4f g\n",
               r.acceleration, std::tan(alpha), r.bracket_low, r.bracket_high, r.ramp_detection);
   EXPECT_NEAR(r.acceleration / std::tan(alpha), 1.0, 0.03);
   EXPECT_LT(r.acceleration, std::tan(alpha)) << "compliance can only lower it";
   EXPECT_EQ(r.block, "block");
   // along the depth: half-depth / half-height = 0.5
-  EXPECT_NEAR(scenario::tilt_test(study, 0.5 * kPi).acceleration / 0.5, 1.0, 0.03);
+  EXPECT_NEAR(analysis::tilt_test(study, 0.5 * kPi).acceleration / 0.5, 1.0, 0.03);
 
   contact::ContactLaw stiff;
   stiff.normal_stiffness = stiff.shear_stiffness = 1e10;
-  const scenario::Scene rigid = scenario::equilibrate(scenario::block_on_pedestal(b, h, 0.5, stiff), {});
-  const auto s = scenario::tilt_test(rigid, kPi);
+  const scenario::Scene rigid = scenario::equilibrate(library::block_on_pedestal(b, h, 0.5, stiff), {});
+  const auto s = analysis::tilt_test(rigid, kPi);
   std::printf("alpha 0.2, K = 1e10: %.5f g\n", s.acceleration);
   EXPECT_NEAR(s.acceleration / std::tan(alpha), 1.0, 0.005);
 }
@@ -252,22 +252,22 @@ TEST(TiltTest, IrregularRockApproachesRigidStaticsAsContactsStiffen) {
   // the weakest of eight directions, by statics
   double az = 0, weakest = std::numeric_limits<double>::infinity();
   for (int j = 0; j < 8; ++j) {
-    const double a = scenario::static_toppling(m, 2 * kPi * j / 8);
+    const double a = library::static_toppling(m, 2 * kPi * j / 8);
     if (a < weakest) {
       weakest = a;
       az = 2 * kPi * j / 8;
     }
   }
   contact::ContactLaw soft;
-  soft.model = contact::ContactModel::penalty;
-  const auto study = scenario::tilt_test(scenario::equilibrate(scenario::library_scene(m, soft), {}), az);
+  soft.method = contact::ContactMethod::penalty;
+  const auto study = analysis::tilt_test(scenario::equilibrate(library::library_scene(m, soft), {}), az);
   contact::ContactLaw stiffer = soft;
   stiffer.normal_stiffness = stiffer.shear_stiffness = 1e9;
-  const auto firm = scenario::tilt_test(scenario::equilibrate(scenario::library_scene(m, stiffer), {}), az);
+  const auto firm = analysis::tilt_test(scenario::equilibrate(library::library_scene(m, stiffer), {}), az);
   // rigid contact has no compliance to tilt on: the tilt test is the statics of the geometry
   contact::ContactLaw rigid;
-  rigid.model = contact::ContactModel::rigid;
-  const auto hard = scenario::tilt_test(scenario::equilibrate(scenario::library_scene(m, rigid), {}), az);
+  rigid.method = contact::ContactMethod::rigid;
+  const auto hard = analysis::tilt_test(scenario::equilibrate(library::library_scene(m, rigid), {}), az);
   std::printf("single_rock_075, azimuth %.0f deg: rigid statics %.4f g, tilt test %.4f g (K = 1e8), %.4f g (K = 1e9), "
               "%.4f g (rigid contact)\n",
               az * 180 / kPi, weakest, study.acceleration, firm.acceleration, hard.acceleration);
@@ -280,10 +280,10 @@ TEST(TiltTest, IrregularRockApproachesRigidStaticsAsContactsStiffen) {
 
 TEST(TiltTest, ModelAgainstAWallStandsWhenPushedIntoIt) {
   // the ground accelerating towards -x throws the block against its rock face (at +x): it cannot go
-  scenario::TiltTestSettings fast;
+  analysis::TiltTestSettings fast;
   fast.max_acceleration = 0.6;
-  const scenario::Scene settled = scenario::equilibrate(scenario::library_scene(model("block_against_face")), {});
-  const auto r = scenario::tilt_test(settled, kPi, fast);
+  const scenario::Scene settled = scenario::equilibrate(library::library_scene(model("block_against_face")), {});
+  const auto r = analysis::tilt_test(settled, kPi, fast);
   EXPECT_TRUE(std::isinf(r.acceleration)) << r.acceleration;
 }
 

@@ -8,7 +8,7 @@
 
 #include "rigid/scenario/scene.hpp"
 
-namespace rigid::scenario {
+namespace rigid::library {
 
 /// One block of a library model, in its place (world coordinates at build time, unit: m).
 struct LibraryPiece {
@@ -22,7 +22,7 @@ struct LibraryModel {
   std::string name;         ///< directory and file stem, e.g. "single_rock_050"
   std::string description;  ///< one line: what it is an analogue of
   std::vector<LibraryPiece> pieces;
-  FailureRule failure;      ///< the rule that suits the model
+  scenario::FailureRule failure;      ///< the rule that suits the model
   std::string failure_note; ///< why that rule
   /// The free pieces form one vertical stack with horizontal interfaces, each resting only on the
   /// piece listed before it (the first free piece on the last fixed one), so the rigid-statics
@@ -36,7 +36,17 @@ std::vector<LibraryModel> rock_library();
 
 /// The scene of a model at build time (not yet settled), with the study's contact law and
 /// density (physics.md §11) unless given. Block names are the piece names.
-Scene library_scene(const LibraryModel& model, const contact::ContactLaw& law = {},
+scenario::Scene library_scene(const LibraryModel& model, const contact::ContactLaw& law = {},
                     double density = 2600);
 
-}  // namespace rigid::scenario
+/// Rigid-statics toppling acceleration of a simple stack (LibraryModel::simple_stack) at build
+/// time, an independent estimate: for every interface, the free pieces above it rock as one rigid
+/// body about the edge of the contact polygon (the intersection of the two touching faces), and
+/// topple when the resultant of gravity and the inertial force leaves the polygon. In direction
+/// `azimuth` of the ground acceleration that is a/g = s / h, with h the height of the combined
+/// centroid above the interface and s the distance from its projection to the polygon edge along
+/// -azimuth. Returns the minimum over the interfaces (unit: g); azimuth < 0 means the minimum over
+/// all directions. Throws std::invalid_argument for a model that is not a simple stack.
+double static_toppling(const LibraryModel& model, double azimuth, double density = 2600);
+
+}  // namespace rigid::library

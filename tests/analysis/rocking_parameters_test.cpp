@@ -5,10 +5,12 @@
 
 #include <cmath>
 
-#include "rigid/scenario/builders.hpp"
-#include "rigid/scenario/rocking_parameters.hpp"
+#include "rigid/library/builders.hpp"
+#include "rigid/analysis/rocking_parameters.hpp"
 
 namespace rigid::scenario {
+using namespace library;
+using namespace analysis;
 namespace {
 
 TEST(RockingParameters, RectangularBlockMatchesHousnerClosedForms) {

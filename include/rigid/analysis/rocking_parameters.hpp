@@ -7,7 +7,7 @@
 
 #include "rigid/scenario/scene.hpp"
 
-namespace rigid::scenario {
+namespace rigid::analysis {
 
 struct RockingParameters {
   double alpha = 0;    ///< smallest tipping angle over the edges of the support polygon (unit: rad)
@@ -26,7 +26,7 @@ struct RockingParameters {
 };
 
 /// Directions of RockingParameters::alpha_by_azimuth: every 22.5 degrees, a superset of the
-/// tilt test's eight (scenario::tilt_survey).
+/// tilt test's eight (analysis::tilt_survey).
 inline constexpr int kRockingAzimuths = 16;
 
 /// The rocking parameters of the scene's single free block, resting on fixed blocks: its support
@@ -36,6 +36,6 @@ inline constexpr int kRockingAzimuths = 16;
 /// tan(alpha_e) = d / h (d the horizontal distance from the centroid to the edge, h the centroid's
 /// height above it). Empty when the scene has not exactly one free block, or the block is not
 /// resting (fewer than three support points, or the centroid outside the polygon).
-std::optional<RockingParameters> rocking_parameters(const Scene& scene, double contact_tolerance = 1e-3);
+std::optional<RockingParameters> rocking_parameters(const scenario::Scene& scene, double contact_tolerance = 1e-3);
 
-}  // namespace rigid::scenario
+}  // namespace rigid::analysis
