@@ -816,10 +816,10 @@ TEST(CubeVariants, CellsTableHasAVariantColumnOnlyWithVariants) {
   const std::vector<std::string> p = lines(plain.str()), v = lines(varied.str());
   EXPECT_EQ(p.front(),
             "object,record,scale_g,rotation,rotation_deg,outcome,failure_time_s,max_tilt_deg,max_slip_m,"
-            "failure_reason,failure_message\r");
+            "failure_reason,failure_message,unconverged_steps\r");
   EXPECT_EQ(v.front(),
             "object,variant,record,scale_g,rotation,rotation_deg,outcome,failure_time_s,max_tilt_deg,"
-            "max_slip_m,failure_reason,failure_message\r");
+            "max_slip_m,failure_reason,failure_message,unconverged_steps\r");
   // rock_b's variant 2 starts after 5 object-variants of 24 cells (messages of rock a hold line
   // breaks, so count rows by their first field instead of by line)
   std::size_t rows_of_rock_b_v2 = 0;
