@@ -35,8 +35,10 @@ void register_export_command(CLI::App& app) {
   auto cube = std::make_shared<std::string>();
   auto out = std::make_shared<std::string>();
   auto csv = std::make_shared<bool>(false);
-  CLI::App* cells = cmd->add_subcommand("cells", "One CSV row per cell (object, record, scale, rotation) with "
-                                                 "its outcome, failure time, tilt, slip and failure reason");
+  CLI::App* cells = cmd->add_subcommand("cells",
+                                        "One CSV row per cell (object, record, scale, rotation) with "
+                                        "its outcome, failure time, tilt, slip, failure reason and the contact "
+                                        "solver's unconverged steps");
   cells->add_option("cube", *cube, "Fragility cube (.h5) written by rigid campaign")->required();
   cells->add_flag("--csv", *csv, "CSV (RFC 4180 quoting), the only format so far")->required();
   cells->add_option("--out", *out, "Output file (default: standard output)");

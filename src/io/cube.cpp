@@ -1,7 +1,8 @@
 // The HDF5 fragility cube (include/rigid/io/cube.hpp): this file holds its layout, its validation
-// and the derived products (probability, fragility; pure functions, so the campaign summary prints
-// them without HDF5); cube_write.cpp and cube_read.cpp write and read it with the HDF5 C API
-// (shared plumbing: cube_hdf5.hpp).
+// and the adapters that hand a cube's arrays to the statistics module for the derived products
+// (probability, fragility: the rules live in statistics/overturn.hpp and
+// statistics/fragility_surface.hpp); cube_write.cpp and cube_read.cpp write and read it with the
+// HDF5 C API (shared plumbing: cube_hdf5.hpp).
 //
 // Layout, schema_version 1: a cube without variants (R records, S scales, A rotations, B = E - 1
 // PGV/PGA bins):
@@ -43,9 +44,9 @@
 //       failure_message    [R,S,A] string the error's text of failed cells, "" elsewhere
 //       unconverged_steps  [R,S,A] int32  steps whose contact solve hit its sweep cap; -1 when not
 //                          simulated or not recorded (outside datasets_sha256)
-//       probability        [R,S]   float64  derived: overturn_probability()
-//       fragility          [S,B]   float64  derived: fragility_surface().probability
-//       fragility_count    [S,B]   int32    derived: fragility_surface().count
+//       probability        [R,S]   float64  derived: statistics::overturn_probability()
+//       fragility          [S,B]   float64  derived: statistics::fragility_surface().probability
+//       fragility_count    [S,B]   int32    derived: statistics::fragility_surface().count
 //
 // Layout, schema_version 2: a cube with variants (Cube::variants.count = V > 0). Everything above
 // stays where it is, with these changes:
@@ -100,8 +101,6 @@
 #include <algorithm>
 #include <bit>
 #include <cstdint>
-#include <cmath>
-#include <limits>
 #include <span>
 #include <stdexcept>
 #include <type_traits>
@@ -109,31 +108,13 @@
 
 #include "cube_hdf5.hpp"
 #include "rigid/io/provenance.hpp"
+#include "rigid/statistics/overturn.hpp"
 
 namespace rigid::io {
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kInf = std::numeric_limits<double>::infinity();
-
-std::size_t cell_count(const Cube& c) {
-  return c.records.size() * c.scales_g.size() * static_cast<std::size_t>(std::max(c.rotations, 0));
-}
-
-}  // namespace
-
-std::string edges_problem(const std::vector<double>& e) {
-  if (e.size() < 2) return "pgv_pga_edges_s needs at least 2 edges (has " + std::to_string(e.size()) + ")";
-  for (std::size_t i = 0; i < e.size(); ++i) {
-    if (std::isnan(e[i])) return "pgv_pga_edges_s[" + std::to_string(i) + "] is NaN";
-    if (i > 0 && !(e[i] > e[i - 1]))
-      return "pgv_pga_edges_s must increase strictly (edge " + std::to_string(i) + ")";
-  }
-  return {};
-}
-
-namespace {
+std::size_t cell_count(const Cube& c) { return cell_shape(c).cells(); }
 
 // HDF5 C strings end at the first NUL, so such a string would not read back as written.
 std::string nul_problem(const std::string& s, const std::string& what) {
@@ -149,7 +130,7 @@ bool valid_link_name(const std::string& name) {
 std::string cube_level_problem(const Cube& c) {
   if (c.rotations < 1) return "rotations must be at least 1 (is " + std::to_string(c.rotations) + ")";
   if (!c.pgv_pga_edges_s.empty()) {
-    if (std::string p = edges_problem(c.pgv_pga_edges_s); !p.empty()) return p;
+    if (std::string p = statistics::pgv_pga_edges_problem(c.pgv_pga_edges_s); !p.empty()) return p;
   }
   const std::pair<const std::string*, const char*> texts[] = {{&c.job_text, "job_text"},
                                                               {&c.job_hash, "job_hash"},
@@ -172,8 +153,7 @@ std::string cube_level_problem(const Cube& c) {
 
 std::string object_problem(const Cube& c, const ObjectCube& o) {
   const std::string at = "object '" + o.name + "': ";
-  if (!valid_link_name(o.name))
-    return at + "not a valid group name (empty, \".\" or containing '/')";
+  if (!valid_link_name(o.name)) return at + "not a valid group name (empty, \".\" or containing '/')";
   if (std::string p = nul_problem(o.name, at + "name"); !p.empty()) return p;
   if (std::string p = nul_problem(o.scene, at + "scene"); !p.empty()) return p;
   const std::size_t n = cell_count(c);
@@ -202,8 +182,7 @@ std::string object_problem(const Cube& c, const ObjectCube& o) {
   }
   for (std::size_t i = 0; i < n; ++i) {
     if (o.outcome[i] < 0 || o.outcome[i] > static_cast<std::int8_t>(CellOutcome::failed))
-      return at + "outcome[" + std::to_string(i) + "] = " + std::to_string(o.outcome[i]) +
-             " is not a CellOutcome";
+      return at + "outcome[" + std::to_string(i) + "] = " + std::to_string(o.outcome[i]) + " is not a CellOutcome";
   }
   return {};
 }
@@ -213,8 +192,8 @@ std::string variant_parameter_problem(const VariantParameter& p, int count) {
   // /variants/variant is the axis' own dimension scale
   if (!valid_link_name(p.name) || p.name == "variant")
     return at + "not a valid dataset name (empty, \".\", \"variant\" or containing '/')";
-  for (const auto& [s, what] : {std::pair{&p.name, "name"}, std::pair{&p.units, "units"},
-                                std::pair{&p.description, "description"}}) {
+  for (const auto& [s, what] :
+       {std::pair{&p.name, "name"}, std::pair{&p.units, "units"}, std::pair{&p.description, "description"}}) {
     if (std::string q = nul_problem(*s, at + what); !q.empty()) return q;
   }
   const auto n = static_cast<std::size_t>(count);
@@ -223,8 +202,8 @@ std::string variant_parameter_problem(const VariantParameter& p, int count) {
   if (text && !p.units.empty()) return at + "a text parameter has no units (has '" + p.units + "')";
   const std::size_t has = text ? p.labels.size() : p.values.size();
   if (has != n)
-    return at + "has " + std::to_string(has) + (text ? " labels" : " values") + ", expected " +
-           std::to_string(n) + " (one per variant)";
+    return at + "has " + std::to_string(has) + (text ? " labels" : " values") + ", expected " + std::to_string(n) +
+           " (one per variant)";
   for (std::size_t v = 0; v < p.labels.size(); ++v) {
     if (std::string q = nul_problem(p.labels[v], at + "label " + std::to_string(v)); !q.empty()) return q;
   }
@@ -278,8 +257,8 @@ std::string variant_order_problem(const Cube& c) {
              "' has another name or scene than its variant 0";
   }
   if (c.objects.size() % count != 0)
-    return "object '" + c.objects.back().name + "' has " + std::to_string(c.objects.size() % count) +
-           " of the " + std::to_string(count) + " variants";
+    return "object '" + c.objects.back().name + "' has " + std::to_string(c.objects.size() % count) + " of the " +
+           std::to_string(count) + " variants";
   return unique_names_problem(c.objects, count);
 }
 
@@ -301,39 +280,40 @@ void require_consistent(const Cube& c, const ObjectCube& o) {
 
 const char* outcome_name(int code) {
   switch (static_cast<CellOutcome>(code)) {
-    case CellOutcome::not_run: return "not_run";
-    case CellOutcome::survived: return "survived";
-    case CellOutcome::overturned: return "overturned";
-    case CellOutcome::inferred: return "inferred";
-    case CellOutcome::failed: return "failed";
+    case CellOutcome::not_run:
+      return "not_run";
+    case CellOutcome::survived:
+      return "survived";
+    case CellOutcome::overturned:
+      return "overturned";
+    case CellOutcome::inferred:
+      return "inferred";
+    case CellOutcome::failed:
+      return "failed";
   }
   return "unknown";
 }
 
 const char* failure_reason_name(int code) {
   switch (static_cast<scenario::FailureReason>(code)) {
-    case scenario::FailureReason::none: return "none";
-    case scenario::FailureReason::exception: return "exception";
-    case scenario::FailureReason::non_finite: return "non_finite";
-    case scenario::FailureReason::worker_lost: return "worker_lost";
+    case scenario::FailureReason::none:
+      return "none";
+    case scenario::FailureReason::exception:
+      return "exception";
+    case scenario::FailureReason::non_finite:
+      return "non_finite";
+    case scenario::FailureReason::worker_lost:
+      return "worker_lost";
   }
   return "unknown";
 }
 
-std::vector<double> default_pgv_pga_edges() {
-  return {0.0, 0.06, 0.08, 0.10, 0.12, 0.15, 0.20, 0.25, 0.35, kInf};
-}
-
 std::vector<double> pgv_pga_edges(const Cube& cube) {
-  return cube.pgv_pga_edges_s.empty() ? default_pgv_pga_edges() : cube.pgv_pga_edges_s;
+  return cube.pgv_pga_edges_s.empty() ? statistics::default_pgv_pga_edges() : cube.pgv_pga_edges_s;
 }
 
-int pgv_pga_bin(const std::vector<double>& edges_s, double pgv_pga_s) {
-  if (edges_s.size() < 2 || std::isnan(pgv_pga_s)) return -1;
-  if (pgv_pga_s < edges_s.front() || pgv_pga_s > edges_s.back()) return -1;
-  const auto above = std::upper_bound(edges_s.begin(), edges_s.end(), pgv_pga_s);
-  const int bins = static_cast<int>(edges_s.size()) - 1;
-  return std::min(static_cast<int>(above - edges_s.begin()) - 1, bins - 1);
+statistics::CellShape cell_shape(const Cube& c) {
+  return {c.records.size(), c.scales_g.size(), static_cast<std::size_t>(std::max(c.rotations, 0))};
 }
 
 std::string object_label(const ObjectCube& object) {
@@ -354,71 +334,21 @@ std::string cube_problem(const Cube& cube) {
 
 std::vector<double> overturn_probability(const Cube& cube, const ObjectCube& object) {
   require_consistent(cube, object);
-  const std::size_t R = cube.records.size(), S = cube.scales_g.size();
-  const auto A = static_cast<std::size_t>(cube.rotations);
-  std::vector<double> p(R * S, kNaN);
-  for (std::size_t rs = 0; rs < R * S; ++rs) {
-    int over = 0, known = 0;
-    for (std::size_t a = 0; a < A; ++a) {
-      switch (static_cast<CellOutcome>(object.outcome[rs * A + a])) {
-        case CellOutcome::overturned:
-        case CellOutcome::inferred:  // the stop rule infers overturning above full-failure scales
-          ++over;
-          ++known;
-          break;
-        case CellOutcome::survived:
-          ++known;
-          break;
-        case CellOutcome::not_run:
-        case CellOutcome::failed:  // a failed simulation says nothing about the rock
-          break;
-      }
-    }
-    if (known > 0) p[rs] = static_cast<double>(over) / static_cast<double>(known);
-  }
-  return p;
+  return statistics::overturn_probability(object.outcome, cell_shape(cube));
 }
 
 std::vector<double> mean_overturn_probability(const Cube& cube, const ObjectCube& object) {
-  const std::vector<double> p = overturn_probability(cube, object);
-  const std::size_t R = cube.records.size(), S = cube.scales_g.size();
-  std::vector<double> mean(S, kNaN);
-  for (std::size_t s = 0; s < S; ++s) {
-    double sum = 0.0;
-    int known = 0;
-    for (std::size_t r = 0; r < R; ++r) {
-      if (std::isnan(p[r * S + s])) continue;
-      sum += p[r * S + s];
-      ++known;
-    }
-    if (known > 0) mean[s] = sum / known;
-  }
-  return mean;
+  return statistics::mean_over_records(overturn_probability(cube, object), cell_shape(cube));
 }
 
 FragilitySurface fragility_surface(const Cube& cube, const ObjectCube& object) {
   const std::vector<double> p = overturn_probability(cube, object);
-  FragilitySurface f;
-  f.edges_s = pgv_pga_edges(cube);
-  const std::size_t S = cube.scales_g.size(), B = f.bins();
-  std::vector<double> sum(S * B, 0.0);
-  f.count.assign(S * B, 0);
-  for (std::size_t r = 0; r < cube.records.size(); ++r) {
-    const int b = pgv_pga_bin(f.edges_s, cube.records[r].pgv_pga_s);
-    if (b < 0) continue;
-    for (std::size_t s = 0; s < S; ++s) {
-      const double v = p[r * S + s];
-      if (std::isnan(v)) continue;
-      sum[s * B + static_cast<std::size_t>(b)] += v;
-      ++f.count[s * B + static_cast<std::size_t>(b)];
-    }
-  }
-  f.probability.assign(S * B, kNaN);
-  for (std::size_t i = 0; i < S * B; ++i) {
-    if (f.count[i] > 0) f.probability[i] = sum[i] / f.count[i];
-  }
-  return f;
+  std::vector<double> pgv_pga_s;
+  pgv_pga_s.reserve(cube.records.size());
+  for (const RecordMeta& r : cube.records) pgv_pga_s.push_back(r.pgv_pga_s);
+  return statistics::fragility_surface(p, cube.scales_g.size(), pgv_pga_s, pgv_pga_edges(cube));
 }
+
 // ------------------------------------------------------------------------------------------------
 // The checksum of an object's cell datasets (cube_hdf5.hpp), over their bytes as stored.
 
@@ -517,8 +447,8 @@ std::string axes_sha256(const Cube& c) {
   strings(&RecordMeta::name);  // /axes/record
   append_numbers(bytes, c.scales_g);
   append_numbers(bytes, pgv_pga_edges(c));
-  for (auto field : {&RecordMeta::name, &RecordMeta::source, &RecordMeta::earthquake, &RecordMeta::alignment,
-                     &RecordMeta::inputs})
+  for (auto field :
+       {&RecordMeta::name, &RecordMeta::source, &RecordMeta::earthquake, &RecordMeta::alignment, &RecordMeta::inputs})
     strings(field);
   for (auto field : {&RecordMeta::start_s, &RecordMeta::end_s, &RecordMeta::gmroti_pga_g, &RecordMeta::gmroti_pgv_cm_s,
                      &RecordMeta::pgv_pga_s, &RecordMeta::listed_pga_g, &RecordMeta::listed_pgv_cm_s})

@@ -23,9 +23,7 @@ std::string hdf5_explanation();
 class H5 {
  public:
   explicit H5(std::string path) : path_(std::move(path)) {}
-  [[noreturn]] void fail(const std::string& what) const {
-    throw InputError(path_, 0, what + hdf5_explanation());
-  }
+  [[noreturn]] void fail(const std::string& what) const { throw InputError(path_, 0, what + hdf5_explanation()); }
   [[noreturn]] void fail_errno(const std::string& what) const {
     throw InputError(path_, 0, what + ": " + std::strerror(errno));
   }
@@ -89,8 +87,5 @@ inline constexpr const char* kAxesChecksumCovers =
 /// SHA-256 (hex) of a cube's axes, records and variant table as write_cube stores them
 /// (kAxesChecksumCovers): what axes_sha256 records at write and read_cube checks.
 std::string axes_sha256(const Cube& cube);
-
-/// Why these PGV/PGA bin edges are unusable (fewer than 2, NaN, not increasing); empty if usable.
-std::string edges_problem(const std::vector<double>& edges_s);
 
 }  // namespace rigid::io

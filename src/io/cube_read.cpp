@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "cube_hdf5.hpp"
+#include "rigid/statistics/fragility_surface.hpp"
 
 namespace rigid::io {
 
@@ -28,8 +29,7 @@ class Reader {
     return h_.check(H5Lexists(file_, path.c_str(), H5P_DEFAULT), "looking for " + path) > 0;
   }
 
-  Hid open_attribute(const std::string& path, const char* name, H5T_class_t cls,
-                     const std::string& what) const {
+  Hid open_attribute(const std::string& path, const char* name, H5T_class_t cls, const std::string& what) const {
     Hid a = h_.own(H5Aopen_by_name(file_, path.c_str(), name, H5P_DEFAULT, H5P_DEFAULT), H5Aclose, what);
     Hid space = h_.own(H5Aget_space(a), H5Sclose, what);
     Hid type = h_.own(H5Aget_type(a), H5Tclose, what);
@@ -123,8 +123,7 @@ class Reader {
     hsize_t n = 1;
     for (hsize_t x : dims) n *= x;
     std::vector<T> v(n);
-    if (n > 0)
-      h_.check(H5Dread(d, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()), "reading dataset " + path);
+    if (n > 0) h_.check(H5Dread(d, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()), "reading dataset " + path);
     return v;
   }
   std::vector<double> doubles(const std::string& path, const std::vector<hsize_t>& dims) const {
@@ -160,9 +159,7 @@ class Reader {
       const ssize_t size =
           h_.check(H5Lget_name_by_idx(g, ".", H5_INDEX_NAME, H5_ITER_INC, i, nullptr, 0, H5P_DEFAULT), what);
       std::string name(static_cast<std::size_t>(size) + 1, '\0');
-      h_.check(
-          H5Lget_name_by_idx(g, ".", H5_INDEX_NAME, H5_ITER_INC, i, name.data(), name.size(), H5P_DEFAULT),
-          what);
+      h_.check(H5Lget_name_by_idx(g, ".", H5_INDEX_NAME, H5_ITER_INC, i, name.data(), name.size(), H5P_DEFAULT), what);
       name.resize(static_cast<std::size_t>(size));
       names.push_back(std::move(name));
     }
@@ -261,8 +258,10 @@ ObjectCube read_object(const H5& h, const Reader& rd, const std::string& g, cons
   if (rd.has_attribute(g, "rocking_radius_m")) o.rocking_radius_m = rd.double_attribute(g, "rocking_radius_m");
   if (rd.has_attribute(g, "weakest_azimuth_deg")) o.weakest_azimuth_deg = rd.double_attribute(g, "weakest_azimuth_deg");
   // bounded: a support polygon of a scanned rock has at most a few thousand corners
-  if (rd.has_attribute(g, "alpha_by_azimuth_rad")) o.alpha_by_azimuth_rad = rd.double_array_attribute(g, "alpha_by_azimuth_rad", 3600);
-  if (rd.has_attribute(g, "support_polygon_m")) o.support_polygon_m = rd.double_array_attribute(g, "support_polygon_m", 1 << 20);
+  if (rd.has_attribute(g, "alpha_by_azimuth_rad"))
+    o.alpha_by_azimuth_rad = rd.double_array_attribute(g, "alpha_by_azimuth_rad", 3600);
+  if (rd.has_attribute(g, "support_polygon_m"))
+    o.support_polygon_m = rd.double_array_attribute(g, "support_polygon_m", 1 << 20);
   return o;
 }
 
@@ -331,15 +330,15 @@ void read_alpha_by_azimuth(const H5& h, const Reader& rd, const std::string& g, 
 /// The per-variant datasets [V] of a group of variants into each variant.
 void read_variant_values(const H5& h, const Reader& rd, const std::string& g, std::vector<ObjectCube>& variants) {
   const hsize_t V = variants.size();
-  for (const auto& [name, field] : {std::pair{"alpha_rad", &ObjectCube::alpha_rad},
-                                    std::pair{"p_rad_s", &ObjectCube::p_rad_s},
-                                    std::pair{"rocking_radius_m", &ObjectCube::rocking_radius_m},
-                                    std::pair{"weakest_azimuth_deg", &ObjectCube::weakest_azimuth_deg}}) {
+  for (const auto& [name, field] :
+       {std::pair{"alpha_rad", &ObjectCube::alpha_rad}, std::pair{"p_rad_s", &ObjectCube::p_rad_s},
+        std::pair{"rocking_radius_m", &ObjectCube::rocking_radius_m},
+        std::pair{"weakest_azimuth_deg", &ObjectCube::weakest_azimuth_deg}}) {
     const std::vector<double> v = rd.doubles(g + "/" + name, {V});
     for (hsize_t k = 0; k < V; ++k) variants[k].*field = v[k];
   }
-  for (const auto& [name, field] : {std::pair{"physics_json", &ObjectCube::physics_json},
-                                    std::pair{"inputs_sha256", &ObjectCube::inputs}}) {
+  for (const auto& [name, field] :
+       {std::pair{"physics_json", &ObjectCube::physics_json}, std::pair{"inputs_sha256", &ObjectCube::inputs}}) {
     const std::vector<std::string> v = rd.strings(g + "/" + name, V);
     for (hsize_t k = 0; k < V; ++k) variants[k].*field = v[k];
   }
@@ -399,8 +398,8 @@ Cube read_contents(const H5& h, hid_t file) {
   if (!rd.has_attribute("/", "schema_version")) h.fail("not a Rigid fragility cube (no schema_version)");
   const auto version = rd.integer_attribute<std::int64_t>("/", "schema_version", H5T_NATIVE_INT64);
   if (version < 1 || version > kCubeSchemaVersion)
-    h.fail("Rigid fragility cube schema_version " + std::to_string(version) +
-           " is not one this Rigid reads (1 to " + std::to_string(kCubeSchemaVersion) + ")");
+    h.fail("Rigid fragility cube schema_version " + std::to_string(version) + " is not one this Rigid reads (1 to " +
+           std::to_string(kCubeSchemaVersion) + ")");
 
   Cube c;
   c.schema_version = static_cast<int>(version);
@@ -413,15 +412,14 @@ Cube read_contents(const H5& h, hid_t file) {
   if (rd.has_attribute("/", "job_inputs_sha256")) c.job_inputs = rd.string_attribute("/", "job_inputs_sha256");
   if (rd.has_attribute("/", "inputs_sha256")) c.inputs_sha256 = rd.string_attribute("/", "inputs_sha256");
 
-  const hsize_t R = rd.length("/axes/record"), S = rd.length("/axes/scale_g"),
-                A = rd.length("/axes/rotation");
+  const hsize_t R = rd.length("/axes/record"), S = rd.length("/axes/scale_g"), A = rd.length("/axes/rotation");
   const hsize_t E = rd.length("/axes/pgv_pga_edges_s");
-  if (A < 1 || A > static_cast<hsize_t>(std::numeric_limits<int>::max()))
-    h.fail("/axes/rotation is empty or too long");
+  if (A < 1 || A > static_cast<hsize_t>(std::numeric_limits<int>::max())) h.fail("/axes/rotation is empty or too long");
   c.rotations = static_cast<int>(A);
   c.scales_g = rd.doubles("/axes/scale_g", {S});
   c.pgv_pga_edges_s = rd.doubles("/axes/pgv_pga_edges_s", {E});
-  if (std::string p = edges_problem(c.pgv_pga_edges_s); !p.empty()) h.fail("/axes/pgv_pga_edges_s: " + p);
+  if (std::string p = statistics::pgv_pga_edges_problem(c.pgv_pga_edges_s); !p.empty())
+    h.fail("/axes/pgv_pga_edges_s: " + p);
 
   const std::vector<std::string> names = rd.strings("/records/name", R);
   const std::vector<std::string> sources = rd.strings("/records/source", R);
@@ -452,7 +450,8 @@ Cube read_contents(const H5& h, hid_t file) {
   number("listed_pga_g", &RecordMeta::listed_pga_g);
   number("listed_pgv_cm_s", &RecordMeta::listed_pgv_cm_s);
 
-  if (version == kCubeSchemaVersionWithVariants || (version >= kCubeSchemaVersionChecksummed && rd.has_link("/variants")))
+  if (version == kCubeSchemaVersionWithVariants ||
+      (version >= kCubeSchemaVersionChecksummed && rd.has_link("/variants")))
     c.variants = read_variant_table(h, rd);
   if (version >= kCubeSchemaVersionChecksummed) verify_axes_checksum(h, rd, c);
   read_objects(h, rd, c);

@@ -69,8 +69,8 @@ double payload_nan() {
 Cube synthetic() {
   Cube c;
   c.records = {
-      {"rec one", "x=a b/one-X.AT2,y=a b/one-Y.AT2", "Duzce, Turkey", 1.5, 21.25, 0.3, 20.0, 0.068, 0.31,
-       21.5, "", "component y zero-padded by 3 samples (0.015 s)"},
+      {"rec one", "x=a b/one-X.AT2,y=a b/one-Y.AT2", "Duzce, Turkey", 1.5, 21.25, 0.3, 20.0, 0.068, 0.31, 21.5, "",
+       "component y zero-padded by 3 samples (0.015 s)"},
       {"rec_two", "two-X.AT2", "", 0.0, kInf, 0.25, 17.0, 0.0693, 0.0, 0.0, "", ""},
       {"rec \"three\"", "three-X.AT2", "Chi-Chi, Taiwan", 2.0, 40.0, 0.1, 49.0, 0.5, 0.1, 49.0, "", ""},
   };
@@ -100,14 +100,8 @@ Cube synthetic() {
        {O::survived, O::overturned},
        {O::overturned, O::overturned},
        {O::inferred, O::inferred}},
-      {{O::not_run, O::not_run},
-       {O::failed, O::survived},
-       {O::failed, O::overturned},
-       {O::failed, O::failed}},
-      {{O::survived, O::not_run},
-       {O::overturned, O::inferred},
-       {O::survived, O::inferred},
-       {O::not_run, O::inferred}},
+      {{O::not_run, O::not_run}, {O::failed, O::survived}, {O::failed, O::overturned}, {O::failed, O::failed}},
+      {{O::survived, O::not_run}, {O::overturned, O::inferred}, {O::survived, O::inferred}, {O::not_run, O::inferred}},
   };
   for (const auto& rec : pattern)
     for (const auto& sc : rec)
@@ -122,7 +116,8 @@ Cube synthetic() {
     a.wall_s.push_back(ran ? 0.01 * static_cast<double>(i + 1) : kNaN);
     a.failure_reason.push_back(o == O::failed ? 2 : 0);
     // text a CSV or HDF5 string must carry intact: commas, quotes, a line break, UTF-8
-    a.failure_message.push_back(o == O::failed ? "cell " + std::to_string(i) + ": \"bad\" state, t = 1.5 s\nΔt → 0" : "");
+    a.failure_message.push_back(o == O::failed ? "cell " + std::to_string(i) + ": \"bad\" state, t = 1.5 s\nΔt → 0"
+                                               : "");
     a.unconverged_steps.push_back(ran ? static_cast<std::int32_t>(i % 3) : -1);
   }
   a.max_tilt_deg[3] = payload_nan();
@@ -132,7 +127,7 @@ Cube synthetic() {
   b.scene = "models/rock_b.toml";
   for (std::size_t i = 0; i < n; i += 2) b.outcome[i] = static_cast<std::int8_t>(O::not_run);
   b.failure_reason[1] = -7;
-  b.failure_message.clear();  // none stored: written as "" per cell
+  b.failure_message.clear();    // none stored: written as "" per cell
   b.unconverged_steps.clear();  // none stored: written as -1 (not recorded) per cell
   c.objects = {a, b};
   return c;
@@ -191,8 +186,7 @@ Cube variant_synthetic() {
   return c;
 }
 
-void expect_same_doubles(const std::vector<double>& a, const std::vector<double>& b,
-                         const std::string& what) {
+void expect_same_doubles(const std::vector<double>& a, const std::vector<double>& b, const std::string& what) {
   ASSERT_EQ(a.size(), b.size()) << what;
   for (std::size_t i = 0; i < a.size(); ++i) EXPECT_EQ(bits(a[i]), bits(b[i])) << what << "[" << i << "]";
 }
@@ -230,11 +224,10 @@ void expect_same(const Cube& a, const Cube& b) {
     EXPECT_EQ(x.earthquake, y.earthquake);
     EXPECT_EQ(x.alignment, y.alignment);
     EXPECT_EQ(x.inputs, y.inputs);
-    expect_same_doubles({x.start_s, x.end_s, x.gmroti_pga_g, x.gmroti_pgv_cm_s, x.pgv_pga_s, x.listed_pga_g,
-                         x.listed_pgv_cm_s},
-                        {y.start_s, y.end_s, y.gmroti_pga_g, y.gmroti_pgv_cm_s, y.pgv_pga_s, y.listed_pga_g,
-                         y.listed_pgv_cm_s},
-                        "record " + x.name);
+    expect_same_doubles(
+        {x.start_s, x.end_s, x.gmroti_pga_g, x.gmroti_pgv_cm_s, x.pgv_pga_s, x.listed_pga_g, x.listed_pgv_cm_s},
+        {y.start_s, y.end_s, y.gmroti_pga_g, y.gmroti_pgv_cm_s, y.pgv_pga_s, y.listed_pga_g, y.listed_pgv_cm_s},
+        "record " + x.name);
   }
   ASSERT_EQ(a.objects.size(), b.objects.size());
   for (std::size_t i = 0; i < a.objects.size(); ++i) {
@@ -341,8 +334,8 @@ T number_attribute(hid_t file, const std::string& object, const char* name, hid_
 void replace_int32_attribute(hid_t file, const std::string& object, const char* name, std::int32_t value) {
   ASSERT_GE(H5Adelete_by_name(file, object.c_str(), name, H5P_DEFAULT), 0) << object << " " << name;
   const hid_t space = H5Screate(H5S_SCALAR);
-  const hid_t a = H5Acreate_by_name(file, object.c_str(), name, H5T_STD_I32LE, space, H5P_DEFAULT, H5P_DEFAULT,
-                                    H5P_DEFAULT);
+  const hid_t a =
+      H5Acreate_by_name(file, object.c_str(), name, H5T_STD_I32LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
   EXPECT_GE(H5Awrite(a, H5T_NATIVE_INT32, &value), 0) << object << " " << name;
   H5Aclose(a);
   H5Sclose(space);
@@ -383,10 +376,10 @@ TEST(CubeDerived, MeanProbabilityPerScaleAveragesKnownRecords) {
   const std::vector<double> m = mean_overturn_probability(c, c.objects[0]);
   ASSERT_EQ(m.size(), 4u);
   // the per-record values of ProbabilityCountsOverturnedAndInferredAndLeavesOutFailed by column
-  EXPECT_EQ(m[0], 0.0);                    // 0, NaN, 0
+  EXPECT_EQ(m[0], 0.0);  // 0, NaN, 0
   EXPECT_EQ(m[1], (0.5 + 0.0 + 1.0) / 3);
   EXPECT_EQ(m[2], (1.0 + 1.0 + 0.5) / 3);
-  EXPECT_EQ(m[3], 1.0);                    // 1, NaN, 1
+  EXPECT_EQ(m[3], 1.0);  // 1, NaN, 1
   Cube bad = c;
   bad.objects[1].wall_s.pop_back();
   EXPECT_THROW(mean_overturn_probability(bad, bad.objects[1]), std::invalid_argument);
@@ -431,22 +424,6 @@ TEST(CubeDerived, FragilityAveragesKnownRecordsPerBin) {
   }
 }
 
-TEST(CubeDerived, BinsAreClosedBelowAndTheLastAlsoAbove) {
-  const std::vector<double> e{0.0, 0.1, 0.2};
-  EXPECT_EQ(pgv_pga_bin(e, 0.0), 0);
-  EXPECT_EQ(pgv_pga_bin(e, 0.05), 0);
-  EXPECT_EQ(pgv_pga_bin(e, 0.1), 1);
-  EXPECT_EQ(pgv_pga_bin(e, 0.2), 1);
-  EXPECT_EQ(pgv_pga_bin(e, 0.2000001), -1);
-  EXPECT_EQ(pgv_pga_bin(e, -0.01), -1);
-  EXPECT_EQ(pgv_pga_bin(e, kNaN), -1);
-  const std::vector<double> d = default_pgv_pga_edges();
-  ASSERT_EQ(d.size(), 10u);                // nine bins, physics.md §11
-  EXPECT_EQ(pgv_pga_bin(d, 0.033309), 0);  // the smallest and largest PGV/PGA of the study's table
-  EXPECT_EQ(pgv_pga_bin(d, 0.50236), 8);
-  EXPECT_EQ(pgv_pga_bin(d, kInf), 8);
-}
-
 TEST(CubeDerived, InconsistentCubesAreRejected) {
   Cube c = synthetic();
   c.objects[1].wall_s.pop_back();
@@ -477,7 +454,7 @@ TEST_F(CubeFile, RoundTripKeepsEveryValueBitForBit) {
   write_cube(p, c);
   const Cube back = read_cube(p);
   expect_same(c, back);
-  EXPECT_EQ(back.pgv_pga_edges_s, default_pgv_pga_edges());  // none given: the defaults were stored
+  EXPECT_EQ(back.pgv_pga_edges_s, statistics::default_pgv_pga_edges());  // none given: the defaults were stored
 
   c.pgv_pga_edges_s = {0.01, 0.1, kInf};
   write_cube(p, c);
@@ -503,8 +480,7 @@ TEST_F(CubeFile, WritesOverAnExistingFileAndLeavesNoTemporary) {
   Cube c = synthetic();
   c.records.pop_back();
   for (ObjectCube& o : c.objects) {
-    for (auto* v : {&o.rotation_deg, &o.failure_time_s, &o.max_tilt_deg, &o.max_slip_m, &o.wall_s})
-      v->resize(16);
+    for (auto* v : {&o.rotation_deg, &o.failure_time_s, &o.max_tilt_deg, &o.max_slip_m, &o.wall_s}) v->resize(16);
     o.outcome.resize(16);
     o.failure_reason.resize(16);
     if (!o.failure_message.empty()) o.failure_message.resize(16);
@@ -535,8 +511,8 @@ TEST_F(CubeFile, AnInvalidCubeLeavesTheOldFileAlone) {
   expect_input_error([&] { write_cube(p, bad); }, p, "outcome has 23 values");
   EXPECT_EQ(slurp(p), before);
   EXPECT_FALSE(fs::exists(p + ".tmp"));
-  expect_input_error([&] { write_cube(path("no/such/dir/cube.h5"), synthetic()); },
-                     path("no/such/dir/cube.h5"), "creating");
+  expect_input_error([&] { write_cube(path("no/such/dir/cube.h5"), synthetic()); }, path("no/such/dir/cube.h5"),
+                     "creating");
 }
 
 TEST_F(CubeFile, TheSameCubeGivesTheSameBytes) {
@@ -626,8 +602,8 @@ TEST_F(CubeFile, DimensionScalesAreAttached) {
     const hid_t record = open(obj + "record"), scale = open(obj + "scale"), rotation = open(obj + "rotation"),
                 bin = open(obj + "pgv_pga_bin");
     for (hid_t s : {record, scale, rotation, bin}) EXPECT_GT(H5DSis_scale(s), 0) << obj;
-    for (const char* ds : {"outcome", "rotation_deg", "failure_time_s", "max_tilt_deg", "max_slip_m",
-                           "wall_s", "failure_reason", "failure_message", "unconverged_steps"})
+    for (const char* ds : {"outcome", "rotation_deg", "failure_time_s", "max_tilt_deg", "max_slip_m", "wall_s",
+                           "failure_reason", "failure_message", "unconverged_steps"})
       expect_scales(obj + ds, {record, scale, rotation});
     expect_scales(obj + "probability", {record, scale});
     expect_scales(obj + "fragility", {scale, bin});
@@ -677,7 +653,9 @@ TEST(CubeVariants, ProblemsOfTheVariantAxisAreCaught) {
   expect_problem(problem_of([](Cube& c) { c.variants.parameters[1].labels.push_back("rigid"); }),
                  "variant parameter 'contact': has 4 labels, expected 3");
   expect_problem(problem_of([](Cube& c) { c.variants.count = 2; }), "has 3 values, expected 2");
-  expect_problem(problem_of([](Cube& c) { c.variants.parameters[0].labels = {"a", "b", "c"}; }),
+  expect_problem(problem_of([](Cube& c) {
+                   c.variants.parameters[0].labels = {"a", "b", "c"};
+                 }),
                  "has both numbers and labels");
   // a duplicate parameter, and names that cannot be HDF5 dataset names
   expect_problem(problem_of([](Cube& c) { c.variants.parameters[2].name = "friction"; }),
@@ -760,10 +738,11 @@ TEST_F(CubeFile, VariantLayoutAsTheSpecificationSaysThroughTheHdf5CApi) {
   const hid_t scale = H5Dopen2(f, (g + "variant").c_str(), H5P_DEFAULT);
   EXPECT_GT(H5DSis_scale(scale), 0);
   EXPECT_EQ(read_dataset<std::int32_t>(f, g + "variant", H5T_NATIVE_INT32), (std::vector<std::int32_t>{0, 1, 2}));
-  for (const char* ds : {"outcome", "rotation_deg", "failure_time_s", "max_tilt_deg", "max_slip_m", "wall_s",
-                         "failure_reason", "failure_message", "unconverged_steps", "probability", "fragility",
-                         "fragility_count", "alpha_rad", "p_rad_s", "rocking_radius_m", "weakest_azimuth_deg", "physics_json",
-                         "inputs_sha256", "support_polygon_m", "alpha_by_azimuth_rad"}) {
+  for (const char* ds : {"outcome",           "rotation_deg",  "failure_time_s",    "max_tilt_deg",
+                         "max_slip_m",        "wall_s",        "failure_reason",    "failure_message",
+                         "unconverged_steps", "probability",   "fragility",         "fragility_count",
+                         "alpha_rad",         "p_rad_s",       "rocking_radius_m",  "weakest_azimuth_deg",
+                         "physics_json",      "inputs_sha256", "support_polygon_m", "alpha_by_azimuth_rad"}) {
     const hid_t d = H5Dopen2(f, (g + ds).c_str(), H5P_DEFAULT);
     ASSERT_GE(d, 0) << ds;
     EXPECT_GT(H5DSis_attached(d, scale, 0), 0) << ds;
@@ -835,10 +814,12 @@ TEST(CubeVariants, CellsTableHasAVariantColumnOnlyWithVariants) {
     return v;
   };
   const std::vector<std::string> p = lines(plain.str()), v = lines(varied.str());
-  EXPECT_EQ(p.front(), "object,record,scale_g,rotation,rotation_deg,outcome,failure_time_s,max_tilt_deg,max_slip_m,"
-                       "failure_reason,failure_message\r");
-  EXPECT_EQ(v.front(), "object,variant,record,scale_g,rotation,rotation_deg,outcome,failure_time_s,max_tilt_deg,"
-                       "max_slip_m,failure_reason,failure_message\r");
+  EXPECT_EQ(p.front(),
+            "object,record,scale_g,rotation,rotation_deg,outcome,failure_time_s,max_tilt_deg,max_slip_m,"
+            "failure_reason,failure_message,unconverged_steps\r");
+  EXPECT_EQ(v.front(),
+            "object,variant,record,scale_g,rotation,rotation_deg,outcome,failure_time_s,max_tilt_deg,"
+            "max_slip_m,failure_reason,failure_message,unconverged_steps\r");
   // rock_b's variant 2 starts after 5 object-variants of 24 cells (messages of rock a hold line
   // breaks, so count rows by their first field instead of by line)
   std::size_t rows_of_rock_b_v2 = 0;
@@ -860,8 +841,8 @@ TEST_F(CubeFile, DamagedVariantCubesAreRejected) {
     ASSERT_GE(H5Ldelete(f, "/objects/rock a/outcome", H5P_DEFAULT), 0);
     const hsize_t dims[4] = {2, 3, 4, 2};
     const hid_t space = H5Screate_simple(4, dims, nullptr);
-    const hid_t d = H5Dcreate2(f, "/objects/rock a/outcome", H5T_STD_I8LE, space, H5P_DEFAULT, H5P_DEFAULT,
-                               H5P_DEFAULT);
+    const hid_t d =
+        H5Dcreate2(f, "/objects/rock a/outcome", H5T_STD_I8LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
     ASSERT_GE(d, 0);
     H5Dclose(d);
     H5Sclose(space);
@@ -949,8 +930,7 @@ TEST_F(CubeFile, AChangedOutcomeFailsTheChecksum) {
   write_cube(p, c);
   const std::int8_t was = c.objects[1].outcome[(1 * 4 + 2) * 2 + 1];
   overwrite_cell(p, "/objects/rock_b/outcome", static_cast<std::int8_t>(was ^ 1));  // one bit
-  expect_input_error([&] { read_cube(p); }, p,
-                     "/objects/rock_b: datasets changed since written (checksum mismatch)");
+  expect_input_error([&] { read_cube(p); }, p, "/objects/rock_b: datasets changed since written (checksum mismatch)");
   EXPECT_EQ(H5Fget_obj_count(H5F_OBJ_ALL, H5F_OBJ_ALL), 0);
 
   overwrite_cell(p, "/objects/rock_b/outcome", was);  // restored: reads again
@@ -1024,8 +1004,7 @@ TEST_F(CubeFile, AKillAtAnyInstantLeavesAValidFile) {
   }
   for (ObjectCube& o : big.objects) {
     const std::size_t n = big.records.size() * 4 * 2;
-    for (auto* v : {&o.rotation_deg, &o.failure_time_s, &o.max_tilt_deg, &o.max_slip_m, &o.wall_s})
-      v->resize(n, 1.0);
+    for (auto* v : {&o.rotation_deg, &o.failure_time_s, &o.max_tilt_deg, &o.max_slip_m, &o.wall_s}) v->resize(n, 1.0);
     o.outcome.resize(n, static_cast<std::int8_t>(O::survived));
     if (!o.failure_message.empty()) o.failure_message.resize(n);
     if (!o.unconverged_steps.empty()) o.unconverged_steps.resize(n, 0);
@@ -1073,8 +1052,7 @@ TEST_F(CubeFile, AKillAtAnyInstantLeavesAValidFile) {
 // RIGID_CUBE_FIXTURE; skipped when that is not set, so plain test runs do not race on one file.
 TEST(CubeFixture, WritesThePythonFixture) {
   const char* p = std::getenv("RIGID_CUBE_FIXTURE");
-  if (p == nullptr || *p == '\0')
-    GTEST_SKIP() << "RIGID_CUBE_FIXTURE not set (ctest sets it for cube_fixture)";
+  if (p == nullptr || *p == '\0') GTEST_SKIP() << "RIGID_CUBE_FIXTURE not set (ctest sets it for cube_fixture)";
   fs::create_directories(fs::path(p).parent_path());
   write_cube(p, synthetic());
   expect_same(synthetic(), read_cube(p));

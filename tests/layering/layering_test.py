@@ -6,22 +6,22 @@ and checks it against the dependencies src/CMakeLists.txt declares (read from it
 calls and the `rigid` executable's link line; docs/architecture.md, "Layout and modules"), today:
 
   core <- geometry <- contact <- dynamics;  core <- motion, rocking;
-  scenario <- dynamics, motion, rocking;  library, analysis <- scenario;  study <- library, analysis;
-  io <- scenario;  job <- io, analysis;
+  scenario <- dynamics, motion, rocking;  library, analysis, statistics <- scenario;
+  study <- library, analysis;  io <- statistics;  job <- io, analysis;
   campaign <- job;  calibration <- core;  repair <- geometry;  scan <- io, repair, analysis;
   app <- campaign, study, calibration, scan
 
 (a module may include its own headers and those of every module below it, transitively), and the
-third-party rules: the engine core (geometry .. scenario, library, analysis, study) includes only Eigen and the standard
-library; only io includes HDF5,
+third-party rules: the engine core (geometry .. scenario, library, analysis, statistics, study,
+calibration) includes only Eigen and the standard library; only io includes HDF5,
 toml++, nettle and assimp; only repair includes CGAL (linked through scan by app and tests/scan
 alone: io and the tests that link it stay free of CGAL's compile); nlohmann-json is io's and above (io/json.hpp); only campaign includes MPI;
 zlib is io's (gzip lab recordings) and campaign's (journal checksums); spdlog is campaign's and app's (campaign/log.hpp); only app includes CLI11; POSIX headers (unistd.h, sys/...)
 only io, scan (its staging folder), campaign and app. The required order (REQUIRED_ABOVE): library
-and analysis above scenario; job above io, scenario and analysis; scan (the scan import) above io
-and repair; campaign above job; app above job, campaign and scan. A quoted include that is not
-"rigid/..." must be a private header of
-the module's own src/<module>/ folder.
+and analysis above scenario; io above statistics; job above io, scenario and analysis; scan (the
+scan import) above io and repair; campaign above job; app above job, campaign and scan. A quoted
+include that is not "rigid/..." must be a private header of the module's own src/<module>/ folder.
+No engine module (ENGINE) depends on a module outside the engine.
 
 usage: layering_test.py SOURCE_DIR    exit 0 clean, 1 with one line per violation.
 """
@@ -45,8 +45,8 @@ def module_graph(root):
 
 
 DIRECT = {}  # module -> its direct dependencies (main() reads them)
-ENGINE = {"core", "geometry", "contact", "dynamics", "motion", "rocking", "scenario", "library", "analysis", "study",
-          "calibration"}
+ENGINE = {"core", "geometry", "contact", "dynamics", "motion", "rocking", "scenario", "library", "analysis",
+          "statistics", "study", "calibration"}
 
 # third-party family -> the modules that may include it
 THIRD_PARTY = {
@@ -67,10 +67,12 @@ THIRD_PARTY = {
 
 # Where modules must sit, whatever CMake declares (module, modules it must be above): the job
 # module (a job and its settings) is above the formats and the engine, below campaign and app; the
-# scan import is above the formats and the repair of scans, below app.
+# scan import is above the formats and the repair of scans, below app; the cube's statistics are
+# below the formats, which store what they compute.
 REQUIRED_ABOVE = {
     "library": {"scenario"},
     "analysis": {"scenario"},
+    "io": {"statistics"},
     "job": {"io", "scenario", "analysis"},
     "scan": {"io", "repair"},
     "campaign": {"job"},
@@ -128,7 +130,8 @@ INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]')
 
 def order_problems():
     """The required order (REQUIRED_ABOVE) against the declared graph: each module reaches the
-    modules it must be above, and none of those reaches it back."""
+    modules it must be above, and none of those reaches it back; and no engine module (ENGINE)
+    reaches a module outside the engine."""
     problems = []
     for module, below in REQUIRED_ABOVE.items():
         if module not in DIRECT:
@@ -139,6 +142,10 @@ def order_problems():
                 problems.append(f"src/CMakeLists.txt: {module} must be above {other}")
             elif other in DIRECT and module in closure(other):
                 problems.append(f"src/CMakeLists.txt: {other} must be below {module}, not above it")
+    # the engine core stands on itself: no engine module depends on io or anything above it
+    for module in sorted(ENGINE & DIRECT.keys()):
+        for other in sorted(closure(module) - ENGINE):
+            problems.append(f"src/CMakeLists.txt: engine module {module} depends on {other}, outside the engine")
     return problems
 
 

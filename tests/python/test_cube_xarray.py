@@ -180,13 +180,14 @@ class TestAnalysisReadyCube:
         with open(csv, "wb") as out:
             out.write(r.stdout)
         # round_trip: pandas' default parser may miss the last bit of a 17-digit number
-        t = pd.read_csv(csv, keep_default_na=False, dtype={"failure_message": str}, float_precision="round_trip",
+        t = pd.read_csv(csv, keep_default_na=False, dtype={"failure_message": str, "unconverged_steps": str},
+                        float_precision="round_trip",
                         na_values={c: [""] for c in ("rotation_deg", "failure_time_s", "max_tilt_deg", "max_slip_m")})
         cells = sum(self.f[f"objects/{n}/outcome"].size for n in self.objects)
         assert len(t) == cells
         assert (list(t.columns) == (["object", "record", "scale_g", "rotation", "rotation_deg", "outcome",
                                            "failure_time_s", "max_tilt_deg", "max_slip_m", "failure_reason",
-                                           "failure_message"]))
+                                           "failure_message", "unconverged_steps"]))
         records = list(self.f["axes/record"].asstr()[()])
         scales = self.f["axes/scale_g"][()]
         for name in self.objects:
@@ -201,6 +202,9 @@ class TestAnalysisReadyCube:
             for var in ("rotation_deg", "failure_time_s", "max_tilt_deg", "max_slip_m"):
                 assert same(rows[var], g[var][()].ravel()), var
             assert list(rows["failure_message"]) == list(g["failure_message"].asstr()[()].ravel())
+            # the contact solver's capped steps; -1 (not recorded) is an empty field
+            steps = g["unconverged_steps"][()].ravel()
+            assert list(rows["unconverged_steps"]) == ["" if v < 0 else str(v) for v in steps]
 
     def test_export_of_a_non_cube_is_one_line_exit_2(self):
         for path in (os.path.join(self.tmp, "missing.h5"), os.path.join(self.repo, "jobs", "ci_small.toml")):

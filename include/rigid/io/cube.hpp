@@ -10,6 +10,8 @@
 #include <vector>
 
 #include "rigid/scenario/case.hpp"
+#include "rigid/statistics/cells.hpp"
+#include "rigid/statistics/fragility_surface.hpp"
 
 namespace rigid::io {
 
@@ -18,18 +20,18 @@ using CellOutcome = scenario::CellOutcome;
 
 /// Per-record metadata stored beside the cube.
 struct RecordMeta {
-  std::string name;          ///< record (set) name, e.g. "stochastic_s1"
-  std::string source;        ///< the set spec the motion was read from
-  std::string earthquake;    ///< from the record list, may be empty
-  double start_s = 0;        ///< time window start (unit: s)
-  double end_s = 0;          ///< time window end (unit: s)
-  double gmroti_pga_g = 0;   ///< GMRotI50 PGA of the windowed record as computed (unit: g)
-  double gmroti_pgv_cm_s = 0;///< GMRotI50 PGV (unit: cm/s)
-  double pgv_pga_s = 0;      ///< PGV/PGA (unit: s)
-  double listed_pga_g = 0;   ///< GMRotI PGA given by the record list, 0 if none (unit: g)
-  double listed_pgv_cm_s = 0;///< GMRotI PGV given by the record list, 0 if none (unit: cm/s)
-  std::string inputs;        ///< SHA-256 of its motion files, sha256sum lines (io/provenance.hpp)
-  std::string alignment;     ///< how its components were aligned, "" when they matched
+  std::string name;            ///< record (set) name, e.g. "stochastic_s1"
+  std::string source;          ///< the set spec the motion was read from
+  std::string earthquake;      ///< from the record list, may be empty
+  double start_s = 0;          ///< time window start (unit: s)
+  double end_s = 0;            ///< time window end (unit: s)
+  double gmroti_pga_g = 0;     ///< GMRotI50 PGA of the windowed record as computed (unit: g)
+  double gmroti_pgv_cm_s = 0;  ///< GMRotI50 PGV (unit: cm/s)
+  double pgv_pga_s = 0;        ///< PGV/PGA (unit: s)
+  double listed_pga_g = 0;     ///< GMRotI PGA given by the record list, 0 if none (unit: g)
+  double listed_pgv_cm_s = 0;  ///< GMRotI PGV given by the record list, 0 if none (unit: cm/s)
+  std::string inputs;          ///< SHA-256 of its motion files, sha256sum lines (io/provenance.hpp)
+  std::string alignment;       ///< how its components were aligned, "" when they matched
 };
 
 /// One parameter of a campaign's variant axis (the job's [sweep] or [[variant]] tables): its
@@ -46,9 +48,9 @@ struct VariantParameter {
 /// parameters' values of that variant. count 0: the job has no variants (the cube's layout is
 /// then schema_version 1, as before the axis existed).
 struct VariantTable {
-  std::string method;     ///< how the values were drawn: "lhs", "grid" or "list"
-  std::uint64_t seed = 0; ///< the sweep's seed, so a draw can be repeated
-  int count = 0;          ///< number of variants V; 0: the job has no variants
+  std::string method;                        ///< how the values were drawn: "lhs", "grid" or "list"
+  std::uint64_t seed = 0;                    ///< the sweep's seed, so a draw can be repeated
+  int count = 0;                             ///< number of variants V; 0: the job has no variants
   std::vector<VariantParameter> parameters;  ///< in job order
 };
 
@@ -56,8 +58,8 @@ struct VariantTable {
 /// Every array has records.size() * scales_g.size() * rotations elements, row-major
 /// [record][scale][rotation].
 struct ObjectCube {
-  std::string name;                     ///< object name (HDF5 group name), the base object's
-  std::string scene;                    ///< scene file as given in the job, the base object's
+  std::string name;   ///< object name (HDF5 group name), the base object's
+  std::string scene;  ///< scene file as given in the job, the base object's
   /// Variant index 0..count-1 (Cube::variants), -1 in a cube without variants. With variants the
   /// fields below all belong to this variant: physics, rocking parameters and cells differ.
   int variant = -1;
@@ -77,12 +79,12 @@ struct ObjectCube {
   double weakest_azimuth_deg = std::numeric_limits<double>::quiet_NaN();
   std::vector<double> alpha_by_azimuth_rad;
   std::vector<double> support_polygon_m;
-  std::vector<std::int8_t> outcome;     ///< CellOutcome values
-  std::vector<double> rotation_deg;     ///< rotation of the horizontals about z (unit: deg)
-  std::vector<double> failure_time_s;   ///< NaN when none (unit: s)
-  std::vector<double> max_tilt_deg;     ///< NaN when not simulated (unit: deg)
-  std::vector<double> max_slip_m;       ///< NaN when not simulated (unit: m)
-  std::vector<double> wall_s;           ///< wall time of the simulation, NaN when none (unit: s)
+  std::vector<std::int8_t> outcome;          ///< CellOutcome values
+  std::vector<double> rotation_deg;          ///< rotation of the horizontals about z (unit: deg)
+  std::vector<double> failure_time_s;        ///< NaN when none (unit: s)
+  std::vector<double> max_tilt_deg;          ///< NaN when not simulated (unit: deg)
+  std::vector<double> max_slip_m;            ///< NaN when not simulated (unit: m)
+  std::vector<double> wall_s;                ///< wall time of the simulation, NaN when none (unit: s)
   std::vector<std::int32_t> failure_reason;  ///< scenario::FailureReason codes
   /// The error's text of each failed cell, "" elsewhere; empty vector: none stored (older cubes)
   std::vector<std::string> failure_message;
@@ -96,8 +98,8 @@ struct ObjectCube {
 /// Everything written to the file.
 struct Cube {
   std::vector<RecordMeta> records;
-  std::vector<double> scales_g;         ///< target GMRotI50 PGA of each scale (unit: g)
-  int rotations = 2;                    ///< rotations per (record, scale)
+  std::vector<double> scales_g;  ///< target GMRotI50 PGA of each scale (unit: g)
+  int rotations = 2;             ///< rotations per (record, scale)
   /// The variant axis; variants.count == 0 when the job has none.
   VariantTable variants;
   /// Without variants one per object, in job order. With variants variants.count per base object,
@@ -105,10 +107,10 @@ struct Cube {
   /// internal object o * count + v is base object o in variant v.
   std::vector<ObjectCube> objects;
   // provenance and settings, stored as root attributes
-  std::string job_text;                 ///< the job file as read
-  std::string job_hash;                 ///< hex SHA-256 of the job settings (job::job_hash; 16 hex digits: an older cube)
-  std::string software_version;         ///< e.g. "0.1.0 (abc1234)"
-  std::string physics_json;             ///< physics and accuracy settings as a JSON object
+  std::string job_text;          ///< the job file as read
+  std::string job_hash;          ///< hex SHA-256 of the job settings (job::job_hash; 16 hex digits: an older cube)
+  std::string software_version;  ///< e.g. "0.1.0 (abc1234)"
+  std::string physics_json;      ///< physics and accuracy settings as a JSON object
   /// SHA-256 of the job's settings (job_settings_text) and its files (job file, record list),
   /// sha256sum lines; the settings line has the path "(settings)"
   std::string job_inputs;
@@ -152,48 +154,36 @@ const char* outcome_name(int code);
 /// "non_finite", "worker_lost"); "unknown" for any other code.
 const char* failure_reason_name(int code);
 
-/// The default PGV/PGA bin edges (unit: s), used when Cube::pgv_pga_edges_s is empty: ten edges,
-/// nine bins, {0, 0.06, 0.08, 0.10, 0.12, 0.15, 0.20, 0.25, 0.35, inf}. Round numbers chosen so
-/// that the study's 154 records (PGV/PGA 0.033-0.50 s, the study's table, ../shared/docs/table3_6_records.tsv) fall 13-24 per
-/// bin: narrow bins where the records are dense (0.06-0.15 s), wide ones in the tails.
-std::vector<double> default_pgv_pga_edges();
-
-/// The edges a cube uses: cube.pgv_pga_edges_s, or default_pgv_pga_edges() when it is empty.
+/// The edges a cube uses: cube.pgv_pga_edges_s, or statistics::default_pgv_pga_edges() when it is
+/// empty.
 std::vector<double> pgv_pga_edges(const Cube& cube);
 
-/// Bin of a PGV/PGA value (unit: s): i such that edges_s[i] <= v < edges_s[i + 1], the last bin
-/// also holding v == edges_s.back(); -1 when v is NaN or outside the edges.
-int pgv_pga_bin(const std::vector<double>& edges_s, double pgv_pga_s);
+/// The shape of each object's cell arrays: records x scales x rotations (0 rotations when the
+/// cube's count is negative).
+statistics::CellShape cell_shape(const Cube& cube);
 
 /// Problems that make a cube unwritable (array sizes, object names, bin edges, outcome codes, the
 /// variant table and the objects' variant order), one message; empty when the cube is
 /// consistent. write_cube and the derived products check this.
 std::string cube_problem(const Cube& cube);
 
-/// Overturning probability of one object per (record, scale), row-major [record][scale]
-/// (records.size() * scales_g.size() values): over the rotations of that (record, scale), the
-/// fraction of known cells that overturned, where overturned and inferred count as overturned,
-/// survived as not, and not_run and failed cells are left out; NaN where no cell is known.
-/// Throws std::invalid_argument when the cube's rotations or edges, or `object`'s arrays, are
-/// inconsistent (the checks of cube_problem).
+// The derived products of one object: the cube's arrays handed to the rules of the statistics
+// module (statistics/overturn.hpp, statistics/fragility_surface.hpp), after the checks of
+// cube_problem. Each throws std::invalid_argument when the cube's rotations or edges, or
+// `object`'s arrays, are inconsistent.
+
+/// statistics::overturn_probability of the object's outcomes: per (record, scale), row-major
+/// [record][scale], overturned / known cells over the rotations, NaN where none is known.
 std::vector<double> overturn_probability(const Cube& cube, const ObjectCube& object);
 
-/// Overturning probability of one object per scale (scales_g.size() values): the mean, in record
-/// order, of overturn_probability over the records whose probability at that scale is known; NaN
-/// where none is (the campaign summary's table). Throws like overturn_probability.
+/// statistics::mean_over_records of overturn_probability: per scale, the mean over the records
+/// whose probability is known (the campaign summary's table).
 std::vector<double> mean_overturn_probability(const Cube& cube, const ObjectCube& object);
 
-/// The binned fragility surface P(overturn | PGA, PGV/PGA) of one object (physics.md §11).
-struct FragilitySurface {
-  std::vector<double> edges_s;        ///< PGV/PGA bin edges used (unit: s); bins() = size - 1
-  std::vector<double> probability;    ///< [scale][bin]: mean probability, NaN for empty bins
-  std::vector<std::int32_t> count;    ///< [scale][bin]: number of records contributing
-  std::size_t bins() const { return edges_s.empty() ? 0 : edges_s.size() - 1; }
-};
+using FragilitySurface = statistics::FragilitySurface;
 
-/// For every scale and PGV/PGA bin (pgv_pga_edges(cube)): the mean, in record order, of
-/// overturn_probability over the records whose RecordMeta::pgv_pga_s falls in the bin and whose
-/// probability at that scale is known. Throws std::invalid_argument like overturn_probability.
+/// statistics::fragility_surface of overturn_probability, binned by each record's
+/// RecordMeta::pgv_pga_s with pgv_pga_edges(cube).
 FragilitySurface fragility_surface(const Cube& cube, const ObjectCube& object);
 
 /// Writes the cube atomically (PATH.tmp then rename) with dimension scales, units and

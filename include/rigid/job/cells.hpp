@@ -2,7 +2,10 @@
 /// The cells of a job: (object, record, scale, rotation), numbered row-major with the object
 /// slowest and the rotation fastest. The task number of a cell, the cell of a task number and
 /// the cell count all come from CellGrid, for the plan, the cube, the journal and the estimate.
+#include <cstddef>
 #include <cstdint>
+
+#include "rigid/statistics/cells.hpp"
 
 namespace rigid::job {
 
@@ -13,8 +16,13 @@ struct Cell {
 
 struct CellGrid {
   int objects = 0, records = 0, scales = 0, rotations = 0;
-  /// Cells of one object: records x scales x rotations.
-  long per_object() const { return long(records) * long(scales) * long(rotations); }
+  /// Cells of one object: records x scales x rotations (statistics::CellShape, the one count the
+  /// cube's arrays use too).
+  long per_object() const {
+    return static_cast<long>(statistics::CellShape{static_cast<std::size_t>(records), static_cast<std::size_t>(scales),
+                                                   static_cast<std::size_t>(rotations)}
+                                 .cells());
+  }
   /// Every cell of the grid, as a double: a job too large to count in a long is still measured.
   double size_estimate() const { return double(objects) * double(records) * double(scales) * double(rotations); }
   long size() const { return long(objects) * per_object(); }

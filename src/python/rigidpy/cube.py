@@ -11,7 +11,10 @@ import numpy as np
 
 from . import checksums as cube_checksums
 from .errors import InputError
-from .outcomes import NOT_RUN, probability_from_outcome
+from .outcomes import NOT_RUN, bins_of_records, fragility_from_probability, probability_from_outcome
+
+
+NOT_RECORDED = -1  # unconverged_steps of a cell not simulated, or of a cube written before the count
 
 
 def _strings(ds):
@@ -22,7 +25,7 @@ class ObjectData:
     """One object of a cube, or one variant of it (a cube with a variant axis: one ObjectData per
     (object, variant), all with the base object's name)."""
 
-    def __init__(self, name, attrs, outcome, probability, fragility, count, variant=None):
+    def __init__(self, name, attrs, outcome, probability, fragility, count, variant=None, unconverged_steps=None):
         self.name = name
         self.attrs = attrs
         self.outcome = outcome          # [R, S, A] int8
@@ -30,6 +33,9 @@ class ObjectData:
         self.fragility = fragility      # [S, B]
         self.count = count              # [S, B]
         self.variant = variant          # None without variants, else 0..V-1
+        # [R, S, A] int32: steps of each cell's run whose contact solve stopped at its sweep cap;
+        # NOT_RECORDED (-1) where not simulated, or for every cell of a cube written before the count
+        self.unconverged_steps = unconverged_steps
 
     @property
     def label(self):
@@ -164,8 +170,14 @@ class Cube:
                 if stored.shape != mine.shape or not np.allclose(stored, mine, rtol=1e-12, atol=0, equal_nan=True):
                     raise InputError(f"{self.path}: /objects/{name}/{key} does not follow from its cells "
                                      f"(the file was altered)")
+        # a diagnostic outside the checksum, read as stored; absent from older cubes: not recorded
+        steps = (np.asarray(read("unconverged_steps"), np.int32) if "unconverged_steps" in g
+                 else np.full(outcome.shape, NOT_RECORDED, np.int32))
+        if steps.shape != outcome.shape:
+            raise InputError(f"{self.path}: /objects/{name}/unconverged_steps of shape {steps.shape}, "
+                             f"its outcome has {outcome.shape}")
         data = ObjectData(name, attrs, outcome, np.asarray(prob, float), np.asarray(frag, float),
-                          np.asarray(cnt, int), variant)
+                          np.asarray(cnt, int), variant, steps)
         if self._wall_times:
             data.wall_s = np.asarray(read("wall_s"), float)
         return data
@@ -202,7 +214,7 @@ class Cube:
         return [o for o in chosen if variant is None or o.variant == variant]
 
     def bin_of_records(self):
-        return np.array([pgv_pga_bin(self.edges, v) for v in self.pgv_pga], dtype=int)
+        return bins_of_records(self.edges, self.pgv_pga)
 
     def incomplete(self, state):
         """Why fits of this cube are provisional (cells not run; `state` of
@@ -218,32 +230,3 @@ class Cube:
             parts.append(f"its campaign stopped before the end ({self.path}.journal is there; run the campaign "
                          f"again to finish it)")
         return f"{self.path}: incomplete cube: " + "; ".join(parts) if parts else None
-
-
-def pgv_pga_bin(edges, v):
-    """Bin i holds edges[i] <= v < edges[i+1]; the last bin also its upper edge; -1 outside."""
-    if not np.isfinite(v) and not (v == math.inf and edges[-1] == math.inf):
-        return -1
-    B = len(edges) - 1
-    for i in range(B):
-        if edges[i] <= v < edges[i + 1] or (i == B - 1 and v == edges[-1]):
-            return i
-    return -1
-
-
-
-def fragility_from_probability(prob, pgv_pga, edges):
-    R, S = prob.shape
-    B = len(edges) - 1
-    total = np.zeros((S, B))
-    count = np.zeros((S, B), dtype=int)
-    for r in range(R):
-        b = pgv_pga_bin(edges, pgv_pga[r])
-        if b < 0:
-            continue
-        ok = np.isfinite(prob[r])
-        total[ok, b] += prob[r, ok]
-        count[ok, b] += 1
-    with np.errstate(invalid="ignore", divide="ignore"):
-        return np.where(count > 0, total / np.maximum(count, 1), np.nan), count
-

@@ -11,9 +11,9 @@ import numpy as np
 
 from . import files as cube_files
 from . import fit as fragility_fit
-from .cube import pgv_pga_bin
 from .fit import THRESHOLD_SOURCE, fit_sigma
 from .map_fit import CONTOUR_LEVELS, FIT_LABEL, contour_pga, fit_probability
+from .outcomes import bins_of_records
 
 DPI = 120
 CONTOUR_STYLE = {1: dict(ls=(0, (1.2, 1.6)), lw=2.0), 50: dict(ls="-", lw=2.2),
@@ -99,7 +99,7 @@ class MapRows:
         edges = np.asarray(edges, float)
         pgv_pga = np.asarray(pgv_pga, float)
         B = len(edges) - 1
-        bins = np.array([pgv_pga_bin(edges, v) for v in pgv_pga], dtype=int)
+        bins = bins_of_records(edges, pgv_pga)
         self.records_in_bin = np.bincount(bins[bins >= 0], minlength=B)
         self.bins = np.flatnonzero(self.records_in_bin)
         if self.bins.size == 0:  # no record in any bin: show every bin (all hatched)

@@ -47,14 +47,14 @@ try:
     import numpy as np
     from . import files as cube_files
     from . import fit as fragility_fit
-    from .cube import Cube, ObjectData, pgv_pga_bin
+    from .cube import Cube, ObjectData
     from .command_line import OneLineParser
     from .errors import InputError
     from .figures import INPUTS, file_stem, plot_diff, plot_map, plot_records, plot_variant_band, safe_name
     from .fit import fit_sigma
     from .map_fit import (CONTOUR_LEVELS, FIT_LABEL, Normalisation, fit_object, map_lognormal,
                           normalisation_for)
-    from .outcomes import outcome_counts as count_outcomes, overturn_fraction
+    from .outcomes import bins_of_records, outcome_counts as count_outcomes, overturn_fraction
 except ImportError as e:  # pragma: no cover
     sys.stderr.write(f"rigid_plot: error: {e}; install python3-numpy python3-h5py python3-matplotlib "
                      f"python3-scipy and run with /usr/bin/python3 (this is {sys.executable})\n")
@@ -231,7 +231,7 @@ class _View:
         self.scales = cube.scales[idx]
 
     def bin_of_records(self):
-        return np.array([pgv_pga_bin(self.edges, v) for v in self.pgv_pga], dtype=int)
+        return bins_of_records(self.edges, self.pgv_pga)
 
 
 def cmd_diff(args):
