@@ -45,9 +45,12 @@ struct Reader {
       const auto s = n.value<std::string>();
       if (!s || s->empty()) throw InputError(path, line_of(n), std::string(info.name) + ": each value must be a non-empty string");
       out.text = *s;
-      contact::ContactMethod model;
-      if (info.key == VariantKey::contact && !contact::parse_contact_method(*s, model)) {
-        throw InputError(path, line_of(n), "contact must be \"rigid\" or \"penalty\", not \"" + *s + "\"");
+      if (info.key == VariantKey::contact) {
+        contact::ContactMethod method;
+        if (!contact::parse_contact_method(*s, method)) {
+          throw InputError(path, line_of(n), "contact must be \"rigid\" or \"penalty\", not \"" + *s + "\"");
+        }
+        out.method = method;
       }
       if (info.key == VariantKey::scene) {
         const fs::path file = (base / *s).lexically_normal();

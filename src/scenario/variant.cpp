@@ -201,9 +201,8 @@ void apply_variant(const VariantSpace& space, int v, Scene& scene) {
   }
   contact::ContactLaw& law = scene.law;
   if (const VariantValue* m = value(VariantKey::contact)) {
-    if (!contact::parse_contact_method(m->text, law.method)) {
-      throw std::invalid_argument("contact must be \"rigid\" or \"penalty\", not \"" + m->text + "\"");
-    }
+    if (!m->method) throw std::invalid_argument("contact variant \"" + m->text + "\" was not parsed");
+    law.method = *m->method;
   }
   for (const auto& [key, field] : {std::pair{VariantKey::friction, &law.friction},
                                    std::pair{VariantKey::restitution, &law.restitution},

@@ -123,7 +123,7 @@ TEST(VariantPhysics, ContactLawParameters) {
   Scene scene = block_on_pedestal(kB, kH, kDepth);
   VariantSpace s;
   s.keys = {VariantKey::friction, VariantKey::restitution, VariantKey::contact};
-  s.variants = {{VariantValue{0.35, ""}, VariantValue{0.2, ""}, VariantValue{0, "penalty"}}};
+  s.variants = {{VariantValue{0.35, ""}, VariantValue{0.2, ""}, VariantValue{0, "penalty", contact::ContactMethod::penalty}}};
   apply_variant(s, 0, scene);
   EXPECT_EQ(scene.law.friction, 0.35);
   EXPECT_EQ(scene.law.restitution, 0.2);

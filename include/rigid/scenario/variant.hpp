@@ -55,6 +55,9 @@ std::optional<std::string> variant_value_problem(const VariantParameterInfo& inf
 struct VariantValue {
   double number = 0;
   std::string text;
+  /// Key `contact`: the method `text` names, parsed once where the value is read (io's job file
+  /// reader, which can name the file and line).
+  std::optional<contact::ContactMethod> method;
 };
 
 /// How a parameter is sampled: a range (uniform, or log-uniform) or a list of values.
