@@ -48,8 +48,7 @@ std::vector<Vec3> contact_vertices(const dynamics::BodyDef& b) {
 
 // Height of the support polygon's boundary at `offset` from the centroid's projection: linear
 // along the hull edge that contains it (the corners' heights differ on an uneven pedestal).
-double support_height(const std::vector<Vec3>& support, const std::vector<int>& hull, const Vec3& c,
-                      const P2& offset) {
+double support_height(const std::vector<Vec3>& support, const std::vector<int>& hull, const Vec3& c, const P2& offset) {
   const P2 x = c.head<2>() + offset;
   double best_distance = std::numeric_limits<double>::infinity(), z = 0;
   for (std::size_t i = 0; i < hull.size(); ++i) {

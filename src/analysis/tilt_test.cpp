@@ -14,7 +14,6 @@ namespace rigid::analysis {
 using namespace scenario;
 namespace {
 
-
 // Decides when a free block has gone: tilt, displacement relative to the ground, or the scene's
 // failure rule, all measured from the settled state.
 class GoneWatch {
@@ -70,7 +69,6 @@ struct RampHold {
 };
 
 }  // namespace
-
 
 TiltTestResult tilt_test(const Scene& settled, double azimuth, const TiltTestSettings& s) {
   TiltTestResult out;

@@ -13,9 +13,9 @@
 #include "commands.hpp"
 #include "rigid/core/error.hpp"
 #include "rigid/io/json.hpp"
+#include "rigid/library/builders.hpp"
 #include "rigid/rocking/housner.hpp"
 #include "rigid/scenario/accuracy.hpp"
-#include "rigid/library/builders.hpp"
 
 namespace rigid::app {
 namespace {
@@ -137,7 +137,7 @@ struct PeerFigures {
   std::string name;
   double wall_at[2] = {0, 0};  ///< median wall of a 15 s run at kFixedAmplitudes (unit: s)
   bool overturned_at[2] = {false, false};
-  long steps = 0;              ///< of the run at 0.29 g
+  long steps = 0;  ///< of the run at 0.29 g
   double dt = 0;
   double simulated = 0;
   Threshold threshold{};
@@ -186,7 +186,8 @@ PeerFigures peer_figures(const std::string& name, const contact::ContactLaw& law
 }
 
 void bench(int repeat, bool json, const std::string& only) {
-  if (!only.empty() && only != "rigid" && only != "penalty") throw InputError("", 0, "--contact must be rigid or penalty");
+  if (!only.empty() && only != "rigid" && only != "penalty")
+    throw InputError("", 0, "--contact must be rigid or penalty");
   // (a) geode
   std::vector<double> geode_wall;
   long geode_steps = 0;
@@ -222,8 +223,7 @@ void bench(int repeat, bool json, const std::string& only) {
   }
   const double alpha = 0.2, h = 0.5, b = h * std::tan(alpha);
   const auto block2d = rocking::RockingBlock::rectangular(b, h);
-  const double housner =
-      rocking::min_overturning_amplitude(block2d, rocking::PulseShape::one_sine, 0.5) / kGravity;
+  const double housner = rocking::min_overturning_amplitude(block2d, rocking::PulseShape::one_sine, 0.5) / kGravity;
   const PeerEngine ode = ode_peer(repeat);
 
   if (json) {
@@ -278,13 +278,15 @@ void bench(int repeat, bool json, const std::string& only) {
   } else {
     std::printf("    ODE (peer): not built (apt-get install libode-dev, then rebuild: build/bin/rigid_ode_peer)\n");
   }
-  std::printf("    walls: medians, whole runs (Rigid ends a run once the block has fallen or rests after the\n"
-              "    motion; the ODE driver only once it has fallen); search run: the bisection's runs to 0.5 %%\n");
+  std::printf(
+      "    walls: medians, whole runs (Rigid ends a run once the block has fallen or rests after the\n"
+      "    motion; the ODE driver only once it has fallen); search run: the bisection's runs to 0.5 %%\n");
   for (const auto& f : peers) {
-    std::printf("    %s: %ld steps in the 0.29 g run (%.2f s simulated); the block as 1,200 triangles: threshold "
-                "%.4f g (%+.1f %% against 12 triangles)\n",
-                f.name.c_str(), f.steps, f.simulated, f.fine_mesh_threshold,
-                100.0 * (f.fine_mesh_threshold / f.threshold.g - 1.0));
+    std::printf(
+        "    %s: %ld steps in the 0.29 g run (%.2f s simulated); the block as 1,200 triangles: threshold "
+        "%.4f g (%+.1f %% against 12 triangles)\n",
+        f.name.c_str(), f.steps, f.simulated, f.fine_mesh_threshold,
+        100.0 * (f.fine_mesh_threshold / f.threshold.g - 1.0));
   }
 }
 
@@ -294,8 +296,11 @@ void register_bench_command(CLI::App& app) {
   auto repeat = std::make_shared<int>(5);
   auto json = std::make_shared<bool>(false);
   auto contact = std::make_shared<std::string>();
-  CLI::App* cmd = app.add_subcommand("bench", "Time the engine on the reference scenes (geode drop, peer rocking scene)");
-  cmd->add_option("--repeat", *repeat, "Runs per figure; medians are reported")->capture_default_str()->check(CLI::Range(1, 1000));
+  CLI::App* cmd =
+      app.add_subcommand("bench", "Time the engine on the reference scenes (geode drop, peer rocking scene)");
+  cmd->add_option("--repeat", *repeat, "Runs per figure; medians are reported")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1000));
   cmd->add_flag("--json", *json, "Print one JSON object");
   cmd->add_option("--contact", *contact, "Only this contact model on the peer scene: rigid or penalty (default: both)");
   cmd->callback([repeat, json, contact] { bench(*repeat, *json, *contact); });

@@ -44,11 +44,15 @@ void register_campaign_command(CLI::App& app) {
       "run again to resume) or an internal error");
   cmd->add_option("job", o->job, "Job file (TOML)")->required();
   cmd->add_option("--out", o->output, "Output HDF5 cube; overrides the job's output path");
-  cmd->add_flag("--force", o->force, "Start anew over an output written by a different job file, other settings or inputs (scenes, meshes, "
-                  "states, records) that changed since");
+  cmd->add_flag("--force", o->force,
+                "Start anew over an output written by a different job file, other settings or inputs (scenes, meshes, "
+                "states, records) that changed since");
   cmd->add_flag("--dry-run", o->dry_run, "Print the task count and an estimate of the work, run nothing");
-  cmd->add_flag("--noop", o->noop, "Tasks return at once without simulating; with several ranks only the workers take tasks, so this measures the master's dispatch rate");
-  cmd->add_option("--model", command->model, "dem3d or rocking2d: overrides the job's [run] model (recorded in the cube)");
+  cmd->add_flag("--noop", o->noop,
+                "Tasks return at once without simulating; with several ranks only the workers take tasks, so this "
+                "measures the master's dispatch rate");
+  cmd->add_option("--model", command->model,
+                  "dem3d or rocking2d: overrides the job's [run] model (recorded in the cube)");
   cmd->add_option("--contact", command->contact,
                   "Contact model rigid or penalty for every object: overrides the scenes' [physics] contact and "
                   "the job's [run] contact (recorded in the cube)");
@@ -59,18 +63,23 @@ void register_campaign_command(CLI::App& app) {
                   "auto (simulate only the effects the scenes and motions call for) or all (every effect, the "
                   "reference): overrides the job's [run] effects (recorded in the cube)")
       ->check(CLI::IsMember({"auto", "all"}));
-  cmd->add_option("--progress", command->progress, "auto (a live line when a person watches: stderr is a terminal, or mpirun's is; log lines otherwise), bar, log or none")
+  cmd->add_option("--progress", command->progress,
+                  "auto (a live line when a person watches: stderr is a terminal, or mpirun's is; log lines "
+                  "otherwise), bar, log or none")
       ->capture_default_str()
       ->check(CLI::IsMember({"auto", "bar", "log", "none"}));
-  cmd->add_option("--log-interval", command->log_interval, "Seconds between progress log lines when not on a terminal (s)")
+  cmd->add_option("--log-interval", command->log_interval,
+                  "Seconds between progress log lines when not on a terminal (s)")
       ->capture_default_str()
       ->check(positive_number());
   cmd->add_flag("--verbose", o->verbose,
                 "Also log the dispatch internals at the end (messages sent to worker ranks, checkpoint counts and "
                 "costs, the longest hold of the dispatch lock)");
-  cmd->add_option("--checkpoint-interval", o->checkpoint_interval, "Seconds between checkpoints (a journal fsync; the whole cube is rewritten only when that takes at most 5 % of the time); default: the job's (30 s)")
+  cmd->add_option("--checkpoint-interval", o->checkpoint_interval_s,
+                  "Seconds between checkpoints (a journal fsync; the whole cube is rewritten only when that takes at "
+                  "most 5 % of the time); default: the job's (30 s)")
       ->check(positive_number());
-  cmd->add_option("--grace", o->grace, "Seconds in-flight tasks get after a stop signal; default: the job's (30 s)")
+  cmd->add_option("--grace", o->grace_s, "Seconds in-flight tasks get after a stop signal; default: the job's (30 s)")
       ->check(non_negative_number());
   cmd->callback([command] {
     campaign::CampaignOptions& options = command->options;

@@ -44,9 +44,10 @@ void print_progress(const campaign::ProgressReport& p, bool bar) {
                  p.settled, p.total, 100 * share, rate, format_duration(eta).c_str(), p.failures);
     if (p.final) std::fprintf(stderr, "\n");
   } else {
-    campaign::log_status("{}/{} cells settled ({:.0f} %; inferred cells count as settled), {} left to simulate, "
-                         "{:.2f} sim/s, ETA {}, failures {}",
-                         p.settled, p.total, 100 * share, p.remaining, rate, format_duration(eta), p.failures);
+    campaign::log_status(
+        "{}/{} cells settled ({:.0f} %; inferred cells count as settled), {} left to simulate, "
+        "{:.2f} sim/s, ETA {}, failures {}",
+        p.settled, p.total, 100 * share, p.remaining, rate, format_duration(eta), p.failures);
   }
   std::fflush(stderr);
 }
@@ -103,7 +104,7 @@ void print_summary(const io::Cube& cube, const std::string& output) {
   std::printf("\nfragility cube: %s\n", std::filesystem::absolute(output).string().c_str());
   std::printf("overturning probability (mean over records; inferred cells count as overturned)\n");
   const std::size_t S = cube.scales_g.size();
-  const std::size_t stride = (S + 15) / 16;  // at most 16 columns: every k-th scale of a long list
+  const std::size_t stride = (S + 15) / 16;             // at most 16 columns: every k-th scale of a long list
   const int width = cube.variants.count > 0 ? 24 : 20;  // room for "rock [v12]"
   std::printf("%-*s", width, "object \\ scale (g)");
   for (std::size_t s = 0; s < S; s += stride) std::printf("%7.3g", cube.scales_g[s]);
@@ -111,7 +112,7 @@ void print_summary(const io::Cube& cube, const std::string& output) {
   if (stride > 1) std::printf("(every %zu-th scale of %zu)\n", stride, S);
   for (const auto& oc : cube.objects) {
     const std::vector<double> mean = io::mean_overturn_probability(cube, oc);  // per scale
-    std::printf("%-*s", width, io::object_label(oc).c_str());  // "rock [v3]" with variants
+    std::printf("%-*s", width, io::object_label(oc).c_str());                  // "rock [v3]" with variants
     for (std::size_t s = 0; s < S; s += stride) {
       if (std::isnan(mean[s])) {
         std::printf("%7s", "-");
@@ -130,12 +131,14 @@ void print_failures(const io::Cube& cube) {
   for (const auto& oc : cube.objects) {
     for (std::size_t i = 0; i < oc.outcome.size(); ++i) {
       if (static_cast<scenario::CellOutcome>(oc.outcome[i]) != scenario::CellOutcome::failed) continue;
-      if (++failed == 1) std::printf("\nfailed cells (not counted above; the cube keeps failure_reason and failure_message):\n");
+      if (++failed == 1)
+        std::printf("\nfailed cells (not counted above; the cube keeps failure_reason and failure_message):\n");
       if (failed > kListed) continue;
       const std::size_t r = i / (S * A), s = (i / A) % S, a = i % A;
       const std::string message = i < oc.failure_message.size() ? oc.failure_message[i] : std::string();
       std::printf("  %s, record %s, %.3g g, rotation %zu: %s\n", io::object_label(oc).c_str(),
-                  cube.records[r].name.c_str(), cube.scales_g[s], a, message.empty() ? "(no message)" : message.c_str());
+                  cube.records[r].name.c_str(), cube.scales_g[s], a,
+                  message.empty() ? "(no message)" : message.c_str());
     }
   }
   if (failed > kListed) std::printf("  ... and %d more (rigid export cells lists every cell)\n", failed - kListed);
@@ -154,17 +157,19 @@ void print_unconverged(const io::Cube& cube) {
   }
   if (cells == 0) return;
   // one line: the count is a diagnostic of the rigid contact solver (docs/cube.md), not an error
-  std::printf("\ncontact solver: %ld steps in %ld of %ld cells stopped at its %d-sweep cap "
-              "(per cell: unconverged_steps, docs/cube.md)\n",
-              steps, cells, simulated, dynamics::StepSettings{}.solver_max_sweeps);
+  std::printf(
+      "\ncontact solver: %ld steps in %ld of %ld cells stopped at its %d-sweep cap "
+      "(per cell: unconverged_steps, docs/cube.md)\n",
+      steps, cells, simulated, dynamics::StepSettings{}.solver_max_sweeps);
 }
 
 int print_dry_run(const job::Job& job, const scenario::Model& model) {
   const job::CostEstimate e = job::estimate_cost(job, model);
   const long cells = e.cells;
   if (job.variants.count() > 0) {
-    std::printf("job %s: %d objects x %d variants x %zu records x %zu scales x %d rotations = %ld tasks\n", job.path.c_str(),
-                job.base_objects(), job.variant_count(), job.records.size(), job.scales_g.size(), job.rotations, cells);
+    std::printf("job %s: %d objects x %d variants x %zu records x %zu scales x %d rotations = %ld tasks\n",
+                job.path.c_str(), job.base_objects(), job.variant_count(), job.records.size(), job.scales_g.size(),
+                job.rotations, cells);
   } else {
     std::printf("job %s: %zu objects x %zu records x %zu scales x %d rotations = %ld tasks\n", job.path.c_str(),
                 job.objects.size(), job.records.size(), job.scales_g.size(), job.rotations, cells);

@@ -4,9 +4,9 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "rigid/analysis/rocking_parameters.hpp"
 #include "rigid/io/json.hpp"
 #include "rigid/io/scene_file.hpp"
-#include "rigid/analysis/rocking_parameters.hpp"
 #include "scene_input.hpp"
 
 namespace rigid::app {
@@ -88,8 +88,8 @@ void inspect(const std::string& path, bool json) {
       if (!b.fixed && rocking) j["rocking"] = rocking_json(*rocking);
       std::printf("%s\n", io::json_line(j).c_str());
     } else {
-      std::printf("%s (%s): %zu vertices, %zu faces\n", b.name.c_str(), b.fixed ? "fixed" : "free",
-                  s.vertices.size(), s.faces.size());
+      std::printf("%s (%s): %zu vertices, %zu faces\n", b.name.c_str(), b.fixed ? "fixed" : "free", s.vertices.size(),
+                  s.faces.size());
       std::printf("  volume %.6g m^3, mass %.6g kg\n", s.volume, s.mass);
       std::printf("  centroid (%.6g, %.6g, %.6g) m\n", centroid.x(), centroid.y(), centroid.z());
       if (offset) {
@@ -102,20 +102,21 @@ void inspect(const std::string& path, bool json) {
       } else {
         double contact_volume = 0;
         for (const auto& piece : b.pieces) contact_volume += piece.volume;
-        std::printf("  compound body: contact shape of %zu convex pieces, %.6g m^3 (the mesh: %.6g m^3); the outline "
-                    "above is their hull\n",
-                    b.pieces.size(), contact_volume, s.volume);
+        std::printf(
+            "  compound body: contact shape of %zu convex pieces, %.6g m^3 (the mesh: %.6g m^3); the outline "
+            "above is their hull\n",
+            b.pieces.size(), contact_volume, s.volume);
         std::printf("  checks passed: mesh closed, consistently oriented, manifold, finite; every piece convex\n");
       }
     }
   }
   if (!json) {
     if (rocking) print_rocking(*rocking);
-    std::printf("contact model: %s (restitution %.3g, rigid model only)\n", contact::contact_method_name(scene.law.method),
-                scene.law.restitution);
+    std::printf("contact model: %s (restitution %.3g, rigid model only)\n",
+                contact::contact_method_name(scene.law.method), scene.law.restitution);
     std::printf("contact: K_N %.3g N/m^1.5, K_S %.3g N/m, friction %.3g, damping %.3g s/m; density %.6g kg/m^3\n",
-                scene.law.normal_stiffness, scene.law.shear_stiffness, scene.law.friction,
-                scene.law.damping, scene.density);
+                scene.law.normal_stiffness, scene.law.shear_stiffness, scene.law.friction, scene.law.damping,
+                scene.density);
   }
 }
 
@@ -124,7 +125,8 @@ void inspect(const std::string& path, bool json) {
 void register_inspect_command(CLI::App& app) {
   auto path = std::make_shared<std::string>();
   auto json = std::make_shared<bool>(false);
-  CLI::App* cmd = app.add_subcommand("inspect", "Check a scene's meshes and print each block's volume, mass, centroid and principal moments");
+  CLI::App* cmd = app.add_subcommand(
+      "inspect", "Check a scene's meshes and print each block's volume, mass, centroid and principal moments");
   cmd->add_option("scene", *path, "Scene: a Rigid model file or a .toml scene file")->required();
   cmd->add_flag("--json", *json, "One JSON object per block, one per line");
   cmd->callback([path, json] { inspect(*path, *json); });

@@ -12,12 +12,12 @@
 #include <sstream>
 
 #include "commands.hpp"
+#include "rigid/analysis/tilt_test.hpp"
 #include "rigid/core/error.hpp"
 #include "rigid/io/scene_file.hpp"
 #include "rigid/io/scene_writer.hpp"
 #include "rigid/io/stl.hpp"
 #include "rigid/library/rock_library.hpp"
-#include "rigid/analysis/tilt_test.hpp"
 
 namespace rigid::app {
 namespace {

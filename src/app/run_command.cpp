@@ -10,7 +10,6 @@
 #include "commands.hpp"
 #include "motion_input.hpp"
 #include "number_checks.hpp"
-#include "scene_input.hpp"
 #include "rigid/core/error.hpp"
 #include "rigid/io/json.hpp"
 #include "rigid/io/scene_file.hpp"
@@ -21,6 +20,7 @@
 #include "rigid/scenario/case.hpp"
 #include "rigid/scenario/rocking2d.hpp"
 #include "rigid/scenario/scene.hpp"
+#include "scene_input.hpp"
 
 namespace rigid::app {
 namespace {
@@ -45,9 +45,12 @@ struct RunOptions {
 
 const char* end_name(scenario::ActiveEffects::End end) {
   switch (end) {
-    case scenario::ActiveEffects::End::failure: return "failure";
-    case scenario::ActiveEffects::End::at_rest: return "at_rest";
-    default: return "full_duration";
+    case scenario::ActiveEffects::End::failure:
+      return "failure";
+    case scenario::ActiveEffects::End::at_rest:
+      return "at_rest";
+    default:
+      return "full_duration";
   }
 }
 
@@ -128,8 +131,10 @@ void run(const RunOptions& o) {
     for (const auto& [option, given] : {std::pair{"--dt", o.dt != 0}, std::pair{"--safety", o.safety != 0},
                                         std::pair{"--integrator", !o.integrator.empty()}}) {
       if (given)
-        throw InputError("", 0, std::string(option) + " does not apply to --model rocking2d (its integrator takes "
-                                "fixed steps of its own); leave it out or use --model dem3d");
+        throw InputError("", 0,
+                         std::string(option) +
+                             " does not apply to --model rocking2d (its integrator takes "
+                             "fixed steps of its own); leave it out or use --model dem3d");
     }
     scenario::rocking_block_of(scene);  // the scene is checked before any motion is read
   }
@@ -195,7 +200,8 @@ void register_run_command(CLI::App& app) {
   cmd->add_option("--state", o->state, "Start from this saved equilibrium state (TOML from `rigid settle`)");
   cmd->add_option("--duration", o->duration, "Simulated time (s); default: motion duration + --free-time")
       ->check(positive_number());
-  cmd->add_option("--free-time", o->free_time, "Time left to rock after the motion ends, when --duration is not given (s)")
+  cmd->add_option("--free-time", o->free_time,
+                  "Time left to rock after the motion ends, when --duration is not given (s)")
       ->capture_default_str()
       ->check(non_negative_number());
   cmd->add_option("--dt", o->dt,
@@ -205,7 +211,8 @@ void register_run_command(CLI::App& app) {
   cmd->add_option("--safety", o->safety,
                   "Safety factor on the critical time step for the automatic step (default: the preset's; at most 1)")
       ->check(positive_number());
-  cmd->add_option("--integrator", o->integrator, "Rotation integrator: splitting (symplectic) or rk4 (default: the preset's)");
+  cmd->add_option("--integrator", o->integrator,
+                  "Rotation integrator: splitting (symplectic) or rk4 (default: the preset's)");
   cmd->add_option("--accuracy", o->accuracy,
                   "Accuracy preset: fast, balanced or reference (time-step safety, integrator, at-rest stop; "
                   "docs/accuracy.md); --dt, --safety and --integrator override its values")
@@ -233,10 +240,13 @@ void register_run_command(CLI::App& app) {
   auto settle_scene = std::make_shared<std::string>();
   auto settle_out = std::make_shared<std::string>();
   auto settle_time = std::make_shared<double>(20.0);
-  CLI::App* settle = app.add_subcommand("settle", "Settle a scene with no ground motion (local damping) and save its equilibrium state");
+  CLI::App* settle = app.add_subcommand(
+      "settle", "Settle a scene with no ground motion (local damping) and save its equilibrium state");
   settle->add_option("scene", *settle_scene, "Scene: a Rigid model file or a .toml scene file")->required();
   settle->add_option("--out", *settle_out, "State file to write (TOML)")->required();
-  settle->add_option("--max-time", *settle_time, "Longest settling time (s)")->capture_default_str()->check(positive_number());
+  settle->add_option("--max-time", *settle_time, "Longest settling time (s)")
+      ->capture_default_str()
+      ->check(positive_number());
   settle->callback([settle_scene, settle_out, settle_time] {
     const scenario::Scene scene = load_scene_with_warnings(*settle_scene);
     const scenario::Settled settled = scenario::settle(scene, dynamics::StepSettings{}, *settle_time);

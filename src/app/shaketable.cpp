@@ -10,19 +10,20 @@
 #include <set>
 
 #include "commands.hpp"
+#include "rigid/analysis/rocking_parameters.hpp"
 #include "rigid/core/error.hpp"
 #include "rigid/core/types.hpp"
 #include "rigid/io/json.hpp"
 #include "rigid/io/lab_recording.hpp"
 #include "rigid/io/scene_file.hpp"
-#include "rigid/analysis/rocking_parameters.hpp"
 
 namespace rigid::app::shaketable {
 
 std::string Physics::label() const {
   char text[160];
   if (contact == "penalty") {
-    std::snprintf(text, sizeof text, "%s penalty K=%.3g D=%g mu=%.2f", base.c_str(), normal_stiffness, damping, friction);
+    std::snprintf(text, sizeof text, "%s penalty K=%.3g D=%g mu=%.2f", base.c_str(), normal_stiffness, damping,
+                  friction);
   } else {
     std::snprintf(text, sizeof text, "%s rigid e=%.2f mu=%.2f", base.c_str(), restitution, friction);
   }
@@ -60,7 +61,8 @@ std::vector<std::pair<std::string, std::variant<double, std::string>>> Physics::
 namespace {
 
 double member_number(const io::Json& j, const char* key, const std::string& file) {
-  if (!j.contains(key) || !j[key].is_number()) throw InputError(file, 0, std::string("ensemble member without a number '") + key + "'");
+  if (!j.contains(key) || !j[key].is_number())
+    throw InputError(file, 0, std::string("ensemble member without a number '") + key + "'");
   return j[key].get<double>();
 }
 
@@ -92,8 +94,8 @@ Ensemble load_ensemble(const std::string& scene_file) {
   std::map<std::string, int> variant_of;
   std::set<double> rotation_set;
   for (const auto& m : j["ensemble"]) {
-    if (!m.contains("scene") || !m["scene"].is_string() || !m.contains("rotations_deg") || !m["rotations_deg"].is_array() ||
-        m["rotations_deg"].empty())
+    if (!m.contains("scene") || !m["scene"].is_string() || !m.contains("rotations_deg") ||
+        !m["rotations_deg"].is_array() || m["rotations_deg"].empty())
       throw InputError(json, 0, "ensemble member without scene or rotations_deg");
     Ensemble::Member member;
     member.weight = member_number(m, "weight", json);
@@ -193,7 +195,8 @@ io::DesignJob::Record strong_motion_window(const motion::GroundMotion& m, const 
 std::vector<io::DesignJob::Record> strong_motion_windows(const io::LabTestList& tests, const LabInput& lab,
                                                          double level_g) {
   std::vector<io::DesignJob::Record> out;
-  for (const io::LabTest& t : tests.tests) out.push_back(strong_motion_window(io::read_lab_motion(t.file, lab.format), t.file, level_g));
+  for (const io::LabTest& t : tests.tests)
+    out.push_back(strong_motion_window(io::read_lab_motion(t.file, lab.format), t.file, level_g));
   return out;
 }
 
@@ -230,9 +233,10 @@ calibration::OutcomeGrid outcome_grid(const io::Cube& cube, const std::vector<do
       for (int h = 0; h < headings; ++h) {
         const auto code = static_cast<io::CellOutcome>(o.outcome[std::size_t(t * headings + h)]);
         if (code != io::CellOutcome::survived && code != io::CellOutcome::overturned) {
-          throw InputError("", 0, "cell (" + io::object_label(o) + ", record " + cube.records[std::size_t(t)].name +
-                                      ", heading " + std::to_string(headings_deg[std::size_t(h)]) + ") was not simulated (" +
-                                      io::outcome_name(std::int8_t(code)) + ")");
+          throw InputError("", 0,
+                           "cell (" + io::object_label(o) + ", record " + cube.records[std::size_t(t)].name +
+                               ", heading " + std::to_string(headings_deg[std::size_t(h)]) + ") was not simulated (" +
+                               io::outcome_name(std::int8_t(code)) + ")");
         }
         grid.set(v, t, h, code == io::CellOutcome::overturned);
       }

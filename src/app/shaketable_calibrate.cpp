@@ -65,8 +65,10 @@ struct Calibration {
 };
 
 void check(const CalibrateOptions& o) {
-  if (o.flatten_mm.empty() || o.contact_models.empty() || o.restitution.empty() || o.damping.empty() || o.friction.empty())
-    throw InputError("", 0, "--flatten-mm, --contact-models, --restitution, --damping and --friction need at least one value each");
+  if (o.flatten_mm.empty() || o.contact_models.empty() || o.restitution.empty() || o.damping.empty() ||
+      o.friction.empty())
+    throw InputError(
+        "", 0, "--flatten-mm, --contact-models, --restitution, --damping and --friction need at least one value each");
   for (double d : o.damping) {
     if (!(d >= 0 && d <= 100)) throw InputError("", 0, "--damping: values must be in [0, 100] s/m");
   }
@@ -78,7 +80,8 @@ void check(const CalibrateOptions& o) {
     char* end = nullptr;
     const double k = std::strtod(c.c_str(), &end);
     if (end == c.c_str() || *end || !(k >= 1e5 && k <= 1e13))
-      throw InputError("", 0, "--contact-models: '" + c + "' is neither rigid nor a penalty stiffness K_N in [1e5, 1e13] N/m^1.5");
+      throw InputError(
+          "", 0, "--contact-models: '" + c + "' is neither rigid nor a penalty stiffness K_N in [1e5, 1e13] N/m^1.5");
   }
   for (double e : o.restitution) {
     if (!(e >= 0 && e <= 1)) throw InputError("", 0, "--restitution: values must be in [0, 1]");
@@ -123,15 +126,19 @@ std::map<double, std::string> import_bases(const CalibrateOptions& o, const fs::
 
 // The base model's scene with the contact model's law, settled with it: a soft contact sinks and
 // leans the rock, and a run that started from the rigid pose would begin with that motion.
-std::string settled_scene(const std::string& scan, const std::string& base_scene, const Physics& p, const fs::path& work) {
+std::string settled_scene(const std::string& scan, const std::string& base_scene, const Physics& p,
+                          const fs::path& work) {
   char name[96];
-  if (p.contact == "penalty") std::snprintf(name, sizeof name, "%s_k%.3g", p.base.c_str(), p.normal_stiffness);
-  else std::snprintf(name, sizeof name, "%s_rigid", p.base.c_str());
+  if (p.contact == "penalty")
+    std::snprintf(name, sizeof name, "%s_k%.3g", p.base.c_str(), p.normal_stiffness);
+  else
+    std::snprintf(name, sizeof name, "%s_rigid", p.base.c_str());
   fs::create_directories(work / name);
   const std::string scene = fs::absolute(work / name / (std::string(name) + ".toml")).lexically_normal().string();
   io::SceneChanges changes;
   changes.physics = p.contact_law_table();
-  changes.comment = std::string(name) + ": " + base_scene + " with the " + p.contact + " contact model, settled with it";
+  changes.comment =
+      std::string(name) + ": " + base_scene + " with the " + p.contact + " contact model, settled with it";
   io::write_derived_scene(base_scene, scene, changes);
   const scenario::Scene placed = io::load_scene(scene);
   const scenario::Scene settled = scenario::equilibrate(placed, dynamics::StepSettings{});
@@ -139,7 +146,8 @@ std::string settled_scene(const std::string& scan, const std::string& base_scene
     const double turned = scenario::tilt(placed.bodies[i].orientation, settled.bodies[i].orientation) * 180 / kPi;
     if (!placed.bodies[i].fixed && turned > 5.0) {
       char text[200];
-      std::snprintf(text, sizeof text, "does not stand on its base: settling with %s contact tilted it %.1f deg", p.contact.c_str(), turned);
+      std::snprintf(text, sizeof text, "does not stand on its base: settling with %s contact tilted it %.1f deg",
+                    p.contact.c_str(), turned);
       throw InputError(scan, 0, text);
     }
   }
@@ -196,9 +204,10 @@ campaign::CampaignOptions prepare(Calibration& c, const CalibrateOptions& o) {
   }
   const long overturned = std::count(c.observed.begin(), c.observed.end(), 1);
   if (overturned == 0 || overturned == long(c.observed.size())) {
-    throw InputError(o.tests, 0, std::string("all ") + std::to_string(c.observed.size()) + " tests " +
-                                     (overturned ? "overturned" : "stood") +
-                                     ": outcomes that are all equal cannot identify the rock's parameters");
+    throw InputError(o.tests, 0,
+                     std::string("all ") + std::to_string(c.observed.size()) + " tests " +
+                         (overturned ? "overturned" : "stood") +
+                         ": outcomes that are all equal cannot identify the rock's parameters");
   }
   c.lab = shaketable::lab_input(o.lab_format);
   c.work = fs::path(o.out + ".calibration");
@@ -215,10 +224,11 @@ campaign::CampaignOptions prepare(Calibration& c, const CalibrateOptions& o) {
   c.windows = shaketable::strong_motion_windows(c.tests, c.lab, level_g);
   double kept = 0;
   for (const auto& w : c.windows) kept += w.end - w.start;
-  std::printf("shaketable: %zu tests of %zu recorded motions (%ld overturned); strong-motion windows (|a| > %.3f g, "
-              "%s of the weakest base's static toppling acceleration%s) keep %.0f s of motion\n",
-              c.tests.tests.size(), groups.size(), overturned, level_g, rigid_only ? "half" : "a tenth",
-              rigid_only ? "" : ": penalty contact rocks the rock below it", kept);
+  std::printf(
+      "shaketable: %zu tests of %zu recorded motions (%ld overturned); strong-motion windows (|a| > %.3f g, "
+      "%s of the weakest base's static toppling acceleration%s) keep %.0f s of motion\n",
+      c.tests.tests.size(), groups.size(), overturned, level_g, rigid_only ? "half" : "a tenth",
+      rigid_only ? "" : ": penalty contact rocks the rock below it", kept);
   for (const auto& [mm, scene] : bases) {
     for (const std::string& model : o.contact_models) {
       Physics p;
@@ -298,28 +308,40 @@ void add_shaketable_calibrate(CLI::App& parent) {
       "friction to observed shake-table outcomes by maximum likelihood (run under mpirun like a campaign; run again to "
       "resume). Writes OUT.toml (the calibrated scene), OUT.calibration.json and the work folder OUT.calibration/");
   cmd->add_option("scan", o->scan, "The rock's scan (OBJ, PLY, STL), as for rigid model import")->required();
-  cmd->add_option("--tests", o->tests, "Test list CSV: test_no,record,pgv_over_pga_s,pga_g,file,overturned (file relative to the CSV)")
+  cmd->add_option("--tests", o->tests,
+                  "Test list CSV: test_no,record,pgv_over_pga_s,pga_g,file,overturned (file relative to the CSV)")
       ->required();
   cmd->add_option("--out", o->out, "Output DIR/NAME")->required();
   cmd->add_option("--scale", o->scale, "Scan units to metres, as for rigid model import")->capture_default_str();
   cmd->add_option("--up", o->up, "The scan's up axis, as for rigid model import")->capture_default_str();
-  cmd->add_option("--flatten-mm", o->flatten_mm, "Base models to compare: the rough base cut flat this far above its lowest point (mm)")
+  cmd->add_option("--flatten-mm", o->flatten_mm,
+                  "Base models to compare: the rough base cut flat this far above its lowest point (mm)")
       ->delimiter(',')
       ->capture_default_str();
   cmd->add_option("--contact-models", o->contact_models,
                   "Contact laws to compare: rigid, or a penalty stiffness K_N (N/m^1.5, e.g. 1e7)")
       ->delimiter(',')
       ->capture_default_str();
-  cmd->add_option("--restitution", o->restitution, "Restitution values of the rigid contact (the first in stage 1, all in stage 2)")->delimiter(',')->capture_default_str();
-  cmd->add_option("--damping", o->damping, "Damping D of the penalty contact (s/m; the first in stage 1, all in stage 2)")->delimiter(',')->capture_default_str();
-  cmd->add_option("--friction", o->friction, "Friction coefficients (the first in stage 1, all in stage 2)")->delimiter(',')->capture_default_str();
+  cmd->add_option("--restitution", o->restitution,
+                  "Restitution values of the rigid contact (the first in stage 1, all in stage 2)")
+      ->delimiter(',')
+      ->capture_default_str();
+  cmd->add_option("--damping", o->damping,
+                  "Damping D of the penalty contact (s/m; the first in stage 1, all in stage 2)")
+      ->delimiter(',')
+      ->capture_default_str();
+  cmd->add_option("--friction", o->friction, "Friction coefficients (the first in stage 1, all in stage 2)")
+      ->delimiter(',')
+      ->capture_default_str();
   cmd->add_option("--headings", o->headings, "Stage 1: headings on a full ring")->capture_default_str();
   cmd->add_option("--keep", o->keep, "Stage 2: the best stage-1 variants refined")->capture_default_str();
-  cmd->add_option("--refine-step", o->refine_step_deg, "Stage 2: heading step around each kept variant's best heading (deg)")
+  cmd->add_option("--refine-step", o->refine_step_deg,
+                  "Stage 2: heading step around each kept variant's best heading (deg)")
       ->capture_default_str();
   cmd->add_option("--tilt-deg", o->tilt_deg, "Overturned = tilted beyond this angle (deg)")->capture_default_str();
   cmd->add_option("--max-vertices", o->max_vertices, "Vertex budget of the rock's hull")->capture_default_str();
-  cmd->add_option("--pedestal-margin", o->pedestal_margin, "The table: overhang of the box under the rock (m)")->capture_default_str();
+  cmd->add_option("--pedestal-margin", o->pedestal_margin, "The table: overhang of the box under the rock (m)")
+      ->capture_default_str();
   shaketable::add_recording_options(*cmd, o->lab_format, o->progress);
   cmd->callback([o] {
     Calibration c;

@@ -45,7 +45,7 @@ struct Design {
   io::LabTestList tests;
   shaketable::LabInput lab;
   shaketable::Ensemble ensemble;
-  std::vector<Measured> measured;     ///< per test
+  std::vector<Measured> measured;        ///< per test
   std::vector<std::size_t> motion_test;  ///< per motion (cube record): the test whose recording it is
   fs::path work;
   std::string cube;
@@ -111,7 +111,8 @@ campaign::CampaignOptions prepare(Design& d, const FragilityOptions& o) {
   for (std::size_t t : d.motion_test) {
     const io::LabTest& test = d.tests.tests[t];
     const double level = level_g * d.measured[t].pga_g / max_pga;
-    job.records.push_back(shaketable::strong_motion_window(io::read_lab_motion(test.file, d.lab.format), test.file, level));
+    job.records.push_back(
+        shaketable::strong_motion_window(io::read_lab_motion(test.file, d.lab.format), test.file, level));
   }
   job.scale_list_g = grid;
   // the grid reaches well past the rock's strength: above three scales that overturned it under
@@ -130,10 +131,11 @@ campaign::CampaignOptions prepare(Design& d, const FragilityOptions& o) {
   io::write_design_job(options.job, job);
   attach_progress(options, o.progress, 10);
   const std::size_t scales = grid.size();
-  std::printf("shaketable fragility: %zu motions (the median test of each by PGA) x %zu PGAs (%.3g-%.3g g) x %zu ensemble "
-              "scenes x %zu headings = at most %zu runs (3 scales overturned at every heading end a motion)\n",
-              d.motion_test.size(), scales, grid.front(), grid.back(), e.scenes.size(), e.rotations_deg.size(),
-              d.motion_test.size() * scales * e.scenes.size() * e.rotations_deg.size());
+  std::printf(
+      "shaketable fragility: %zu motions (the median test of each by PGA) x %zu PGAs (%.3g-%.3g g) x %zu ensemble "
+      "scenes x %zu headings = at most %zu runs (3 scales overturned at every heading end a motion)\n",
+      d.motion_test.size(), scales, grid.front(), grid.back(), e.scenes.size(), e.rotations_deg.size(),
+      d.motion_test.size() * scales * e.scenes.size() * e.rotations_deg.size());
   std::fflush(stdout);
   return options;
 }
@@ -179,13 +181,17 @@ void add_shaketable_fragility(CLI::App& parent) {
   CLI::App* cmd = parent.add_subcommand(
       "fragility",
       "The rock's fragility two ways: the lab's (probit fit per PGV/PGA bin on the tests' measured PGA and outcomes) "
-      "beside the (calibrated) scene's, from the same recorded motions scaled over a PGA grid; writes OUT.fragility.csv "
+      "beside the (calibrated) scene's, from the same recorded motions scaled over a PGA grid; writes "
+      "OUT.fragility.csv "
       "(medians with intervals) and the figure OUT.fragility.png");
   cmd->add_option("scene", o->scene, "The scene, e.g. OUT.toml of rigid shaketable calibrate")->required();
   cmd->add_option("--tests", o->tests, "Test list CSV with an overturned column; file relative to the CSV")->required();
-  cmd->add_option("--out", o->out, "Prefix of the outputs: OUT.fragility.csv, OUT.fragility.FORMAT, OUT.fragility.work/")
+  cmd->add_option("--out", o->out,
+                  "Prefix of the outputs: OUT.fragility.csv, OUT.fragility.FORMAT, OUT.fragility.work/")
       ->required();
-  cmd->add_option("--min-pga", o->min_pga_g, "Bottom of the PGA grid (g)")->capture_default_str()->check(CLI::Range(0.001, 5.0));
+  cmd->add_option("--min-pga", o->min_pga_g, "Bottom of the PGA grid (g)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.001, 5.0));
   cmd->add_option("--max-pga", o->max_pga_g, "Top of the PGA grid (g); default 1.25 x the largest measured PGA")
       ->check(CLI::Range(0.01, 20.0));
   cmd->add_option("--per-decade", o->per_decade, "PGAs per decade of the geometric grid")
@@ -222,13 +228,20 @@ void add_shaketable_fragility(CLI::App& parent) {
     const std::string script = find_plot_helper("shaketable_fragility.py");
     if (script.empty()) throw InputError("", 0, "cannot find shaketable_fragility.py (src/python beside the build)");
     std::vector<std::string> args{d.cube,
-                                  "--lab", (d.work / "lab_tests.csv").string(),
-                                  "--motions", (d.work / "motions.csv").string(),
-                                  "--members", (d.work / "members.json").string(),
-                                  "--out", o->out,
-                                  "--bootstrap", std::to_string(o->bootstrap),
-                                  "--seed", std::to_string(o->seed),
-                                  "--format", o->format};
+                                  "--lab",
+                                  (d.work / "lab_tests.csv").string(),
+                                  "--motions",
+                                  (d.work / "motions.csv").string(),
+                                  "--members",
+                                  (d.work / "members.json").string(),
+                                  "--out",
+                                  o->out,
+                                  "--bootstrap",
+                                  std::to_string(o->bootstrap),
+                                  "--seed",
+                                  std::to_string(o->seed),
+                                  "--format",
+                                  o->format};
     if (!o->bins.empty()) {
       args.push_back("--bins");
       args.push_back(o->bins);

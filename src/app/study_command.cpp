@@ -47,27 +47,28 @@ void write_csv(const std::string& path, const study::StudyResult& result) {
   std::FILE* f = std::fopen(path.c_str(), "w");
   if (!f) throw InputError(path, 0, "cannot write");
   std::fprintf(f,
-               "scene,motion,axis,setting,contact,preset,safety,integrator,stiffness_n_m,rest_speed,rest_time_s,effects,dt_s,steps,"
+               "scene,motion,axis,setting,contact,preset,safety,integrator,stiffness_n_m,rest_speed,rest_time_s,"
+               "effects,dt_s,steps,"
                "simulated_s,overturned,failure_time_s,max_tilt_deg,outcome_match,failure_time_err_s,max_tilt_err_deg,"
                "traj_tilt_rms_deg,traj_pos_rms_mm,traj_rel_err,error,energy_err,model_quantity,model_value,"
                "model_ref_err,oracle,oracle_value,oracle_err,wall_s,search_wall_s,repeats\n");
   for (const study::Row& r : result.rows) {
     const study::Case& c = result.cases[r.case_index];
     const study::Setting& s = result.settings[r.setting_index];
-    std::fprintf(f, "%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%ld,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%d\n",
-                 c.scene.c_str(), c.motion.c_str(), s.axis.c_str(), s.label.c_str(), contact::contact_method_name(s.contact),
-                 s.preset.c_str(),
-                 csv_number(s.safety).c_str(), scenario::integrator_name(s.rotation), csv_number(s.stiffness).c_str(),
-                 csv_number(s.rest_speed).c_str(), csv_number(s.rest_time).c_str(), s.select_effects ? "auto" : "all",
-                 csv_number(r.dt).c_str(), r.steps,
-                 csv_number(r.simulated).c_str(), csv_bool(r.overturned).c_str(), csv_number(r.failure_time).c_str(),
-                 csv_number(r.max_tilt_deg).c_str(), csv_bool(r.outcome_match).c_str(),
-                 csv_number(r.failure_time_err).c_str(), csv_number(r.max_tilt_err).c_str(),
-                 csv_number(r.tilt_rms).c_str(), csv_number(r.pos_rms).c_str(), csv_number(r.traj_rel).c_str(),
-                 csv_number(r.error).c_str(), csv_number(r.energy_err).c_str(), c.model_quantity.c_str(),
-                 csv_number(r.model_value).c_str(), csv_number(r.model_ref_err).c_str(), study::oracle_name(c.oracle),
-                 csv_number(c.oracle_value).c_str(), csv_number(r.oracle_err).c_str(), csv_number(r.wall).c_str(),
-                 csv_number(r.search_wall).c_str(), r.repeats);
+    std::fprintf(
+        f,
+        "%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%ld,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%d\n",
+        c.scene.c_str(), c.motion.c_str(), s.axis.c_str(), s.label.c_str(), contact::contact_method_name(s.contact),
+        s.preset.c_str(), csv_number(s.safety).c_str(), scenario::integrator_name(s.rotation),
+        csv_number(s.stiffness).c_str(), csv_number(s.rest_speed).c_str(), csv_number(s.rest_time).c_str(),
+        s.select_effects ? "auto" : "all", csv_number(r.dt).c_str(), r.steps, csv_number(r.simulated).c_str(),
+        csv_bool(r.overturned).c_str(), csv_number(r.failure_time).c_str(), csv_number(r.max_tilt_deg).c_str(),
+        csv_bool(r.outcome_match).c_str(), csv_number(r.failure_time_err).c_str(), csv_number(r.max_tilt_err).c_str(),
+        csv_number(r.tilt_rms).c_str(), csv_number(r.pos_rms).c_str(), csv_number(r.traj_rel).c_str(),
+        csv_number(r.error).c_str(), csv_number(r.energy_err).c_str(), c.model_quantity.c_str(),
+        csv_number(r.model_value).c_str(), csv_number(r.model_ref_err).c_str(), study::oracle_name(c.oracle),
+        csv_number(c.oracle_value).c_str(), csv_number(r.oracle_err).c_str(), csv_number(r.wall).c_str(),
+        csv_number(r.search_wall).c_str(), r.repeats);
   }
   std::fclose(f);
 }
@@ -90,7 +91,8 @@ std::string find_record(const std::string& given) {
     const fs::path p = root / "waveforms" / "demo" / "stochastic_s1-X.AT2";
     if (fs::is_regular_file(p, ec)) return p.lexically_normal().string();
   }
-  throw InputError("", 0, "no record found (../shared/waveforms/peer/NORTHR/Rinaldi228.AT2 or waveforms/demo); give --record");
+  throw InputError("", 0,
+                   "no record found (../shared/waveforms/peer/NORTHR/Rinaldi228.AT2 or waveforms/demo); give --record");
 }
 
 void study_accuracy(const StudyCommandOptions& options) {
@@ -112,7 +114,8 @@ void study_accuracy(const StudyCommandOptions& options) {
   const study::StudyResult result =
       study::run_study(o, std::move(cases), std::move(settings), [](const study::Case& c, double seconds) {
         std::printf("  %-8s %-12s %5.1f s  (oracle %s = %s)\n", c.scene.c_str(), c.motion.c_str(), seconds,
-                    c.oracle == study::Oracle::none ? "-" : study::oracle_name(c.oracle), csv_number(c.oracle_value).c_str());
+                    c.oracle == study::Oracle::none ? "-" : study::oracle_name(c.oracle),
+                    csv_number(c.oracle_value).c_str());
         std::fflush(stdout);
       });
 
@@ -156,7 +159,8 @@ void register_study_command(CLI::App& app) {
   acc->add_option("--record", o->record,
                   "AT2 file of the real record (x component); default ../shared/waveforms/peer/NORTHR/Rinaldi228.AT2 "
                   "beside the checkout, else waveforms/demo/stochastic_s1-X.AT2");
-  acc->add_option("--only", o->sweep.only, "Only these scenes (slender, stocky, stack, sliding, geode) or SCENE/MOTION cases");
+  acc->add_option("--only", o->sweep.only,
+                  "Only these scenes (slender, stocky, stack, sliding, geode) or SCENE/MOTION cases");
   acc->add_flag("!--no-plot", o->plot, "Write the CSV only");
   acc->add_option("--contact", o->sweep.contact,
                   "Contact models on the model axis: rigid (at safety 0.05-0.8), penalty (stiffness 1e8-1e10) or both")

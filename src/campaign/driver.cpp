@@ -51,8 +51,8 @@ bool load_everywhere(const CampaignOptions& options, int rank, Loaded& loaded) {
 Plan make_plan(const job::Job& job, const scenario::Model& model) {
   std::vector<double> cost;  // longest records first within a scale
   for (int r = 0; r < model.records(); ++r) cost.push_back(model.simulated_time(r));
-  return Plan(int(job.objects.size()), int(job.records.size()), int(job.scales_g.size()), job.rotations,
-              job.stop_after, std::move(cost));
+  return Plan(int(job.objects.size()), int(job.records.size()), int(job.scales_g.size()), job.rotations, job.stop_after,
+              std::move(cost));
 }
 
 // Rank 0: lock the output, digest the inputs, restore what is on disk, then run as master.

@@ -38,7 +38,7 @@ class Master {
       : context_(context),
         options_(options),
         ranks_(ranks),
-        grace_s_(options.grace >= 0 ? options.grace : context.job.grace),
+        grace_s_(options.grace_s >= 0 ? options.grace_s : context.job.grace_s),
         pool_(plan, stopping_),
         checkpointer_(
             context.job.output, context.inputs.combined, plan,
@@ -154,7 +154,8 @@ MasterResult Master::run() {
       },
       ranks_);
   auto last_sync = Clock::now();
-  const double interval_s = options_.checkpoint_interval > 0 ? options_.checkpoint_interval : job.checkpoint_interval;
+  const double interval_s =
+      options_.checkpoint_interval_s > 0 ? options_.checkpoint_interval_s : job.checkpoint_interval_s;
   for (;;) {
     const bool busy = dispatcher.receive();
     notice_stop_signal();

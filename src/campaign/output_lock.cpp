@@ -22,16 +22,19 @@ OutputLock::OutputLock(const std::string& output, const std::string& other_outpu
       const int err = errno;
       ::close(fd);
       if (err == EWOULDBLOCK) {
-        throw InputError(path_, 0, "another campaign is running on " + output + " (it holds this lock); wait for it to end" +
-                                       (other_output.empty() ? "" : " or use another " + other_output));
+        throw InputError(path_, 0,
+                         "another campaign is running on " + output + " (it holds this lock); wait for it to end" +
+                             (other_output.empty() ? "" : " or use another " + other_output));
       }
       if (err == EINTR) continue;
-      log_warning(path_ + ": no file locking here (" + std::strerror(err) + "); nothing stops a second campaign on this output");
+      log_warning(path_ + ": no file locking here (" + std::strerror(err) +
+                  "); nothing stops a second campaign on this output");
       return;
     }
     // the holder before us may have removed the file after we opened it: then our lock is on a
     // file nobody else can see, and the path must be locked again
-    struct stat on_disk {}, ours {};
+    struct stat on_disk {
+    }, ours{};
     if (::stat(path_.c_str(), &on_disk) == 0 && ::fstat(fd, &ours) == 0 && on_disk.st_ino == ours.st_ino &&
         on_disk.st_dev == ours.st_dev) {
       fd_ = fd;

@@ -5,7 +5,6 @@
 #include <numeric>
 #include <stdexcept>
 
-
 namespace rigid::campaign {
 namespace {
 
@@ -19,10 +18,8 @@ bool is_result(std::int8_t o) {
 
 }  // namespace
 
-Plan::Plan(int objects, int records, int scales, int rotations, int stop_after,
-           std::vector<double> record_cost)
-    : objects_(objects), records_(records), scales_(scales), rotations_(rotations),
-      stop_after_(stop_after) {
+Plan::Plan(int objects, int records, int scales, int rotations, int stop_after, std::vector<double> record_cost)
+    : objects_(objects), records_(records), scales_(scales), rotations_(rotations), stop_after_(stop_after) {
   if (objects < 1 || records < 1 || scales < 1 || rotations < 1 || stop_after < 0) {
     throw std::invalid_argument("campaign plan needs at least one object, record, scale and rotation");
   }

@@ -7,12 +7,12 @@
 #include <filesystem>
 #include <optional>
 
+#include "rigid/analysis/rocking_parameters.hpp"
 #include "rigid/campaign/journal.hpp"
 #include "rigid/campaign/log.hpp"
 #include "rigid/core/error.hpp"
 #include "rigid/io/at2.hpp"
 #include "rigid/io/json.hpp"
-#include "rigid/analysis/rocking_parameters.hpp"
 
 #if !defined(RIGID_VERSION) || !defined(RIGID_GIT_HASH)
 #error "the build defines RIGID_VERSION and RIGID_GIT_HASH"
@@ -46,20 +46,23 @@ std::optional<InputError> input_change(const io::Cube& old, const job::Job& job,
       return changed_file(job.path, remedies);
     }
     return InputError(job.output, 0,
-                      "was written by a different job file, accuracy preset or command-line settings (hash " + old.job_hash + ", now " + job.hash +
-                          ")" + other_job_remedy(remedies));
+                      "was written by a different job file, accuracy preset or command-line settings (hash " +
+                          old.job_hash + ", now " + job.hash + ")" + other_job_remedy(remedies));
   }
   if (old.inputs_sha256.empty()) {
-    log_warning(job.output + " was written before input hashes were stored; its scenes and records are not checked for changes");
+    log_warning(job.output +
+                " was written before input hashes were stored; its scenes and records are not checked for changes");
     return std::nullopt;
   }
   if (old.inputs_sha256 == now.combined) return std::nullopt;
   if (auto f = io::first_changed(old_job, now.job)) return changed_file(*f, remedies);
   for (std::size_t o = 0; o < now.objects.size() && o < old.objects.size(); ++o) {
-    if (auto f = io::first_changed(io::parse_digests(old.objects[o].inputs), now.objects[o])) return changed_file(*f, remedies);
+    if (auto f = io::first_changed(io::parse_digests(old.objects[o].inputs), now.objects[o]))
+      return changed_file(*f, remedies);
   }
   for (std::size_t r = 0; r < now.records.size() && r < old.records.size(); ++r) {
-    if (auto f = io::first_changed(io::parse_digests(old.records[r].inputs), now.records[r])) return changed_file(*f, remedies);
+    if (auto f = io::first_changed(io::parse_digests(old.records[r].inputs), now.records[r]))
+      return changed_file(*f, remedies);
   }
   return changed_file(job.output, remedies);  // a digest that matches no file list: the cube itself was altered
 }
@@ -71,7 +74,8 @@ Inputs collect_inputs(const job::Job& job, const scenario::Model& model) {
   in.job.push_back({"(settings)", io::sha256_hex(job::job_settings_text(job))});
   in.job.push_back({job.path, io::file_sha256(job.path)});
   if (!job.record_list.empty()) in.job.push_back({job.record_list, io::file_sha256(job.record_list)});
-  for (std::size_t o = 0; o < job.objects.size(); ++o) in.objects.push_back(io::digest_files(model.scene(int(o)).files));
+  for (std::size_t o = 0; o < job.objects.size(); ++o)
+    in.objects.push_back(io::digest_files(model.scene(int(o)).files));
   for (const auto& r : job.records) {
     // a lab recording is one file (its format is in the job text, hashed above)
     if (r.lab) {
@@ -138,7 +142,8 @@ io::Cube make_cube(const CampaignContext& context, const Plan& plan) {
   cube.software_version = RIGID_VERSION " (" RIGID_GIT_HASH ")";
   cube.seed = job.seed;
   cube.variants = variant_table(job.variants);
-  cube.physics_json = io::physics_json(model.scene(0), job.run, job.accuracy, job.stop_after);  // object 0's, as before per-object records
+  cube.physics_json = io::physics_json(model.scene(0), job.run, job.accuracy,
+                                       job.stop_after);  // object 0's, as before per-object records
   const std::vector<std::int8_t> outcome = plan.final_outcomes();
   const std::vector<bool> kept = plan.kept_mask();
   const long per_object = job.cells().per_object();
@@ -172,7 +177,8 @@ io::Cube make_cube(const CampaignContext& context, const Plan& plan) {
       oc.wall_s.push_back(kept[t] ? r.wall_s : nan);
       oc.failure_reason.push_back(kept[t] ? r.reason : 0);
       oc.failure_message.push_back(kept[t] ? message_of(r) : std::string());
-      oc.unconverged_steps.push_back(kept[t] ? std::int32_t(std::clamp<std::int64_t>(r.unconverged_steps, -1, INT32_MAX)) : -1);
+      oc.unconverged_steps.push_back(
+          kept[t] ? std::int32_t(std::clamp<std::int64_t>(r.unconverged_steps, -1, INT32_MAX)) : -1);
     }
     cube.objects.push_back(std::move(oc));
   }
@@ -197,7 +203,9 @@ std::vector<TaskResult> restore(const std::string& output, const job::Job& job, 
       const auto& oc = old.objects[o];
       for (long i = 0; i < per_object && i < long(oc.outcome.size()); ++i) {
         const auto v = static_cast<scenario::CellOutcome>(oc.outcome[i]);
-        if (v != scenario::CellOutcome::survived && v != scenario::CellOutcome::overturned && v != scenario::CellOutcome::failed) continue;
+        if (v != scenario::CellOutcome::survived && v != scenario::CellOutcome::overturned &&
+            v != scenario::CellOutcome::failed)
+          continue;
         TaskResult r;
         r.task = long(o) * per_object + i;
         r.outcome = oc.outcome[i];

@@ -13,8 +13,8 @@
 #include <toml++/toml.h>
 
 #include "input_file.hpp"
-#include "lab_toml.hpp"
 #include "job_variants.hpp"
+#include "lab_toml.hpp"
 #include "rigid/core/error.hpp"
 #include "rigid/io/at2.hpp"
 #include "rigid/io/record_list.hpp"
@@ -97,7 +97,8 @@ std::vector<double> parse_scales(const toml::node& n, const std::string& src, st
     double a, b, c;
     char extra;
     if (std::sscanf(s->c_str(), "%lf:%lf:%lf%c", &a, &b, &c, &extra) != 3) {
-      throw InputError(src, line_of(n), "scales must be a list, \"start:stop:step\" (g) or \"as recorded\", not \"" + *s + "\"");
+      throw InputError(src, line_of(n),
+                       "scales must be a list, \"start:stop:step\" (g) or \"as recorded\", not \"" + *s + "\"");
     }
     if (!(c > 0) || !(b >= a) || !std::isfinite(a) || !std::isfinite(b)) {
       throw InputError(src, line_of(n), "scales \"start:stop:step\" needs step > 0 and stop >= start");
@@ -133,7 +134,8 @@ std::string record_name(const std::string& spec) {
 std::string lab_record_name(const std::string& file) {
   std::string name = fs::path(file).filename().string();
   for (const std::string ext : {".gz", ".txt", ".csv", ".tsv", ".dat"}) {
-    if (name.size() > ext.size() && name.compare(name.size() - ext.size(), ext.size(), ext) == 0) name.resize(name.size() - ext.size());
+    if (name.size() > ext.size() && name.compare(name.size() - ext.size(), ext.size(), ext) == 0)
+      name.resize(name.size() - ext.size());
   }
   return name;
 }
@@ -169,13 +171,14 @@ std::string object_name_problem(const std::string& name) {
   return "";
 }
 
-
 void read_campaign(const toml::table& root, JobFile& job) {
   const std::string& path = job.path;
   const auto* c = root["campaign"].as_table();
   if (!c) throw InputError(path, 0, "missing [campaign] table");
   job.campaign_line = line_of(*c);
-  reject_unknown(*c, {"name", "seed", "output", "scales", "rotations", "rotation_angles_deg", "stop_after", "checkpoint_interval_s", "grace_s"},
+  reject_unknown(*c,
+                 {"name", "seed", "output", "scales", "rotations", "rotation_angles_deg", "stop_after",
+                  "checkpoint_interval_s", "grace_s"},
                  path, "[campaign]");
   optional_string(*c, "name", "", path);  // a label for people: type-checked, not used
   if (const auto* o = c->get("output")) {
@@ -191,7 +194,8 @@ void read_campaign(const toml::table& root, JobFile& job) {
     job.seed = static_cast<std::uint64_t>(*v);
   }
   const toml::node* scales = c->get("scales");
-  if (!scales) throw InputError(path, line_of(*c), "[campaign] needs scales (list or \"start:stop:step\", g, or \"as recorded\")");
+  if (!scales)
+    throw InputError(path, line_of(*c), "[campaign] needs scales (list or \"start:stop:step\", g, or \"as recorded\")");
   job.scales_g = parse_scales(*scales, path, job.drive_scales_g);
   if (const auto* r = c->get("rotations")) {
     const auto v = r->value<std::int64_t>();
@@ -205,7 +209,8 @@ void read_campaign(const toml::table& root, JobFile& job) {
     }
     for (const auto& node : *list) {
       const auto v = node.value<double>();
-      if (!v || !std::isfinite(*v)) throw InputError(path, line_of(node), "rotation_angles_deg: angles must be finite numbers (deg)");
+      if (!v || !std::isfinite(*v))
+        throw InputError(path, line_of(node), "rotation_angles_deg: angles must be finite numbers (deg)");
       job.rotation_angles_deg.push_back(*v);
     }
     if (c->contains("rotations") && job.rotations != int(list->size())) {
@@ -218,10 +223,10 @@ void read_campaign(const toml::table& root, JobFile& job) {
     if (!v || *v < 0) throw InputError(path, line_of(*s), "stop_after must be a non-negative integer (0 = off)");
     job.stop_after = static_cast<int>(*v);
   }
-  job.checkpoint_interval = optional_number(*c, "checkpoint_interval_s", job.checkpoint_interval, path);
-  job.grace = optional_number(*c, "grace_s", job.grace, path);
-  if (!(job.checkpoint_interval > 0)) throw InputError(path, line_of(*c), "checkpoint_interval_s must be positive");
-  if (!(job.grace >= 0)) throw InputError(path, line_of(*c), "grace_s must not be negative");
+  job.checkpoint_interval_s = optional_number(*c, "checkpoint_interval_s", job.checkpoint_interval_s, path);
+  job.grace_s = optional_number(*c, "grace_s", job.grace_s, path);
+  if (!(job.checkpoint_interval_s > 0)) throw InputError(path, line_of(*c), "checkpoint_interval_s must be positive");
+  if (!(job.grace_s >= 0)) throw InputError(path, line_of(*c), "grace_s must not be negative");
 }
 
 void read_objects(const toml::table& root, const fs::path& base, JobFile& job) {
@@ -258,7 +263,8 @@ void read_objects(const toml::table& root, const fs::path& base, JobFile& job) {
     if (const std::string problem = object_name_problem(o.name); !problem.empty()) {
       throw InputError(path, line_of(t->contains("name") ? *t->get("name") : node), problem);
     }
-    if (!object_names.insert(o.name).second) throw InputError(path, line_of(node), "duplicate object name '" + o.name + "'");
+    if (!object_names.insert(o.name).second)
+      throw InputError(path, line_of(node), "duplicate object name '" + o.name + "'");
     job.objects.push_back(o);
   }
   if (job.objects.empty()) throw InputError(path, 0, "every [[object]] of the job is optional and absent");
@@ -299,13 +305,16 @@ void read_record_tables(const toml::table& root, const fs::path& base, JobFile& 
     const std::string motion = optional_string(*t, "motion", "", path);
     const std::string lab = optional_string(*t, "lab", "", path);
     if (motion.empty() == lab.empty())
-      throw InputError(path, line_of(node), "[[record]] needs motion = \"NAME-X.AT2\" (or \"H1.AT2,H2.AT2\") or lab = \"FILE\", one of them");
+      throw InputError(
+          path, line_of(node),
+          "[[record]] needs motion = \"NAME-X.AT2\" (or \"H1.AT2,H2.AT2\") or lab = \"FILE\", one of them");
     r.lab = !lab.empty();
     r.spec = r.lab ? (fs::path(lab).is_absolute() ? fs::path(lab) : base / lab).lexically_normal().string()
                    : resolve_spec(motion, base);
     r.name = optional_string(*t, "name", r.lab ? lab_record_name(lab) : record_name(motion), path);
     if (r.lab && t->contains("align"))
-      throw InputError(path, line_of(*t->get("align")), "[[record]] align applies to AT2 sets, not to lab = recordings");
+      throw InputError(path, line_of(*t->get("align")),
+                       "[[record]] align applies to AT2 sets, not to lab = recordings");
     r.origin_file = path;
     r.origin_line = line_of(node);
     r.start = optional_number(*t, "start", 0.0, path);
@@ -314,7 +323,8 @@ void read_record_tables(const toml::table& root, const fs::path& base, JobFile& 
     if (const auto* align = t->get("align")) {
       const auto value = align->value<std::string>();
       if (!value || (*value != "resample" && *value != "auto"))
-        throw InputError(path, line_of(*align), "[[record]] align must be \"auto\" (pad lengths within 1 %) or \"resample\"");
+        throw InputError(path, line_of(*align),
+                         "[[record]] align must be \"auto\" (pad lengths within 1 %) or \"resample\"");
       r.resample = *value == "resample";
     }
     job.records.push_back(r);
@@ -372,7 +382,9 @@ RunTable read_run(const toml::table& root, const std::string& path) {
   RunTable out;
   const auto* run = root["run"].as_table();
   if (!run) return out;
-  reject_unknown(*run, {"model", "duration_s", "free_time_s", "dt_s", "safety", "integrator", "accuracy", "effects", "contact"}, path, "[run]");
+  reject_unknown(
+      *run, {"model", "duration_s", "free_time_s", "dt_s", "safety", "integrator", "accuracy", "effects", "contact"},
+      path, "[run]");
   out.line = line_of(*run);
   const auto text = [&](const char* key) -> std::optional<RunText> {
     const toml::node* n = run->get(key);

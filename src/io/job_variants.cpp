@@ -29,8 +29,9 @@ struct Reader {
   const VariantParameterInfo& parameter(const std::string& name, const toml::node& at, const char* where) const {
     const VariantParameterInfo* info = scenario::find_variant_parameter(name);
     if (!info) {
-      throw InputError(path, line_of(at), "unknown parameter '" + name + "' in " + where + " (parameters: " +
-                                              scenario::variant_parameter_list() + ")");
+      throw InputError(
+          path, line_of(at),
+          "unknown parameter '" + name + "' in " + where + " (parameters: " + scenario::variant_parameter_list() + ")");
     }
     if (info->key == VariantKey::scene && objects != 1) {
       throw InputError(path, line_of(at), "scene: alternative scenes need a job with exactly one [[object]]");
@@ -43,7 +44,8 @@ struct Reader {
     VariantValue out;
     if (info.text) {
       const auto s = n.value<std::string>();
-      if (!s || s->empty()) throw InputError(path, line_of(n), std::string(info.name) + ": each value must be a non-empty string");
+      if (!s || s->empty())
+        throw InputError(path, line_of(n), std::string(info.name) + ": each value must be a non-empty string");
       out.text = *s;
       if (info.key == VariantKey::contact) {
         contact::ContactMethod method;
@@ -60,7 +62,8 @@ struct Reader {
       return out;
     }
     const auto v = n.value<double>();
-    if (!v) throw InputError(path, line_of(n), std::string(info.name) + ": values must be numbers (" + info.units + ")");
+    if (!v)
+      throw InputError(path, line_of(n), std::string(info.name) + ": values must be numbers (" + info.units + ")");
     if (const auto problem = scenario::variant_value_problem(info, *v)) {
       throw InputError(path, line_of(n), std::string(info.name) + " " + *problem);
     }
@@ -68,14 +71,16 @@ struct Reader {
     return out;
   }
 
-  std::vector<VariantValue> list(const VariantParameterInfo& info, const toml::array& values, const toml::node& at) const {
+  std::vector<VariantValue> list(const VariantParameterInfo& info, const toml::array& values,
+                                 const toml::node& at) const {
     if (values.empty()) throw InputError(path, line_of(at), std::string(info.name) + ": the list of values is empty");
     std::vector<VariantValue> out;
     for (const toml::node& n : values) out.push_back(value(info, n));
     return out;
   }
 
-  VariantDomain range(const VariantParameterInfo& info, const toml::array& bounds, bool log_spacing, const toml::node& at) const {
+  VariantDomain range(const VariantParameterInfo& info, const toml::array& bounds, bool log_spacing,
+                      const toml::node& at) const {
     const std::string usage = std::string(info.name) + ": a range is [low, high]";
     if (bounds.size() != 2) throw InputError(path, line_of(at), usage + ", two numbers");
     VariantDomain d{info.key, value(info, *bounds.get(0)).number, value(info, *bounds.get(1)).number, log_spacing, {}};
@@ -84,7 +89,8 @@ struct Reader {
       std::snprintf(buf, sizeof buf, ": the range [%g, %g] is empty (needs low < high)", d.low, d.high);
       throw InputError(path, line_of(at), info.name + std::string(buf));
     }
-    if (log_spacing && !(d.low > 0)) throw InputError(path, line_of(at), std::string(info.name) + ": a log-spaced range needs low > 0");
+    if (log_spacing && !(d.low > 0))
+      throw InputError(path, line_of(at), std::string(info.name) + ": a log-spaced range needs low > 0");
     return d;
   }
 
@@ -97,12 +103,15 @@ struct Reader {
     }
     const auto* t = n.as_table();
     if (!t) {
-      throw InputError(path, line_of(n), std::string(info.name) + ": give [low, high], { range = [low, high], spacing = \"log\" } "
-                                                                  "or { values = [...] }");
+      throw InputError(path, line_of(n),
+                       std::string(info.name) +
+                           ": give [low, high], { range = [low, high], spacing = \"log\" } "
+                           "or { values = [...] }");
     }
     reject_unknown(*t, {"range", "spacing", "values"}, path, std::string("[sweep] ") + info.name);
     if (t->contains("values") == t->contains("range")) {
-      throw InputError(path, line_of(n), std::string(info.name) + ": give either range = [low, high] or values = [...]");
+      throw InputError(path, line_of(n),
+                       std::string(info.name) + ": give either range = [low, high] or values = [...]");
     }
     if (const auto* values = t->get("values")) {
       const auto* arr = values->as_array();
@@ -115,7 +124,8 @@ struct Reader {
       throw InputError(path, line_of(n), std::string(info.name) + ": spacing must be \"linear\" or \"log\"");
     }
     const auto* bounds = t->get("range")->as_array();
-    if (!bounds) throw InputError(path, line_of(*t->get("range")), std::string(info.name) + ": range must be [low, high]");
+    if (!bounds)
+      throw InputError(path, line_of(*t->get("range")), std::string(info.name) + ": range must be [low, high]");
     return range(info, *bounds, spacing == "log", *t->get("range"));
   }
 
@@ -140,14 +150,20 @@ struct Reader {
       seen.insert(info.key);
       domains.push_back(domain(info, node));
     }
-    if (domains.empty()) throw InputError(path, line_of(t), "[sweep] varies no parameter (parameters: " + scenario::variant_parameter_list() + ")");
+    if (domains.empty())
+      throw InputError(path, line_of(t),
+                       "[sweep] varies no parameter (parameters: " + scenario::variant_parameter_list() + ")");
     // in the catalogue's order: toml++ does not keep the file's, and the design depends on the order
-    std::sort(domains.begin(), domains.end(), [](const VariantDomain& a, const VariantDomain& b) { return a.key < b.key; });
+    std::sort(domains.begin(), domains.end(),
+              [](const VariantDomain& a, const VariantDomain& b) { return a.key < b.key; });
     const std::string method = optional_string(t, "method", "lhs", path);
     lines.push_back(line_of(t));
     if (method == "lhs") {
-      if (t.contains("levels")) throw InputError(path, line_of(*t.get("levels")), "levels belongs to method = \"grid\"; a Latin hypercube takes count");
-      if (!t.contains("count")) throw InputError(path, line_of(t), "[sweep] method = \"lhs\" needs count = N (variants)");
+      if (t.contains("levels"))
+        throw InputError(path, line_of(*t.get("levels")),
+                         "levels belongs to method = \"grid\"; a Latin hypercube takes count");
+      if (!t.contains("count"))
+        throw InputError(path, line_of(t), "[sweep] method = \"lhs\" needs count = N (variants)");
       const int count = positive_integer(t, "count", 1, kMaxVariants);
       std::uint64_t seed = campaign_seed;
       if (const toml::node* s = t.get("seed")) {
@@ -158,8 +174,10 @@ struct Reader {
       return scenario::latin_hypercube(domains, count, seed);
     }
     if (method == "grid") {
-      if (t.contains("count")) throw InputError(path, line_of(*t.get("count")), "count belongs to method = \"lhs\"; a grid takes levels");
-      if (t.contains("seed")) throw InputError(path, line_of(*t.get("seed")), "a grid is not random: seed belongs to method = \"lhs\"");
+      if (t.contains("count"))
+        throw InputError(path, line_of(*t.get("count")), "count belongs to method = \"lhs\"; a grid takes levels");
+      if (t.contains("seed"))
+        throw InputError(path, line_of(*t.get("seed")), "a grid is not random: seed belongs to method = \"lhs\"");
       const int levels = positive_integer(t, "levels", 3, 1000);
       if (scenario::grid_size(domains, levels) > kMaxVariants) {
         throw InputError(path, line_of(t), "[sweep] grid has more than " + std::to_string(kMaxVariants) + " variants");
@@ -173,7 +191,8 @@ struct Reader {
     scenario::VariantSpace space;
     space.method = "list";
     if (arr.empty()) throw InputError(path, line_of(arr), "[[variant]] list is empty");
-    if (arr.size() > std::size_t(kMaxVariants)) throw InputError(path, line_of(arr), "more than " + std::to_string(kMaxVariants) + " variants");
+    if (arr.size() > std::size_t(kMaxVariants))
+      throw InputError(path, line_of(arr), "more than " + std::to_string(kMaxVariants) + " variants");
     for (const toml::node& node : arr) {
       const auto* t = node.as_table();
       if (!t) throw InputError(path, line_of(node), "each [[variant]] must be a table");
@@ -209,7 +228,8 @@ scenario::VariantSpace read_variants(const toml::table& root, const std::string&
   const Reader reader{path, base, objects};
   const toml::node* sweep = root.get("sweep");
   const toml::node* variant = root.get("variant");
-  if (sweep && variant) throw InputError(path, line_of(*variant), "give the variants either as [sweep] or as [[variant]] tables, not both");
+  if (sweep && variant)
+    throw InputError(path, line_of(*variant), "give the variants either as [sweep] or as [[variant]] tables, not both");
   if (sweep) {
     const auto* t = sweep->as_table();
     if (!t) throw InputError(path, line_of(*sweep), "sweep must be a table ([sweep])");

@@ -1,8 +1,8 @@
 #include "rigid/io/scene_file.hpp"
 
 #include <algorithm>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -169,8 +169,9 @@ void check_pieces_cover(const geometry::ClosedMesh& mesh, const std::vector<geom
         char where[128];
         std::snprintf(where, sizeof where, "(%.4g, %.4g, %.4g) lies %.3g m outside every contact piece", v.x(), v.y(),
                       v.z(), nearest);
-        throw InputError(path, 0, std::string("the contact pieces do not cover the mesh: its extreme point ") + where +
-                                      " (more than 5 % of its size): a piece is missing, or belongs to another rock");
+        throw InputError(path, 0,
+                         std::string("the contact pieces do not cover the mesh: its extreme point ") + where +
+                             " (more than 5 % of its size): a piece is missing, or belongs to another rock");
       }
     }
   }
@@ -194,14 +195,16 @@ void build_compound_body(dynamics::BodyDef& body, const geometry::TriangleSoup& 
   std::vector<geometry::ClosedMesh> pieces;
   for (const std::string& name : b.contact) {
     const fs::path piece_path = fs::path(base_dir) / name;
-    if (!fs::exists(piece_path)) throw InputError(scene.source, b.line, "contact piece not found: " + piece_path.string());
-    geometry::ClosedMesh piece = geometry::make_closed_mesh(read_stl(piece_path.string()), geometry::MeshOptions{},
-                                                            piece_path.string());
+    if (!fs::exists(piece_path))
+      throw InputError(scene.source, b.line, "contact piece not found: " + piece_path.string());
+    geometry::ClosedMesh piece =
+        geometry::make_closed_mesh(read_stl(piece_path.string()), geometry::MeshOptions{}, piece_path.string());
     for (const auto& w : piece.warnings) scene.warnings.push_back(piece_path.string() + ": " + w);
     for (const Vec3& v : piece.vertices) {
       if ((v - v.cwiseMax(lo).cwiseMin(hi)).norm() > reach) {
-        throw InputError(piece_path.string(), 0, "contact piece reaches beyond its body's mesh " + path.string() +
-                                                     " (by more than 5 % of its size): another rock's piece, or other units?");
+        throw InputError(piece_path.string(), 0,
+                         "contact piece reaches beyond its body's mesh " + path.string() +
+                             " (by more than 5 % of its size): another rock's piece, or other units?");
       }
     }
     scene.files.push_back(piece_path.lexically_normal().string());
@@ -213,8 +216,7 @@ void build_compound_body(dynamics::BodyDef& body, const geometry::TriangleSoup& 
   body.pieces = std::move(compound.pieces);
 }
 
-void build_bodies(scenario::Scene& scene, const std::vector<BlockSpec>& blocks,
-                  const std::string& base_dir) {
+void build_bodies(scenario::Scene& scene, const std::vector<BlockSpec>& blocks, const std::string& base_dir) {
   if (blocks.empty()) throw InputError(scene.source, 0, "the scene has no blocks");
   reject_repeated_stl(blocks, base_dir, scene.source);
   bool any_free = false, any_fixed = false;
@@ -228,7 +230,8 @@ void build_bodies(scenario::Scene& scene, const std::vector<BlockSpec>& blocks,
     scene.files.push_back(path.lexically_normal().string());
     dynamics::BodyDef body;
     body.name = b.name.empty() ? fs::path(b.stl).stem().string() : b.name;
-    if (!names.insert(body.name).second) throw InputError(scene.source, b.line, "two blocks are named '" + body.name + "'");
+    if (!names.insert(body.name).second)
+      throw InputError(scene.source, b.line, "two blocks are named '" + body.name + "'");
     std::vector<std::string> mesh_warnings;
     if (b.contact.empty()) {
       body.shape = geometry::build_block(soup, scene.density, geometry::MeshOptions{}, path.string(), &mesh_warnings);
@@ -256,18 +259,22 @@ void build_bodies(scenario::Scene& scene, const std::vector<BlockSpec>& blocks,
 // uncertainty of where its mass centre is.
 void apply_centre_of_mass_offsets(const toml::node& node, const std::string& path, scenario::Scene& scene) {
   const auto* table = node.as_table();
-  if (!table) throw InputError(path, line_of(node), "centre_of_mass_offset must be a table: BLOCK_NAME = [dx, dy, dz] (m)");
+  if (!table)
+    throw InputError(path, line_of(node), "centre_of_mass_offset must be a table: BLOCK_NAME = [dx, dy, dz] (m)");
   for (const auto& [key, value] : *table) {
     const long line = line_of(value);
     const std::string name(key.str());
     auto body = std::find_if(scene.bodies.begin(), scene.bodies.end(), [&](const auto& b) { return b.name == name; });
-    if (body == scene.bodies.end()) throw InputError(path, line, "centre_of_mass_offset: the scene has no block '" + name + "'");
+    if (body == scene.bodies.end())
+      throw InputError(path, line, "centre_of_mass_offset: the scene has no block '" + name + "'");
     const auto* list = value.as_array();
     Vec3 offset;
-    if (!list || list->size() != 3) throw InputError(path, line, "centre_of_mass_offset." + name + " needs 3 numbers (m)");
+    if (!list || list->size() != 3)
+      throw InputError(path, line, "centre_of_mass_offset." + name + " needs 3 numbers (m)");
     for (int k = 0; k < 3; ++k) {
       const auto c = (*list)[k].value<double>();
-      if (!c || !std::isfinite(*c)) throw InputError(path, line, "centre_of_mass_offset." + name + ": components must be finite numbers (m)");
+      if (!c || !std::isfinite(*c))
+        throw InputError(path, line, "centre_of_mass_offset." + name + ": components must be finite numbers (m)");
       offset[k] = *c;
     }
     try {
@@ -300,8 +307,8 @@ void parse_model_tokens(const std::vector<Token>& tokens, std::size_t& i, scenar
 
 }  // namespace
 
-scenario::Scene parse_model_text(const std::string& text, const std::string& base_dir,
-                                 const std::string& source, long first_line) {
+scenario::Scene parse_model_text(const std::string& text, const std::string& base_dir, const std::string& source,
+                                 long first_line) {
   scenario::Scene scene;
   scene.source = source;
   const auto tokens = tokenize(text, first_line);
@@ -342,7 +349,8 @@ scenario::Scene load_toml_scene(const std::string& path) {
   scenario::Scene physics_only;
   physics_only.source = path;
   if (const auto* p = root["physics"].as_table()) {
-    reject_unknown(*p, {"contact", "density", "normal_stiffness", "shear_stiffness", "friction", "damping", "restitution"},
+    reject_unknown(*p,
+                   {"contact", "density", "normal_stiffness", "shear_stiffness", "friction", "damping", "restitution"},
                    path, "[physics]");
     if (const auto* c = p->get("contact")) {
       const auto name = c->value<std::string>();
@@ -355,7 +363,8 @@ scenario::Scene load_toml_scene(const std::string& path) {
       throw InputError(path, line_of(*p->get("restitution")), "restitution must be in [0, 1]");
     }
     physics_only.density = optional_number(*p, "density", physics_only.density, path);
-    physics_only.law.normal_stiffness = optional_number(*p, "normal_stiffness", physics_only.law.normal_stiffness, path);
+    physics_only.law.normal_stiffness =
+        optional_number(*p, "normal_stiffness", physics_only.law.normal_stiffness, path);
     physics_only.law.shear_stiffness = optional_number(*p, "shear_stiffness", physics_only.law.shear_stiffness, path);
     physics_only.law.friction = optional_number(*p, "friction", physics_only.law.friction, path);
     physics_only.law.damping = optional_number(*p, "damping", physics_only.law.damping, path);
@@ -400,7 +409,8 @@ scenario::Scene load_toml_scene(const std::string& path) {
       if (const auto* node_contact = t->get("contact")) {
         const auto* list = node_contact->as_array();
         if (!list || list->empty()) {
-          throw InputError(path, line_of(*node_contact), "contact must be a non-empty list of STL files of convex pieces");
+          throw InputError(path, line_of(*node_contact),
+                           "contact must be a non-empty list of STL files of convex pieces");
         }
         for (const auto& item : *list) {
           const auto piece = item.value<std::string>();
@@ -412,7 +422,8 @@ scenario::Scene load_toml_scene(const std::string& path) {
         if (v->size() != 3) throw InputError(path, line_of(*v), "velocity must have 3 components (m/s)");
         for (int k = 0; k < 3; ++k) {
           const auto c = (*v)[k].value<double>();
-          if (!c || !std::isfinite(*c)) throw InputError(path, line_of(*v), "velocity components must be finite numbers");
+          if (!c || !std::isfinite(*c))
+            throw InputError(path, line_of(*v), "velocity components must be finite numbers");
           b.velocity[k] = *c;
         }
       }
@@ -422,8 +433,7 @@ scenario::Scene load_toml_scene(const std::string& path) {
 
   scenario::Scene scene;
   if (!model_text.empty()) {
-    const std::string model_base =
-        root.contains("model") ? fs::path(model_source).parent_path().string() : base;
+    const std::string model_base = root.contains("model") ? fs::path(model_source).parent_path().string() : base;
     scene = parse_model_text(model_text, model_base, model_source, model_line);
   } else {
     scene = physics_only;
@@ -498,9 +508,8 @@ void save_state(const std::string& path, const scenario::Scene& scene) {
     for (const auto& b : scene.bodies) {
       const auto& q = b.orientation;
       const Vec3 centroid = scenario::centroid_position(b);
-      out << "\n[[body]]\nname = \"" << b.name << "\"\nposition = [" << centroid.x() << ", "
-          << centroid.y() << ", " << centroid.z() << "]\norientation = [" << q.w() << ", "
-          << q.x() << ", " << q.y() << ", " << q.z() << "]\n";
+      out << "\n[[body]]\nname = \"" << b.name << "\"\nposition = [" << centroid.x() << ", " << centroid.y() << ", "
+          << centroid.z() << "]\norientation = [" << q.w() << ", " << q.x() << ", " << q.y() << ", " << q.z() << "]\n";
     }
     if (!out) throw InputError(path, 0, "write failed");
   }
@@ -512,8 +521,9 @@ void apply_state(const std::string& path, scenario::Scene& scene) {
   const auto* arr = root["body"].as_array();
   if (!arr) throw InputError(path, 0, "no [[body]] entries");
   if (arr->size() != scene.bodies.size()) {
-    throw InputError(path, 0, "state has " + std::to_string(arr->size()) + " bodies, the scene " +
-                                  std::to_string(scene.bodies.size()));
+    throw InputError(
+        path, 0,
+        "state has " + std::to_string(arr->size()) + " bodies, the scene " + std::to_string(scene.bodies.size()));
   }
   for (std::size_t i = 0; i < arr->size(); ++i) {
     const auto* t = (*arr)[i].as_table();
@@ -521,8 +531,8 @@ void apply_state(const std::string& path, scenario::Scene& scene) {
     if (!t) throw InputError(path, line, "each [[body]] must be a table");
     const std::string name = optional_string(*t, "name", "", path);
     if (name != scene.bodies[i].name) {
-      throw InputError(path, line, "body " + std::to_string(i) + " is '" + name + "', the scene has '" +
-                                       scene.bodies[i].name + "'");
+      throw InputError(
+          path, line, "body " + std::to_string(i) + " is '" + name + "', the scene has '" + scene.bodies[i].name + "'");
     }
     const auto* p = (*t)["position"].as_array();
     const auto* q = (*t)["orientation"].as_array();
@@ -538,12 +548,14 @@ void apply_state(const std::string& path, scenario::Scene& scene) {
     const Quat orientation(v[3], v[4], v[5], v[6]);
     // a saved state holds unit quaternions to 1e-16; a zero or wild one is no orientation
     if (!(std::abs(orientation.norm() - 1.0) <= kUnitQuaternionTolerance)) {
-      throw InputError(path, line, "orientation must be a unit quaternion w x y z (its norm is " +
-                                       std::to_string(orientation.norm()) + ")");
+      throw InputError(
+          path, line,
+          "orientation must be a unit quaternion w x y z (its norm is " + std::to_string(orientation.norm()) + ")");
     }
     scene.bodies[i].orientation = orientation.normalized();
     // the state holds the centroid's pose: the centre of mass sits offset from it
-    scene.bodies[i].position = Vec3(v[0], v[1], v[2]) + scene.bodies[i].orientation * scene.bodies[i].centre_of_mass_offset;
+    scene.bodies[i].position =
+        Vec3(v[0], v[1], v[2]) + scene.bodies[i].orientation * scene.bodies[i].centre_of_mass_offset;
   }
   scene.files.push_back(fs::path(path).lexically_normal().string());
   check_overlap(scene, path);

@@ -39,7 +39,8 @@ CostEstimate estimate_cost(const Job& job, const scenario::Model& model) {
     const scenario::CaseOutcome out = scenario::simulate_case(short_model, c);
     const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
     ObjectCost cost;
-    cost.dt_s = out.run.dt_s > 0 ? out.run.dt_s : dynamics::time_step(model.scene(o).bodies, model.scene(o).law, probe.step);
+    cost.dt_s =
+        out.run.dt_s > 0 ? out.run.dt_s : dynamics::time_step(model.scene(o).bodies, model.scene(o).law, probe.step);
     cost.seconds_per_step = out.run.steps > 0 ? seconds / double(out.run.steps) : 0.0;
     cost.steps = e.simulated_per_object_s / cost.dt_s;
     cost.core_seconds = e.simulated_per_object_s / cost.dt_s * cost.seconds_per_step;

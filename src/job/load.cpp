@@ -55,8 +55,8 @@ Job load_job(const std::string& path) {
   job.rotations = file.rotations;
   job.rotation_angles_deg = std::move(file.rotation_angles_deg);
   job.stop_after = file.stop_after;
-  job.checkpoint_interval = file.checkpoint_interval;
-  job.grace = file.grace;
+  job.checkpoint_interval_s = file.checkpoint_interval_s;
+  job.grace_s = file.grace_s;
   job.objects = expand_variants(file.objects, file.variants);
   job.variants = std::move(file.variants);
   job.variant_lines = std::move(file.variant_lines);

@@ -2,12 +2,12 @@
 
 #include <stdexcept>
 
+#include "rigid/analysis/rocking_parameters.hpp"
 #include "rigid/core/error.hpp"
 #include "rigid/io/at2.hpp"
 #include "rigid/io/lab_recording.hpp"
 #include "rigid/io/scene_file.hpp"
 #include "rigid/motion/measures.hpp"
-#include "rigid/analysis/rocking_parameters.hpp"
 #include "rigid/scenario/run_bounds.hpp"
 
 namespace rigid::job {

@@ -9,8 +9,8 @@ namespace rigid::library {
 // scenes, drives and the run are scenario's; this module builds on them
 using namespace scenario;
 
-dynamics::BodyDef body_from_soup(const std::string& name, const geometry::TriangleSoup& soup,
-                                 double density, bool fixed) {
+dynamics::BodyDef body_from_soup(const std::string& name, const geometry::TriangleSoup& soup, double density,
+                                 bool fixed) {
   dynamics::BodyDef body;
   body.name = name;
   body.shape = geometry::build_block(soup, density, geometry::MeshOptions{}, name);
@@ -20,13 +20,12 @@ dynamics::BodyDef body_from_soup(const std::string& name, const geometry::Triang
   return body;
 }
 
-dynamics::BodyDef box_body(const std::string& name, const Vec3& lo, const Vec3& hi, double density,
-                           bool fixed) {
+dynamics::BodyDef box_body(const std::string& name, const Vec3& lo, const Vec3& hi, double density, bool fixed) {
   return body_from_soup(name, geometry::box_soup(lo, hi), density, fixed);
 }
 
-Scene block_on_pedestal(double b, double h, double depth, const contact::ContactLaw& law,
-                        double density, double pedestal_margin, double pedestal_height) {
+Scene block_on_pedestal(double b, double h, double depth, const contact::ContactLaw& law, double density,
+                        double pedestal_margin, double pedestal_height) {
   Scene s;
   s.law = law;
   s.density = density;
@@ -81,8 +80,8 @@ geometry::TriangleSoup subdivided_box_soup(const Vec3& lo, const Vec3& hi, int n
 
 geometry::TriangleSoup geodesic_sphere(double radius, int frequency) {
   const double t = (1.0 + std::sqrt(5.0)) / 2.0;
-  std::vector<Vec3> v = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-                         {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+  std::vector<Vec3> v = {{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
+                         {0, -1, -t}, {0, 1, -t}, {t, 0, -1},  {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
   std::vector<std::array<int, 3>> f = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
                                        {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
                                        {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},

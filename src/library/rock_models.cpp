@@ -29,10 +29,11 @@ LibraryModel rectangular_block(double alpha, const std::string& name) {
   char text[160];
   std::snprintf(text, sizeof text,
                 "Rectangular block 1 m tall, alpha %.1f rad (width %.4f m), 0.5 m deep, on a pedestal "
-                "0.02 m wider on every side (the study's validation set, physics.md 11)", alpha, 2 * b);
+                "0.02 m wider on every side (the study's validation set, physics.md 11)",
+                alpha, 2 * b);
   model.description = text;
-  model.pieces.push_back({"pedestal", geometry::box_soup(Vec3(-b - m, -0.5 * depth - m, -0.2),
-                                                         Vec3(b + m, 0.5 * depth + m, 0)), true});
+  model.pieces.push_back(
+      {"pedestal", geometry::box_soup(Vec3(-b - m, -0.5 * depth - m, -0.2), Vec3(b + m, 0.5 * depth + m, 0)), true});
   model.pieces.push_back({"block", geometry::box_soup(Vec3(-b, -0.5 * depth, 0), Vec3(b, 0.5 * depth, 1.0)), false});
   model.failure_note = "below: a toppled block falls off the pedestal";
   model.simple_stack = true;
@@ -71,8 +72,8 @@ LibraryModel geode() {
 // narrow base). `height` sizes the smooth shape (the jittered hull comes out within a few per cent
 // of it); `cut` is the fraction of the vertical semi-axis below the centre where the base is cut:
 // the deeper the cut, the narrower the base and the more fragile the rock.
-LibraryModel single_rock(const std::string& name, double height, double cut, double lean,
-                         double yaw, std::uint64_t seed) {
+LibraryModel single_rock(const std::string& name, double height, double cut, double lean, double yaw,
+                         std::uint64_t seed) {
   LibraryModel model;
   model.name = name;
   RockSpec rock;
@@ -89,10 +90,10 @@ LibraryModel single_rock(const std::string& name, double height, double cut, dou
   char text[200];
   std::snprintf(text, sizeof text,
                 "Single rock %.2f m tall: flattened top-heavy boulder on a narrow flat base, on a rock "
-                "pedestal (analogue of the study's single Yucca Mountain rocks, 0.5-0.9 m)", max_z(r));
+                "pedestal (analogue of the study's single Yucca Mountain rocks, 0.5-0.9 m)",
+                max_z(r));
   model.description = text;
-  const TriangleSoup pedestal =
-      support_under(vertices_on(r, {0, 0, 0}), {0, 0, 0}, kMargin, 0.3, 0.8, seed + 1000);
+  const TriangleSoup pedestal = support_under(vertices_on(r, {0, 0, 0}), {0, 0, 0}, kMargin, 0.3, 0.8, seed + 1000);
   model.pieces.push_back({"pedestal", pedestal, true});
   model.pieces.push_back({"rock", r, false});
   model.failure_note = "below: a toppled rock falls off its pedestal";
@@ -126,7 +127,8 @@ LibraryModel two_piece_rock() {
   upper.seats.push_back(seat_on(lo));
   fit_on(upper, max_z(lo), 0.58, 0.6);
   const TriangleSoup up = shaped_rock(upper);
-  model.pieces.push_back({"pedestal", support_under(vertices_on(lo, {0, 0, 0}), {0, 0, 0}, kMargin, 0.3, 0.8, 203), true});
+  model.pieces.push_back(
+      {"pedestal", support_under(vertices_on(lo, {0, 0, 0}), {0, 0, 0}, kMargin, 0.3, 0.8, 203), true});
   model.pieces.push_back({"lower", lo, false});
   model.pieces.push_back({"upper", up, false});
   model.failure_note = "below: a toppled piece falls off the pedestal";
@@ -187,8 +189,9 @@ LibraryModel five_stack_wall() {
     model.pieces.push_back({"slab" + std::to_string(i + 1), rotated(free[i], r), false});
   }
   model.failure = {FailureRule::Kind::tilt, 45.0 * kPi / 180.0};
-  model.failure_note = "tilt 45 deg: pieces toppling away from the wall land on the base, so they "
-                       "never fall below the fixed blocks";
+  model.failure_note =
+      "tilt 45 deg: pieces toppling away from the wall land on the base, so they "
+      "never fall below the fixed blocks";
   return model;
 }
 
@@ -229,8 +232,9 @@ LibraryModel block_against_face() {
   model.pieces.push_back({"face", rotated(shaped_rock(face), r), true});
   model.pieces.push_back({"block", rotated(shaped_rock(s), r), false});
   model.failure = {FailureRule::Kind::tilt, 45.0 * kPi / 180.0};
-  model.failure_note = "tilt 45 deg: leaning on the face, the block cannot fall below the ledge in "
-                       "most directions";
+  model.failure_note =
+      "tilt 45 deg: leaning on the face, the block cannot fall below the ledge in "
+      "most directions";
   return model;
 }
 
@@ -270,7 +274,8 @@ LibraryModel four_stack_unstable_pedestal() {
     }
     free.push_back(shaped_rock(s));
   }
-  model.pieces.push_back({"bedrock", support_under(vertices_on(free[0], {0, 0, 0}), {0, 0, 0}, 0.1, 0.3, 0.8, 510), true});
+  model.pieces.push_back(
+      {"bedrock", support_under(vertices_on(free[0], {0, 0, 0}), {0, 0, 0}, 0.1, 0.3, 0.8, 510), true});
   model.pieces.push_back({"pedestal", free[0], false});
   for (int i = 0; i < 4; ++i) model.pieces.push_back({"rock" + std::to_string(i + 1), free[i + 1], false});
   model.failure_note = "below: rocks that topple, and the pedestal if it goes, fall off the bedrock";
@@ -284,9 +289,9 @@ LibraryModel three_stack_wedge() {
   model.description =
       "Three-rock stack, 1.3 m, on a pedestal sloping 14 degrees, its bottom rock held up on the "
       "downhill side by a small wedge (analogue of the study's three-rock stack with a wedge)";
-  const double slope = std::tan(0.245);        // the pedestal top falls towards +x
+  const double slope = std::tan(0.245);  // the pedestal top falls towards +x
   const HeightPlane pedestal_top{0, -slope, 0};
-  const double crease = -0.15;                  // where the rock's base turns from slope to flat
+  const double crease = -0.15;                     // where the rock's base turns from slope to flat
   const double flat = pedestal_top.at(crease, 0);  // z of the flat part of the base = wedge top
   RockSpec bottom;
   bottom.semi = Vec3(0.4, 0.32, 0);

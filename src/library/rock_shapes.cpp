@@ -76,8 +76,7 @@ std::vector<P2> face_polygon(const TriangleSoup& soup, double z, double tol) {
 std::vector<Vec3> rock_points(const RockSpec& s) {
   SplitMix64 rng(s.seed);
   const double golden = kPi * (3.0 - std::sqrt(5.0));
-  const Quat turn = Quat(Eigen::AngleAxisd(s.yaw, Vec3::UnitZ())) *
-                    Quat(Eigen::AngleAxisd(s.lean_y, Vec3::UnitY())) *
+  const Quat turn = Quat(Eigen::AngleAxisd(s.yaw, Vec3::UnitZ())) * Quat(Eigen::AngleAxisd(s.lean_y, Vec3::UnitY())) *
                     Quat(Eigen::AngleAxisd(s.lean_x, Vec3::UnitX()));
   const Mat3 r = turn.toRotationMatrix();
   std::vector<Vec3> out;
@@ -220,8 +219,8 @@ Seat seat_on(const TriangleSoup& lower) {
 // outline widened by `margin` (so it holds them, and a rock that tips past its edge falls off);
 // below it narrows like a rock column to `narrow` of that width at `depth` under the top, with
 // jittered rings so it looks like a rock, not a prism (unit: m).
-TriangleSoup support_under(const std::vector<Vec3>& top, const HeightPlane& surface, double margin,
-                           double depth, double narrow, std::uint64_t seed) {
+TriangleSoup support_under(const std::vector<Vec3>& top, const HeightPlane& surface, double margin, double depth,
+                           double narrow, std::uint64_t seed) {
   SplitMix64 rng(seed);
   Vec3 c = Vec3::Zero();
   for (const auto& v : top) c += v;

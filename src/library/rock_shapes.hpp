@@ -32,8 +32,8 @@ struct SideCut {
 // and rocks on them; a base held inside is carried by all its vertices.
 struct Seat {
   double z = 0;
-  Polygon2 polygon;  // counter-clockwise
-  double margin = 0.02;     // m
+  Polygon2 polygon;      // counter-clockwise
+  double margin = 0.02;  // m
 };
 
 // A rock: a superellipsoid |x/a|^e + |y/b|^e + |z/c|^e = 1 sampled along jittered directions of
@@ -43,11 +43,11 @@ struct Seat {
 // into their seats. Each flat cut also gets a ring of points on its outline (rock_points).
 struct RockSpec {
   Vec3 center{0, 0, 0};
-  Vec3 semi{0.3, 0.3, 0.3};   // semi-axes a, b, c before the lean (m)
-  double exponent = 2.0;      // 2: ellipsoid; larger: blockier
-  double taper = 0.0;         // x, y scaled by 1 + taper z / c (local z)
+  Vec3 semi{0.3, 0.3, 0.3};                // semi-axes a, b, c before the lean (m)
+  double exponent = 2.0;                   // 2: ellipsoid; larger: blockier
+  double taper = 0.0;                      // x, y scaled by 1 + taper z / c (local z)
   double lean_x = 0, lean_y = 0, yaw = 0;  // rotations about x, then y, then z (rad)
-  double jitter = 0.05;       // radial jitter amplitude (fraction of the radius)
+  double jitter = 0.05;                    // radial jitter amplitude (fraction of the radius)
   int points = 56;
   std::uint64_t seed = 1;
   std::vector<HeightPlane> floors, ceilings;
@@ -79,8 +79,8 @@ Seat seat_on(const TriangleSoup& lower);
 // outline widened by `margin` (so it holds them, and a rock that tips past its edge falls off);
 // below it narrows like a rock column to `narrow` of that width at `depth` under the top, with
 // jittered rings so it looks like a rock, not a prism (unit: m).
-TriangleSoup support_under(const std::vector<Vec3>& top, const HeightPlane& surface, double margin,
-                           double depth, double narrow, std::uint64_t seed);
+TriangleSoup support_under(const std::vector<Vec3>& top, const HeightPlane& surface, double margin, double depth,
+                           double narrow, std::uint64_t seed);
 
 TriangleSoup rotated(const TriangleSoup& soup, const Mat3& r);
 

@@ -4,8 +4,8 @@
 #include <limits>
 #include <stdexcept>
 
-#include "rigid/geometry/polyhedron.hpp"
 #include "rigid/geometry/polygon2d.hpp"
+#include "rigid/geometry/polyhedron.hpp"
 #include "rigid/library/rock_library.hpp"
 #include "rock_shapes.hpp"
 

@@ -7,8 +7,8 @@
 // moved by the ground (as in Rigid); ground acceleration a(t) = A sin(2 pi t / T) along x for
 // 0 <= t <= T = 0.5 s, zero after. Overturn: the block's centroid below the pedestal's lowest
 // point (z = -0.2), Rigid's default failure rule; the run stops there, otherwise at 15 s.
-#include <nlohmann/json.hpp>
 #include <ode/ode.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -28,12 +28,12 @@ constexpr double kGravity = 9.80665;
 constexpr double kPi = std::numbers::pi;
 
 struct Options {
-  double dt = 1e-3;           // s
-  double duration = 15.0;     // s
-  double period = 0.5;        // s, pulse period T
-  double amplitude = -1;      // g; < 0: not asked
+  double dt = 1e-3;        // s
+  double duration = 15.0;  // s
+  double period = 0.5;     // s, pulse period T
+  double amplitude = -1;   // g; < 0: not asked
   bool threshold = false;
-  bool quick = false;         // dWorldQuickStep instead of dWorldStep
+  bool quick = false;  // dWorldQuickStep instead of dWorldStep
   int repeat = 1;
   bool json = false;
   double erp = 0.2;
@@ -225,20 +225,31 @@ Options parse(int argc, char** argv) {
   };
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if (a == "--amplitude") o.amplitude = value(i);
-    else if (a == "--threshold") o.threshold = true;
-    else if (a == "--tolerance") o.tolerance = value(i);
-    else if (a == "--dt") o.dt = value(i);
-    else if (a == "--quick") o.quick = true;
-    else if (a == "--erp") o.erp = value(i);
-    else if (a == "--cfm") o.cfm = value(i);
-    else if (a == "--repeat") o.repeat = int(value(i));
-    else if (a == "--json") o.json = true;
-    else if (a == "--help" || a == "-h") usage(0);
-    else usage(2);
+    if (a == "--amplitude")
+      o.amplitude = value(i);
+    else if (a == "--threshold")
+      o.threshold = true;
+    else if (a == "--tolerance")
+      o.tolerance = value(i);
+    else if (a == "--dt")
+      o.dt = value(i);
+    else if (a == "--quick")
+      o.quick = true;
+    else if (a == "--erp")
+      o.erp = value(i);
+    else if (a == "--cfm")
+      o.cfm = value(i);
+    else if (a == "--repeat")
+      o.repeat = int(value(i));
+    else if (a == "--json")
+      o.json = true;
+    else if (a == "--help" || a == "-h")
+      usage(0);
+    else
+      usage(2);
   }
-  const bool ok = (o.amplitude >= 0) != o.threshold && o.dt > 0 && o.dt <= 0.1 && o.tolerance > 0 &&
-                  o.erp >= 0 && o.erp <= 1 && o.cfm >= 0 && o.repeat >= 1;
+  const bool ok = (o.amplitude >= 0) != o.threshold && o.dt > 0 && o.dt <= 0.1 && o.tolerance > 0 && o.erp >= 0 &&
+                  o.erp <= 1 && o.cfm >= 0 && o.repeat >= 1;
   if (!ok) usage(2);
   return o;
 }
@@ -286,13 +297,13 @@ int main(int argc, char** argv) {
       j["solver_messages"] = r.solver_messages;
       j["repeat"] = o.repeat;
       std::printf("%s\n", j.dump().c_str());
-    }
-    else
-      std::printf("ODE %s, %s, dt %g s, ERP %g, CFM %g, one-sine %g g, T 0.5 s: overturned %s, %ld steps, "
-                  "%.4f s wall (stepping %.4f s wall, %.4f s CPU), max tilt %.4g rad, max drift %.3g m, "
-                  "%d solver messages; medians of %d\n",
-                  RIGID_ODE_VERSION, solver, o.dt, o.erp, o.cfm, o.amplitude, verdict, r.steps, wall, stepping,
-                  cpu, r.max_tilt, r.max_drift, r.solver_messages, o.repeat);
+    } else
+      std::printf(
+          "ODE %s, %s, dt %g s, ERP %g, CFM %g, one-sine %g g, T 0.5 s: overturned %s, %ld steps, "
+          "%.4f s wall (stepping %.4f s wall, %.4f s CPU), max tilt %.4g rad, max drift %.3g m, "
+          "%d solver messages; medians of %d\n",
+          RIGID_ODE_VERSION, solver, o.dt, o.erp, o.cfm, o.amplitude, verdict, r.steps, wall, stepping, cpu, r.max_tilt,
+          r.max_drift, r.solver_messages, o.repeat);
     if (r.solver_messages && !o.json) std::printf("  first solver message at t = %g s\n", r.first_message_time);
   } else {
     Threshold t;
@@ -310,13 +321,13 @@ int main(int argc, char** argv) {
       j["solver_messages"] = messages;
       j["repeat"] = o.repeat;
       std::printf("%s\n", j.dump().c_str());
-    }
-    else
-      std::printf("ODE %s, %s, dt %g s, ERP %g, CFM %g: overturning threshold %.4f g (bisected to %g g; 2D Housner "
-                  "0.2975 g); %d runs, %.4f s wall per run (stepping %.4f s wall, %.4f s CPU), %d solver "
-                  "messages; medians over %d search(es)\n",
-                  RIGID_ODE_VERSION, solver, o.dt, o.erp, o.cfm, t.g, o.tolerance, t.runs, wall, stepping, cpu,
-                  messages, o.repeat);
+    } else
+      std::printf(
+          "ODE %s, %s, dt %g s, ERP %g, CFM %g: overturning threshold %.4f g (bisected to %g g; 2D Housner "
+          "0.2975 g); %d runs, %.4f s wall per run (stepping %.4f s wall, %.4f s CPU), %d solver "
+          "messages; medians over %d search(es)\n",
+          RIGID_ODE_VERSION, solver, o.dt, o.erp, o.cfm, t.g, o.tolerance, t.runs, wall, stepping, cpu, messages,
+          o.repeat);
   }
   dCloseODE();
   return 0;

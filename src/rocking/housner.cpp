@@ -507,7 +507,7 @@ class Integration {
 }  // namespace
 
 RockingResult simulate_rocking(const RockingBlock& block, const GroundAcceleration& ground, double end_time,
-                       const RockingOptions& options, const InitialState& initial) {
+                               const RockingOptions& options, const InitialState& initial) {
   validate_block(block);
   validate_run(options, initial, end_time);
   return Integration(block, ground, options, initial).run(end_time);

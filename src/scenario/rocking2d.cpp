@@ -40,7 +40,8 @@ rocking::RockingBlock rocking_block_of(const Scene& scene) {
   if (!block) throw InputError(scene.source, 0, "the 2D rocking model needs a free block");
   Vec3 lo, hi;
   if (!axis_aligned_box(*block, lo, hi)) {
-    throw InputError(scene.source, 0, "the 2D rocking model needs a rectangular box block with faces normal to x, y, z");
+    throw InputError(scene.source, 0,
+                     "the 2D rocking model needs a rectangular box block with faces normal to x, y, z");
   }
   // a fixed box whose top face carries the block
   const double size = (hi - lo).norm();
@@ -51,7 +52,8 @@ rocking::RockingBlock rocking_block_of(const Scene& scene) {
     supported |= std::abs(phi.z() - lo.z()) < 1e-3 * size && plo.x() <= lo.x() + 1e-9 && phi.x() >= hi.x() - 1e-9;
   }
   if (!supported) {
-    throw InputError(scene.source, 0, "the 2D rocking model needs the block standing on a box pedestal at least as wide in x");
+    throw InputError(scene.source, 0,
+                     "the 2D rocking model needs the block standing on a box pedestal at least as wide in x");
   }
   const double b = 0.5 * (hi.x() - lo.x());
   const double h = 0.5 * (hi.z() - lo.z());

@@ -76,8 +76,9 @@ void check_penalty_stiffness(const Scene& scene) {
     if (!(sink <= kMaxStartOverlapFraction * body.shape.bounding_radius)) {
       char buf[96];
       std::snprintf(buf, sizeof buf, "%.3g m", sink);
-      throw InputError("", 0, "normal stiffness of " + scene.source + " too low: block '" + body.name +
-                                  "' would sink " + buf + " under its own weight");
+      throw InputError("", 0,
+                       "normal stiffness of " + scene.source + " too low: block '" + body.name + "' would sink " + buf +
+                           " under its own weight");
     }
   }
 }
@@ -90,18 +91,21 @@ void check_run_bounds(const Scene& scene, const dynamics::StepSettings& step, do
   const double largest = largest_time_step(scene.bodies, scene.law);
   const char* model = contact::contact_method_name(scene.law.method);
   if (!(dt <= largest)) {
-    throw InputError("", 0, "time step " + seconds(dt) + " of " + scene.source + " exceeds the largest the " + model +
-                                " contact model allows (" + seconds(largest) +
-                                ", its automatic step at safety 1): lower dt or safety" +
-                                (step.dt > 0 ? "" : ", or raise the contact stiffness"));
+    throw InputError("", 0,
+                     "time step " + seconds(dt) + " of " + scene.source + " exceeds the largest the " + model +
+                         " contact model allows (" + seconds(largest) +
+                         ", its automatic step at safety 1): lower dt or safety" +
+                         (step.dt > 0 ? "" : ", or raise the contact stiffness"));
   }
   const double steps = simulated_time / dt;
   if (!(steps <= kMaxStepsPerRun)) {
     char buf[64];
     std::snprintf(buf, sizeof buf, "%.3g steps of %.3g s", steps, dt);
-    throw InputError("", 0, std::string("a run of ") + scene.source + " would take " + buf + " for " +
-                                seconds(simulated_time) + " (more than 1e9): the duration, dt, block size, "
-                                "density or stiffness is out of range");
+    throw InputError("", 0,
+                     std::string("a run of ") + scene.source + " would take " + buf + " for " +
+                         seconds(simulated_time) +
+                         " (more than 1e9): the duration, dt, block size, "
+                         "density or stiffness is out of range");
   }
 }
 

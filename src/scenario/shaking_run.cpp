@@ -51,9 +51,9 @@ class ShakingRun {
   double still_since_ = -1;          // still (see check_rest), since
   double seen_h_ = 0, seen_z_ = 0;   // largest ground acceleration met so far (unit: m/s^2)
   long last_sliding_ = 0;
-  long declined_interval_ = -1;      // drive interval where falling asleep was last declined
+  long declined_interval_ = -1;  // drive interval where falling asleep was last declined
   bool done_ = false;
-  long k_ = 0;                       // steps taken or slept through
+  long k_ = 0;                                        // steps taken or slept through
   Vec3 ground_start_{0, 0, 0}, ground_end_{0, 0, 0};  // ground velocity over the last step
 };
 
@@ -76,7 +76,8 @@ ShakingRun::ShakingRun(const Scene& scene, const GroundDrive& ground, const RunS
   // which effects this scene and motion call for: skipping work whose result is known saves time
   ActiveEffects& fx = out_.effects;
   fx.selected = select_;
-  fx.vertical_motion = std::any_of(ground.velocity.begin(), ground.velocity.end(), [](const Vec3& v) { return v.z() != 0; });
+  fx.vertical_motion =
+      std::any_of(ground.velocity.begin(), ground.velocity.end(), [](const Vec3& v) { return v.z() != 0; });
   const long n = static_cast<long>(scene.bodies.size());
   fx.pairs_total = n * (n - 1) / 2;
   fx.pairs_fixed_fixed = world_.fixed_fixed_pairs();
@@ -282,8 +283,9 @@ void ShakingRun::finish() {
   fx.contact_steps = stats.contact_steps;
   fx.sliding_steps = stats.sliding_steps;
   fx.sliding = stats.sliding_steps > 0;
-  fx.end = out_.overturned ? ActiveEffects::End::failure
-                           : out_.ended_at_rest ? ActiveEffects::End::at_rest : ActiveEffects::End::full_duration;
+  fx.end = out_.overturned      ? ActiveEffects::End::failure
+           : out_.ended_at_rest ? ActiveEffects::End::at_rest
+                                : ActiveEffects::End::full_duration;
   fx.time_saved_s = std::max(0.0, double(steps_) * dt_ - out_.simulated_s);
   if (settings_.observer && k_ % observe_every_ != 0) settings_.observer(world_);
 }

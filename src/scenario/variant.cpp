@@ -16,7 +16,8 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // The seeded word of (seed, parameter, variant, purpose): every value is computed on its own.
 std::uint64_t draw(std::uint64_t seed, std::size_t parameter, int variant, int purpose) {
   std::uint64_t h = splitmix64(seed);
-  for (std::uint64_t v : {std::uint64_t(parameter), std::uint64_t(variant), std::uint64_t(purpose)}) h = splitmix64(h ^ v);
+  for (std::uint64_t v : {std::uint64_t(parameter), std::uint64_t(variant), std::uint64_t(purpose)})
+    h = splitmix64(h ^ v);
   return h;
 }
 
@@ -31,8 +32,10 @@ double range_value(const VariantDomain& d, double u) {
 const std::vector<VariantParameterInfo>& variant_catalogue() {
   static const std::vector<VariantParameterInfo> catalogue{
       {VariantKey::friction, "friction", "1", "Coulomb friction coefficient mu", false, 0, true, kInf},
-      {VariantKey::restitution, "restitution", "1", "normal restitution of the rigid contact model", false, 0, false, 1},
-      {VariantKey::damping, "damping", "s m-1", "hysteretic damping D of the penalty contact model", false, 0, false, kInf},
+      {VariantKey::restitution, "restitution", "1", "normal restitution of the rigid contact model", false, 0, false,
+       1},
+      {VariantKey::damping, "damping", "s m-1", "hysteretic damping D of the penalty contact model", false, 0, false,
+       kInf},
       {VariantKey::normal_stiffness, "normal_stiffness", "N m-1.5", "normal stiffness K_N of the penalty contact model",
        false, 0, true, kInf},
       {VariantKey::shear_stiffness, "shear_stiffness", "N m-1", "shear stiffness K_S of the penalty contact model",
@@ -47,8 +50,8 @@ const std::vector<VariantParameterInfo>& variant_catalogue() {
        false, -kInf, false, kInf},
       {VariantKey::size_scale, "size_scale", "1", "geometric similitude factor of the whole scene about its origin",
        false, 0, true, kInf},
-      {VariantKey::scene, "scene", "", "alternative scene file of the object (another model of the same rock)", true,
-       0, false, 0},
+      {VariantKey::scene, "scene", "", "alternative scene file of the object (another model of the same rock)", true, 0,
+       false, 0},
   };
   return catalogue;
 }
@@ -70,7 +73,8 @@ const VariantParameterInfo& variant_parameter(VariantKey key) {
 std::string variant_parameter_list() {
   std::string s;
   const auto& c = variant_catalogue();
-  for (std::size_t i = 0; i < c.size(); ++i) s += (i == 0 ? "" : i + 1 == c.size() ? " or " : ", ") + std::string(c[i].name);
+  for (std::size_t i = 0; i < c.size(); ++i)
+    s += (i == 0 ? "" : i + 1 == c.size() ? " or " : ", ") + std::string(c[i].name);
   return s;
 }
 
@@ -124,7 +128,8 @@ VariantSpace grid_design(const std::vector<VariantDomain>& domains, int levels) 
     space.keys.push_back(d.key);
     std::vector<VariantValue> axis = d.values;
     if (axis.empty()) {
-      for (int i = 0; i < levels; ++i) axis.push_back({range_value(d, levels == 1 ? 0.5 : double(i) / (levels - 1)), ""});
+      for (int i = 0; i < levels; ++i)
+        axis.push_back({range_value(d, levels == 1 ? 0.5 : double(i) / (levels - 1)), "", std::nullopt});
     }
     axes.push_back(std::move(axis));
   }
@@ -204,11 +209,10 @@ void apply_variant(const VariantSpace& space, int v, Scene& scene) {
     if (!m->method) throw std::invalid_argument("contact variant \"" + m->text + "\" was not parsed");
     law.method = *m->method;
   }
-  for (const auto& [key, field] : {std::pair{VariantKey::friction, &law.friction},
-                                   std::pair{VariantKey::restitution, &law.restitution},
-                                   std::pair{VariantKey::damping, &law.damping},
-                                   std::pair{VariantKey::normal_stiffness, &law.normal_stiffness},
-                                   std::pair{VariantKey::shear_stiffness, &law.shear_stiffness}}) {
+  for (const auto& [key, field] :
+       {std::pair{VariantKey::friction, &law.friction}, std::pair{VariantKey::restitution, &law.restitution},
+        std::pair{VariantKey::damping, &law.damping}, std::pair{VariantKey::normal_stiffness, &law.normal_stiffness},
+        std::pair{VariantKey::shear_stiffness, &law.shear_stiffness}}) {
     if (const VariantValue* x = value(key)) *field = x->number;
   }
 }

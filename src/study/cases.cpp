@@ -5,12 +5,12 @@
 #include <string>
 #include <vector>
 
+#include "rigid/analysis/tilt_test.hpp"
+#include "rigid/library/builders.hpp"
 #include "rigid/motion/synth.hpp"
 #include "rigid/rocking/housner.hpp"
 #include "rigid/rocking/newmark.hpp"
-#include "rigid/library/builders.hpp"
 #include "rigid/scenario/rocking2d.hpp"
-#include "rigid/analysis/tilt_test.hpp"
 #include "rigid/study/accuracy_study.hpp"
 
 namespace rigid::study {
@@ -48,12 +48,18 @@ motion::GroundMotion x_only_scaled(const motion::GroundMotion& m, double pga_g) 
 
 const char* oracle_name(Oracle o) {
   switch (o) {
-    case Oracle::housner_pulse: return "housner_one_sine_threshold_g";
-    case Oracle::g_tan_alpha: return "g_tan_alpha_g";
-    case Oracle::rigid_statics: return "rigid_statics_toppling_g";
-    case Oracle::newmark_slide: return "newmark_sliding_displacement_m";
-    case Oracle::energy_conservation: return "energy_conservation";
-    case Oracle::none: break;
+    case Oracle::housner_pulse:
+      return "housner_one_sine_threshold_g";
+    case Oracle::g_tan_alpha:
+      return "g_tan_alpha_g";
+    case Oracle::rigid_statics:
+      return "rigid_statics_toppling_g";
+    case Oracle::newmark_slide:
+      return "newmark_sliding_displacement_m";
+    case Oracle::energy_conservation:
+      return "energy_conservation";
+    case Oracle::none:
+      break;
   }
   return "";
 }
@@ -194,11 +200,15 @@ double oracle_value(const Case& c) {
       ro.overturn_angle = scenario::kRocking2dOverturnAngle;
       return rocking::min_overturning_amplitude(block, rocking::PulseShape::one_sine, c.pulse_period, ro) / kGravity;
     }
-    case Oracle::g_tan_alpha: return std::tan(scenario::rocking_block_of(c.build(c.law)).alpha);
-    case Oracle::rigid_statics: return library::static_toppling(*c.library, 0.0);
-    case Oracle::newmark_slide: return rocking::newmark_displacement(c.ground.x, c.ground.dt, c.law.friction);
+    case Oracle::g_tan_alpha:
+      return std::tan(scenario::rocking_block_of(c.build(c.law)).alpha);
+    case Oracle::rigid_statics:
+      return library::static_toppling(*c.library, 0.0);
+    case Oracle::newmark_slide:
+      return rocking::newmark_displacement(c.ground.x, c.ground.dt, c.law.friction);
     case Oracle::energy_conservation:
-    case Oracle::none: break;
+    case Oracle::none:
+      break;
   }
   return c.oracle_value;
 }

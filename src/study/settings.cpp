@@ -44,8 +44,8 @@ std::vector<Setting> study_settings(const StudyOptions& o) {
   ref.rest_time = 2.0;
   ref.select_effects = false;
   out.push_back(ref);
-  const std::vector<double> safeties = o.quick ? std::vector<double>{0.05, 0.2, 0.8}
-                                               : std::vector<double>{0.05, 0.1, 0.2, 0.4, 0.8};
+  const std::vector<double> safeties =
+      o.quick ? std::vector<double>{0.05, 0.2, 0.8} : std::vector<double>{0.05, 0.1, 0.2, 0.4, 0.8};
   const std::vector<RotationIntegrator> rotations =
       o.quick ? std::vector<RotationIntegrator>{RotationIntegrator::splitting}
               : std::vector<RotationIntegrator>{RotationIntegrator::splitting, RotationIntegrator::rk4};
@@ -63,8 +63,9 @@ std::vector<Setting> study_settings(const StudyOptions& o) {
   struct Tol {
     double speed, time;
   };
-  const std::vector<Tol> tols = o.quick ? std::vector<Tol>{{1e-2, 0.25}}
-                                        : std::vector<Tol>{{1e-4, 1.0}, {1e-4, 0.5}, {1e-2, 0.5}, {1e-3, 0.25}, {1e-2, 0.25}};
+  const std::vector<Tol> tols =
+      o.quick ? std::vector<Tol>{{1e-2, 0.25}}
+              : std::vector<Tol>{{1e-4, 1.0}, {1e-4, 0.5}, {1e-2, 0.5}, {1e-3, 0.25}, {1e-2, 0.25}};
   for (const auto& t : tols) {
     Setting x;
     x.axis = "tolerance";
@@ -83,8 +84,9 @@ std::vector<Setting> study_settings(const StudyOptions& o) {
   }
   // contact stiffness: the model axis, against the rigid-block oracles
   const bool penalty_axis = o.contact != "rigid", rigid_axis = o.contact != "penalty";
-  for (const double k : !penalty_axis ? std::vector<double>{} : o.quick ? std::vector<double>{kStudyStiffness}
-                                                                       : std::vector<double>{kStudyStiffness, 1e9, 1e10}) {
+  for (const double k : !penalty_axis ? std::vector<double>{}
+                        : o.quick     ? std::vector<double>{kStudyStiffness}
+                                      : std::vector<double>{kStudyStiffness, 1e9, 1e10}) {
     Setting x;
     x.axis = "stiffness";
     x.contact = contact::ContactMethod::penalty;
@@ -94,8 +96,9 @@ std::vector<Setting> study_settings(const StudyOptions& o) {
   }
   // the rigid contact model (physics.md §12) at the presets' safety factors and beyond: the other
   // side of the model axis, against the same oracles
-  for (const double s : !rigid_axis ? std::vector<double>{} : o.quick ? std::vector<double>{0.4}
-                                                                       : std::vector<double>{0.05, 0.2, 0.4, 0.8}) {
+  for (const double s : !rigid_axis ? std::vector<double>{}
+                        : o.quick   ? std::vector<double>{0.4}
+                                    : std::vector<double>{0.05, 0.2, 0.4, 0.8}) {
     Setting x;
     x.axis = "rigid";
     x.contact = contact::ContactMethod::rigid;

@@ -54,8 +54,9 @@ StudyResult run_study(const StudyOptions& o, std::vector<Case> cases_in, std::ve
       scenario::RunSettings rs = run_settings(s);
       rs.duration = c.duration;
       rs.free_time = c.free_time;
-      row.dt = s.contact == contact::ContactMethod::rigid ? dynamics::rigid_time_step(scene.bodies, s.safety)
-                                                          : s.safety * dynamics::critical_time_step(scene.bodies, scene.law);
+      row.dt = s.contact == contact::ContactMethod::rigid
+                   ? dynamics::rigid_time_step(scene.bodies, s.safety)
+                   : s.safety * dynamics::critical_time_step(scene.bodies, scene.law);
       if (c.quasi_static) {
         analysis::TiltTestSettings tts;
         tts.step = rs.step;
@@ -115,7 +116,8 @@ StudyResult run_study(const StudyOptions& o, std::vector<Case> cases_in, std::ve
         row.traj_rel = e.rel;
         row.error = e.rel;
         row.outcome_match = out.overturned == r0.outcome.overturned;
-        if (out.failure_time_s && r0.outcome.failure_time_s) row.failure_time_err = std::abs(*out.failure_time_s - *r0.outcome.failure_time_s);
+        if (out.failure_time_s && r0.outcome.failure_time_s)
+          row.failure_time_err = std::abs(*out.failure_time_s - *r0.outcome.failure_time_s);
         row.max_tilt_err = std::abs(out.max_tilt_rad - r0.outcome.max_tilt_rad) * 180.0 / kPi;
       }
       if (&s == &ref_setting) ref_model = row.model_value;
@@ -126,7 +128,8 @@ StudyResult run_study(const StudyOptions& o, std::vector<Case> cases_in, std::ve
       if (c.oracle == Oracle::energy_conservation) {
         row.oracle_err = row.energy_err;
       } else if (std::isfinite(row.model_value) && std::isfinite(c.oracle_value)) {
-        row.oracle_err = c.oracle_value != 0 ? row.model_value / c.oracle_value - 1.0 : row.model_value - c.oracle_value;
+        row.oracle_err =
+            c.oracle_value != 0 ? row.model_value / c.oracle_value - 1.0 : row.model_value - c.oracle_value;
       }
       rows.push_back(row);
     }

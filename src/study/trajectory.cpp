@@ -117,8 +117,8 @@ TrajectoryError compare(const Trajectory& a, const Trajectory& ref, double inter
   return e;
 }
 
-double pulse_threshold(const scenario::Scene& scene, const scenario::RunSettings& settings, double period,
-                       double lo, double hi, double rel_tol, double& wall) {
+double pulse_threshold(const scenario::Scene& scene, const scenario::RunSettings& settings, double period, double lo,
+                       double hi, double rel_tol, double& wall) {
   const auto start = Clock::now();
   scenario::RunSettings s = settings;
   s.duration = period + 10.0;

@@ -18,10 +18,10 @@ double median(std::vector<double> v);
 struct Trajectory {
   std::vector<double> t;
   int nfree = 0;
-  std::vector<Vec3> pos;      // centroid relative to the first fixed body, per free block
-  std::vector<double> tilt;   // per free block (unit: rad)
-  double energy_err = 0;      // largest energy gained from nothing (or drift, if conservative) / scale
-  double max_rotation = 0;    // largest rotation of any free block from its start (unit: rad)
+  std::vector<Vec3> pos;         // centroid relative to the first fixed body, per free block
+  std::vector<double> tilt;      // per free block (unit: rad)
+  double energy_err = 0;         // largest energy gained from nothing (or drift, if conservative) / scale
+  double max_rotation = 0;       // largest rotation of any free block from its start (unit: rad)
   double first_turn = kNoValue;  // first time a free block has turned more than 1 degree (unit: s)
   scenario::RunOutcome outcome;
   double wall = 0;
@@ -41,7 +41,7 @@ TrajectoryError compare(const Trajectory& a, const Trajectory& ref, double inter
 
 // Smallest one-sine amplitude (unit: g) that overturns the scene, by bisection between lo and hi
 // (widened when they do not bracket); stops when the bracket is narrower than rel_tol * hi.
-double pulse_threshold(const scenario::Scene& scene, const scenario::RunSettings& settings, double period,
-                       double lo, double hi, double rel_tol, double& wall);
+double pulse_threshold(const scenario::Scene& scene, const scenario::RunSettings& settings, double period, double lo,
+                       double hi, double rel_tol, double& wall);
 
 }  // namespace rigid::study

@@ -5,8 +5,8 @@
 
 #include <cmath>
 
-#include "rigid/library/builders.hpp"
 #include "rigid/analysis/rocking_parameters.hpp"
+#include "rigid/library/builders.hpp"
 
 namespace rigid::scenario {
 using namespace library;

@@ -75,8 +75,8 @@ int main(int argc, char** argv) {
   const long batch = long(kResultsPerSecond * kInterval);
   std::printf("load: %.0f results/s, %ld per %.0f-s checkpoint (%.1f MB of journal); files in %s\n", kResultsPerSecond,
               batch, kInterval, double(batch * Journal::record_bytes()) / 1e6, dir.c_str());
-  std::printf("%10s | %14s %9s | %12s %9s %11s | %12s %14s %14s\n", "cells", "(a) checkpoint", "fsync", "(b) rewrite", "file MB",
-              "period s", "(c) stall ms", "copy plan ms", "old stall >= s");
+  std::printf("%10s | %14s %9s | %12s %9s %11s | %12s %14s %14s\n", "cells", "(a) checkpoint", "fsync", "(b) rewrite",
+              "file MB", "period s", "(c) stall ms", "copy plan ms", "old stall >= s");
   for (const long want : {10'000L, 100'000L, 1'000'000L, 5'000'000L}) {
     const rigid::io::Cube cube = rigid_bench::study_layout_cube(want);
     const long cells = long(cube.objects.size()) * rigid_bench::kCellsPerObject;
@@ -136,8 +136,7 @@ int main(int argc, char** argv) {
       return t;
     });
     std::printf("%10ld | %11.1f ms %6.1f ms | %10.3f s %9.1f %11.0f | %12.3f %14.1f %14.2f\n", cells, 1e3 * checkpoint,
-                1e3 * fsync_s, rewrite,
-                file_mb, period, 1e3 * stall, 1e3 * copy, rewrite);
+                1e3 * fsync_s, rewrite, file_mb, period, 1e3 * stall, 1e3 * copy, rewrite);
     fs::remove(cube_path);
   }
   fs::remove(journal_path);

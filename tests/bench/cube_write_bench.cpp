@@ -30,8 +30,15 @@ void WriteWholeCube(benchmark::State& state) {
   std::filesystem::remove(path);
 }
 BENCHMARK(WriteWholeCube)
-    ->Arg(10'000)->Arg(100'000)->Arg(1'000'000)->Arg(5'000'000)
-    ->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3)->Repetitions(3)->ReportAggregatesOnly(true);
+    ->Arg(10'000)
+    ->Arg(100'000)
+    ->Arg(1'000'000)
+    ->Arg(5'000'000)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(3)
+    ->Repetitions(3)
+    ->ReportAggregatesOnly(true);
 
 }  // namespace
 

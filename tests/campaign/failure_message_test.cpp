@@ -82,7 +82,9 @@ TEST(FailureMessage, TheJournalKeepsMessages) {
   fs::remove(path);
 }
 
-std::uint32_t crc(const unsigned char* p, std::size_t n) { return std::uint32_t(crc32(crc32(0L, Z_NULL, 0), p, uInt(n))); }
+std::uint32_t crc(const unsigned char* p, std::size_t n) {
+  return std::uint32_t(crc32(crc32(0L, Z_NULL, 0), p, uInt(n)));
+}
 
 // A journal of an older format, byte by byte as that format lays it out: magic, 64-byte key,
 // CRC-32 of both; records of the first `result_bytes` bytes of a result, an 8-byte fingerprint

@@ -43,7 +43,8 @@ scenario::Scene rocking_block(contact::ContactMethod model, bool compound) {
   std::vector<geometry::ClosedMesh> pieces;
   pieces.push_back(geometry::make_closed_mesh(geometry::box_soup(lo, Vec3(0.0, hi.y(), hi.z())), convex, "half"));
   pieces.push_back(geometry::make_closed_mesh(geometry::box_soup(Vec3(0.0, lo.y(), lo.z()), hi), convex, "half"));
-  auto body = geometry::build_compound(geometry::make_closed_mesh(geometry::box_soup(lo, hi), {}, "block"), pieces, 2600, {});
+  auto body =
+      geometry::build_compound(geometry::make_closed_mesh(geometry::box_soup(lo, hi), {}, "block"), pieces, 2600, {});
   auto& block = scene.bodies[1];
   const Vec3 lift = block.position - body.shape.translation;  // keep the builder's placement
   block.shape = std::move(body.shape);
@@ -74,7 +75,8 @@ TEST_P(StepAllocation, SteppingARockingBlockAllocatesNothing) {
 }
 
 INSTANTIATE_TEST_SUITE_P(BothModels, StepAllocation,
-                         ::testing::Combine(::testing::Values(contact::ContactMethod::penalty, contact::ContactMethod::rigid),
+                         ::testing::Combine(::testing::Values(contact::ContactMethod::penalty,
+                                                              contact::ContactMethod::rigid),
                                             ::testing::Bool()),
                          [](const auto& info) {
                            return std::string(contact::contact_method_name(std::get<0>(info.param))) +

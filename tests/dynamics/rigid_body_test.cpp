@@ -63,8 +63,7 @@ TEST_P(TorqueFreeSpin, ConservesMomentumAndEnergyAndFlipsAboutIntermediateAxis) 
 }
 
 INSTANTIATE_TEST_SUITE_P(Integrators, TorqueFreeSpin,
-                         ::testing::Values(dynamics::RotationIntegrator::splitting,
-                                           dynamics::RotationIntegrator::rk4));
+                         ::testing::Values(dynamics::RotationIntegrator::splitting, dynamics::RotationIntegrator::rk4));
 
 TEST(FreeFall, MatchesClosedFormAtSeveralSteps) {
   for (double dt : {1e-3, 1e-4}) {

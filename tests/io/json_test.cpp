@@ -10,9 +10,9 @@
 #include "rigid/core/types.hpp"
 #include "rigid/dynamics/world.hpp"
 #include "rigid/io/json.hpp"
+#include "rigid/library/builders.hpp"
 #include "rigid/motion/ground_motion.hpp"
 #include "rigid/motion/measures.hpp"
-#include "rigid/library/builders.hpp"
 
 namespace rigid::io {
 using namespace library;
@@ -49,7 +49,8 @@ TEST(JsonLine, OneCompactLineWithNullForNonFiniteNumbers) {
 TEST(MotionInfoJson, HasTheIssueKeys) {
   const double dt = 5e-4;
   const std::size_t n = 20001;
-  const auto m = motion::make_ground_motion("p", {{cosine(1.0, 0.0, n, dt), dt, "1"}, {cosine(0.5, 0.3, n, dt), dt, "2"}});
+  const auto m =
+      motion::make_ground_motion("p", {{cosine(1.0, 0.0, n, dt), dt, "1"}, {cosine(0.5, 0.3, n, dt), dt, "2"}});
   const std::string line = motion_info_json(motion::motion_info(m, {}, {1.0}));
   EXPECT_EQ(line.find('\n'), std::string::npos);
   const Json j = Json::parse(line);
@@ -62,7 +63,8 @@ TEST(MotionInfoJson, HasTheIssueKeys) {
   EXPECT_NEAR(j["components"][0]["pga_g"].get<double>(), 1.0 / kGravity, 1e-12);
   for (const char* key : {"pgv_cm_s", "pgd_cm", "label"}) EXPECT_TRUE(j["components"][1].contains(key)) << key;
   ASSERT_EQ(j["sa"].size(), 1u);
-  for (const char* key : {"period_s", "x_g", "y_g", "gmrotd50_g", "rotd50_g"}) EXPECT_TRUE(j["sa"][0].contains(key)) << key;
+  for (const char* key : {"period_s", "x_g", "y_g", "gmrotd50_g", "rotd50_g"})
+    EXPECT_TRUE(j["sa"][0].contains(key)) << key;
   // one horizontal: no orientation-independent keys
   const auto one = motion::make_ground_motion("o", {{cosine(1.0, 0.0, n, dt), dt, "1"}});
   const Json j1 = Json::parse(motion_info_json(motion::motion_info(one)));
@@ -82,11 +84,27 @@ TEST(PhysicsJson, KeysInOrderAndValuesReadBackExactly) {
   const Json j = Json::parse(physics_json(scene, run, accuracy, stop_after));
   std::vector<std::string> keys;
   for (const auto& [k, v] : j.items()) keys.push_back(k);
-  EXPECT_EQ(keys, (std::vector<std::string>{
-                      "contact", "restitution", "normal_stiffness", "shear_stiffness", "friction", "damping",
-                      "density", "failure_rule", "failure_tilt_deg", "step_s", "dt_s", "safety", "integrator",
-                      "duration_s", "free_time_s", "stop_after", "accuracy", "rest_speed_m_s",
-                      "rest_angular_speed_rad_s", "rest_time_s", "effects"}));
+  EXPECT_EQ(keys, (std::vector<std::string>{"contact",
+                                            "restitution",
+                                            "normal_stiffness",
+                                            "shear_stiffness",
+                                            "friction",
+                                            "damping",
+                                            "density",
+                                            "failure_rule",
+                                            "failure_tilt_deg",
+                                            "step_s",
+                                            "dt_s",
+                                            "safety",
+                                            "integrator",
+                                            "duration_s",
+                                            "free_time_s",
+                                            "stop_after",
+                                            "accuracy",
+                                            "rest_speed_m_s",
+                                            "rest_angular_speed_rad_s",
+                                            "rest_time_s",
+                                            "effects"}));
   EXPECT_EQ(j["friction"].get<double>(), 0.7);
   EXPECT_EQ(j["dt_s"].get<double>(), run.step.dt);
   EXPECT_EQ(j["step_s"].get<double>(), dynamics::time_step(scene.bodies, scene.law, run.step));

@@ -8,12 +8,12 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "rigid/analysis/rocking_parameters.hpp"
+#include "rigid/analysis/tilt_test.hpp"
 #include "rigid/geometry/contact_shape.hpp"
 #include "rigid/geometry/polygon2d.hpp"
 #include "rigid/io/mesh_import.hpp"
 #include "rigid/library/builders.hpp"
-#include "rigid/analysis/rocking_parameters.hpp"
-#include "rigid/analysis/tilt_test.hpp"
 
 namespace rigid {
 namespace {
@@ -70,7 +70,7 @@ scenario::Scene rock_scene(const std::string& path, bool decompose) {
   scene.law.friction = 1.5;  // tipping, not sliding: the scan topples at 0.19-1.1 g
   const Vec3 half = 0.5 * (hi - lo);
   scene.bodies.push_back(library::box_body("pedestal", Vec3(-half.x() - 0.02, -half.y() - 0.02, -0.2),
-                                            Vec3(half.x() + 0.02, half.y() + 0.02, 0), 2600, true));
+                                           Vec3(half.x() + 0.02, half.y() + 0.02, 0), 2600, true));
   dynamics::BodyDef rock;
   rock.name = "rock";
   rock.shape = std::move(body.shape);
@@ -102,8 +102,9 @@ TEST(ScanToppling, TwoTessellationsHullAndDecompositionToppleAlike) {
     // the contact shape's own statics (rigid inspect, the cube): every 45 degrees is every other
     // one of the 16 directions
     const double a_shape = std::tan(statics->alpha_by_azimuth[2 * k]);
-    std::printf("azimuth %3d deg: obj %.4f g, ply %.4f g, decomposed %.4f g; statics of the mesh %.4f g, of the hull %.4f g\n",
-                45 * k, a_obj, a_ply, a_pieces, a_statics, a_shape);
+    std::printf(
+        "azimuth %3d deg: obj %.4f g, ply %.4f g, decomposed %.4f g; statics of the mesh %.4f g, of the hull %.4f g\n",
+        45 * k, a_obj, a_ply, a_pieces, a_statics, a_shape);
     EXPECT_NEAR(a_shape / a_statics, 1.0, 0.01) << k;
     EXPECT_NEAR(a_ply / a_obj, 1.0, 0.02) << k;
     EXPECT_NEAR(a_pieces / a_obj, 1.0, 0.02) << k;

@@ -11,12 +11,12 @@
 #include <set>
 #include <sstream>
 
+#include "rigid/analysis/tilt_test.hpp"
 #include "rigid/contact/contact.hpp"
 #include "rigid/io/scene_file.hpp"
 #include "rigid/io/stl.hpp"
 #include "rigid/library/builders.hpp"
 #include "rigid/library/rock_library.hpp"
-#include "rigid/analysis/tilt_test.hpp"
 
 namespace rigid {
 namespace {
@@ -40,10 +40,20 @@ fs::path library_dir() { return fs::path(RIGID_SOURCE_DIR) / "models" / "library
 TEST(RockLibrary, HasTheBlocksTheGeodeAndNineAnalogues) {
   std::vector<std::string> names;
   for (const auto& m : library()) names.push_back(m.name);
-  const std::vector<std::string> expected = {
-      "block_a01", "block_a02", "block_a03", "block_a04", "geode", "two_piece_rock", "five_stack_wall",
-      "block_against_face", "four_stack_unstable_pedestal", "three_stack_wedge", "single_rock_050",
-      "single_rock_060", "single_rock_075", "single_rock_090"};
+  const std::vector<std::string> expected = {"block_a01",
+                                             "block_a02",
+                                             "block_a03",
+                                             "block_a04",
+                                             "geode",
+                                             "two_piece_rock",
+                                             "five_stack_wall",
+                                             "block_against_face",
+                                             "four_stack_unstable_pedestal",
+                                             "three_stack_wedge",
+                                             "single_rock_050",
+                                             "single_rock_060",
+                                             "single_rock_075",
+                                             "single_rock_090"};
   EXPECT_EQ(names, expected);
   // the study's piece counts (free pieces)
   auto free_pieces = [](const std::string& n) {
@@ -180,7 +190,8 @@ TEST_P(RockAnalogue, LoadsSettlesAndStandsStillFor20Seconds) {
   // the saved state is an equilibrium: settling again barely moves it
   for (std::size_t i = 0; i < loaded.bodies.size(); ++i) {
     EXPECT_LT((settled.bodies[i].position - loaded.bodies[i].position).norm(), 1e-4) << loaded.bodies[i].name;
-    EXPECT_LT(scenario::tilt(loaded.bodies[i].orientation, settled.bodies[i].orientation), 1e-3) << loaded.bodies[i].name;
+    EXPECT_LT(scenario::tilt(loaded.bodies[i].orientation, settled.bodies[i].orientation), 1e-3)
+        << loaded.bodies[i].name;
   }
   dynamics::World world(settled.bodies, settled.law, dynamics::StepSettings{});
   const double dt = world.dt();
@@ -205,9 +216,8 @@ TEST_P(RockAnalogue, LoadsSettlesAndStandsStillFor20Seconds) {
 
 INSTANTIATE_TEST_SUITE_P(Analogues, RockAnalogue,
                          ::testing::Values("two_piece_rock", "five_stack_wall", "block_against_face",
-                                           "four_stack_unstable_pedestal", "three_stack_wedge",
-                                           "single_rock_050", "single_rock_060", "single_rock_075",
-                                           "single_rock_090"));
+                                           "four_stack_unstable_pedestal", "three_stack_wedge", "single_rock_050",
+                                           "single_rock_060", "single_rock_075", "single_rock_090"));
 
 TEST(StaticToppling, RectangularBlockIsTanAlpha) {
   const auto& m = model("block_a02");
@@ -268,9 +278,10 @@ TEST(TiltTest, IrregularRockApproachesRigidStaticsAsContactsStiffen) {
   contact::ContactLaw rigid;
   rigid.method = contact::ContactMethod::rigid;
   const auto hard = analysis::tilt_test(scenario::equilibrate(library::library_scene(m, rigid), {}), az);
-  std::printf("single_rock_075, azimuth %.0f deg: rigid statics %.4f g, tilt test %.4f g (K = 1e8), %.4f g (K = 1e9), "
-              "%.4f g (rigid contact)\n",
-              az * 180 / kPi, weakest, study.acceleration, firm.acceleration, hard.acceleration);
+  std::printf(
+      "single_rock_075, azimuth %.0f deg: rigid statics %.4f g, tilt test %.4f g (K = 1e8), %.4f g (K = 1e9), "
+      "%.4f g (rigid contact)\n",
+      az * 180 / kPi, weakest, study.acceleration, firm.acceleration, hard.acceleration);
   EXPECT_NEAR(firm.acceleration / weakest, 1.0, 0.06);
   EXPECT_LT(firm.acceleration, weakest);
   EXPECT_LT(study.acceleration, firm.acceleration);

@@ -49,8 +49,7 @@ TEST(RockingBlock, GeneralWithRectangleInertiaEqualsRectangular) {
   const RockingBlock rect = worked_block();
   // I_O of a b x h rectangle about a base corner = (4/3) m R² (physics.md §2).
   const double m = 7.25;
-  const RockingBlock gen =
-      RockingBlock::general(rect.alpha, rect.R, m, 4.0 / 3.0 * m * rect.R * rect.R);
+  const RockingBlock gen = RockingBlock::general(rect.alpha, rect.R, m, 4.0 / 3.0 * m * rect.R * rect.R);
   EXPECT_DOUBLE_EQ(gen.alpha, rect.alpha);
   EXPECT_DOUBLE_EQ(gen.R, rect.R);
   EXPECT_NEAR(gen.p, rect.p, 1e-14);
@@ -176,8 +175,7 @@ TEST(FreeRocking, TimeToFirstImpactMatchesLinearisedSolution) {
       const double t_first = std::acosh(1.0 / (1.0 - f)) / b.p;
       EXPECT_NEAR(impacts[0].t / t_first, 1.0, 1e-9) << "theta0/alpha " << theta0 / b.alpha;
       // the impact speed from the same solution: p sqrt(α² − (α − θ0)²).
-      const double w1 =
-          b.p * std::sqrt(b.alpha * b.alpha - (b.alpha - f * b.alpha) * (b.alpha - f * b.alpha));
+      const double w1 = b.p * std::sqrt(b.alpha * b.alpha - (b.alpha - f * b.alpha) * (b.alpha - f * b.alpha));
       EXPECT_NEAR(std::abs(impacts[0].theta_dot) / w1, 1.0, 1e-9);
       EXPECT_LT(impacts[0].theta_dot * sign, 0.0);
       const double flight = 2.0 / b.p * std::atanh(b.restitution * w1 / (b.p * b.alpha));
@@ -219,8 +217,7 @@ TEST(Restitution, ImpactsFollowHousnerAngularMomentumRule) {
   ASSERT_GE(peaks.size(), kChecked);
   // first peak, on the other side: cos(α − |θ1|) − cos α = r² (cos(α − θ0) − cos α).
   const double theta1 =
-      std::acos(std::cos(b.alpha) + r * r * (std::cos(b.alpha - theta0) - std::cos(b.alpha))) -
-      b.alpha;
+      std::acos(std::cos(b.alpha) + r * r * (std::cos(b.alpha - theta0) - std::cos(b.alpha))) - b.alpha;
   EXPECT_NEAR(peaks[0].theta / theta1, 1.0, 1e-9);
   auto excess = [&](double th) { return std::cos(b.alpha - std::abs(th)) - std::cos(b.alpha); };
   for (std::size_t k = 1; k < kChecked; ++k) {
@@ -255,8 +252,7 @@ TEST(QuasiStatic, SlowRampLiftsAtUpliftAcceleration) {
       opt.record_trajectory = true;
       opt.record_interval = 0.01;
       const double expected = linear ? g * b.alpha : g * std::tan(b.alpha);
-      const GroundAcceleration ramp =
-          GroundAcceleration::analytic([=](double t) { return sign * c * t; }, 20.0);
+      const GroundAcceleration ramp = GroundAcceleration::analytic([=](double t) { return sign * c * t; }, 20.0);
       const RockingResult r = simulate_rocking(b, ramp, 20.0, opt);
       ASSERT_FALSE(std::isnan(r.uplift_time));
       EXPECT_NEAR(c * r.uplift_time / expected, 1.0, 1e-6);
@@ -292,8 +288,7 @@ TEST(Energy, ConservedBetweenImpactsWithoutGroundMotion) {
       RockingOptions opt;
       opt.linearised = linear;
       opt.record_trajectory = true;
-      const RockingResult res =
-          simulate_rocking(b, GroundAcceleration(), 6.0, opt, {0.0, 0.9 * b.alpha, 0.0});
+      const RockingResult res = simulate_rocking(b, GroundAcceleration(), 6.0, opt, {0.0, 0.9 * b.alpha, 0.0});
       double e_phase = rocking_energy(b, 0.9 * b.alpha, 0.0, linear);
       int checked = 0;
       for (const auto& s : res.trajectory) {
@@ -348,8 +343,7 @@ TEST(OneSinePulse, ShortPulseLinearisedAsymptote) {
   ThresholdOptions search;
   search.relative_tolerance = 1e-5;
   search.max_ratio = 2000.0;
-  const double ratio =
-      min_overturning_amplitude(b, PulseShape::one_sine, T, opt, search) / (g * b.alpha);
+  const double ratio = min_overturning_amplitude(b, PulseShape::one_sine, T, opt, search) / (g * b.alpha);
   const double asymptote = x * x / (2.0 * kPi);
   EXPECT_NEAR(ratio / asymptote, 1.0, std::pow(b.p * T, 2));
 }
@@ -422,9 +416,7 @@ class AnalyticLinearRocker {
           *d = 0.0;
           return 0.0;
         }
-        const double k = (shape_ == PulseShape::rectangular)
-                             ? s * A_ / g
-                             : p * p * s * A_ / (g * (w_ * w_ + p * p));
+        const double k = (shape_ == PulseShape::rectangular) ? s * A_ / g : p * p * s * A_ / (g * (w_ * w_ + p * p));
         switch (shape_) {
           case PulseShape::one_sine:
             *d = k * w_ * std::cos(w_ * tt);
@@ -512,14 +504,11 @@ class AnalyticLinearRocker {
 
 // scan upward from g α by 2% and bisect, as min_overturning_amplitude() does, so both searches
 // bracket the same first overturning amplitude.
-double analytic_threshold(const RockingBlock& b, PulseShape shape, double T, double free_time,
-                          double rel_tol) {
+double analytic_threshold(const RockingBlock& b, PulseShape shape, double T, double free_time, double rel_tol) {
   const double a_up = g * b.alpha;
   double lo = a_up;
   double hi = a_up * 1.02;
-  auto over = [&](double A) {
-    return AnalyticLinearRocker(b, shape, A, T).overturns(T + free_time);
-  };
+  auto over = [&](double A) { return AnalyticLinearRocker(b, shape, A, T).overturns(T + free_time); };
   while (!over(hi)) {
     lo = hi;
     hi *= 1.02;
@@ -546,8 +535,7 @@ TEST(LinearisedPulses, ThresholdsMatchPiecewiseAnalyticSolution) {
       const double T = 2.0 * kPi / (x * b.p);
       const double expected = analytic_threshold(b, shape, T, search.free_time, 1e-6);
       const double a = min_overturning_amplitude(b, shape, T, opt, search);
-      EXPECT_NEAR(a / expected, 1.0, 1e-4)
-          << "shape " << static_cast<int>(shape) << ", omega_p/p " << x;
+      EXPECT_NEAR(a / expected, 1.0, 1e-4) << "shape " << static_cast<int>(shape) << ", omega_p/p " << x;
     }
   }
 }

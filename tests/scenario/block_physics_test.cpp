@@ -7,8 +7,8 @@
 #include <cmath>
 #include <vector>
 
-#include "rigid/rocking/housner.hpp"
 #include "rigid/library/builders.hpp"
+#include "rigid/rocking/housner.hpp"
 
 namespace rigid {
 namespace {
@@ -194,14 +194,14 @@ TEST_P(HousnerPulse, OneSineThresholdWithinTenPercentOf2DModel) {
     }
   }
   ASSERT_GT(a3d, 0) << "no overturning up to 1.3x the 2D threshold";
-  std::printf("T = %.2f s, K = %.0e: 2D threshold %.4f g, 3D %.4f g (ratio %.3f)\n", period,
-              GetParam().stiffness, a2d / kGravity, a3d / kGravity, a3d / a2d);
+  std::printf("T = %.2f s, K = %.0e: 2D threshold %.4f g, 3D %.4f g (ratio %.3f)\n", period, GetParam().stiffness,
+              a2d / kGravity, a3d / kGravity, a3d / a2d);
   EXPECT_NEAR(a3d / a2d, 1.0, 0.10);
 }
 
 INSTANTIATE_TEST_SUITE_P(Periods, HousnerPulse,
-                         ::testing::Values(PulseCase{0.25, 1e8}, PulseCase{1.0, 1e8},
-                                           PulseCase{2.0, 1e8}, PulseCase{0.5, 1e10}),
+                         ::testing::Values(PulseCase{0.25, 1e8}, PulseCase{1.0, 1e8}, PulseCase{2.0, 1e8},
+                                           PulseCase{0.5, 1e10}),
                          [](const ::testing::TestParamInfo<PulseCase>& info) {
                            return "T" + std::to_string(int(1000 * info.param.period)) + "ms_K1e" +
                                   std::to_string(int(std::lround(std::log10(info.param.stiffness))));

@@ -7,9 +7,9 @@
 #include <cmath>
 
 #include "rigid/core/error.hpp"
+#include "rigid/library/builders.hpp"
 #include "rigid/motion/measures.hpp"
 #include "rigid/rocking/housner.hpp"
-#include "rigid/library/builders.hpp"
 #include "rigid/scenario/case.hpp"
 #include "rigid/scenario/rocking2d.hpp"
 
@@ -83,7 +83,8 @@ TEST(CaseMotion, TheTwoDimensionalModelIgnoresTheRotation) {
 TEST(Simulate, BothModelsBracketTheHousnerThreshold) {
   const Scene scene = slender_block();
   const double period = 0.6;
-  const double threshold = rocking::min_overturning_amplitude(rocking_block_of(scene), rocking::PulseShape::one_sine, period);
+  const double threshold =
+      rocking::min_overturning_amplitude(rocking_block_of(scene), rocking::PulseShape::one_sine, period);
   ASSERT_TRUE(std::isfinite(threshold));
   RunSettings run;
   run.free_time = 10.0;  // as the 2D threshold search: slow overturning after the pulse is caught

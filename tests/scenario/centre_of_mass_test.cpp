@@ -14,14 +14,14 @@
 
 #include <unistd.h>
 
+#include "rigid/analysis/rocking_parameters.hpp"
+#include "rigid/analysis/tilt_test.hpp"
 #include "rigid/core/error.hpp"
 #include "rigid/geometry/polyhedron.hpp"
 #include "rigid/io/scene_file.hpp"
 #include "rigid/io/stl.hpp"
 #include "rigid/library/builders.hpp"
-#include "rigid/analysis/rocking_parameters.hpp"
 #include "rigid/scenario/scene.hpp"
-#include "rigid/analysis/tilt_test.hpp"
 
 namespace rigid::scenario {
 using namespace library;
@@ -65,9 +65,8 @@ TEST(CentreOfMass, TiltTestFollowsRigidStatics) {
   };
   // ground acceleration along +x: the block pivots over its -x edge, b + dx from the mass centre
   const double d = 0.05, dz = 0.1;
-  const Case cases[] = {{Vec3(d, 0, 0), 0.0, (kB + d) / kH},
-                        {Vec3(d, 0, 0), kPi, (kB - d) / kH},
-                        {Vec3(0, 0, dz), 0.0, kB / (kH + dz)}};
+  const Case cases[] = {
+      {Vec3(d, 0, 0), 0.0, (kB + d) / kH}, {Vec3(d, 0, 0), kPi, (kB - d) / kH}, {Vec3(0, 0, dz), 0.0, kB / (kH + dz)}};
   for (const Case& c : cases) {
     Scene scene = block_on_pedestal(kB, kH, kDepth);
     offset_centre_of_mass(scene.bodies[1], c.offset);
@@ -98,8 +97,10 @@ class SceneOffset : public ::testing::Test {
   void SetUp() override {
     dir_ = std::filesystem::temp_directory_path() / ("rigid_com_" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir_);
-    io::write_stl_binary((dir_ / "pedestal.stl").string(), geometry::box_soup(Vec3(-0.3, -0.3, -0.2), Vec3(0.3, 0.3, 0)));
-    io::write_stl_binary((dir_ / "rock.stl").string(), geometry::box_soup(Vec3(-kB, -kDepth / 2, 0), Vec3(kB, kDepth / 2, 2 * kH)));
+    io::write_stl_binary((dir_ / "pedestal.stl").string(),
+                         geometry::box_soup(Vec3(-0.3, -0.3, -0.2), Vec3(0.3, 0.3, 0)));
+    io::write_stl_binary((dir_ / "rock.stl").string(),
+                         geometry::box_soup(Vec3(-kB, -kDepth / 2, 0), Vec3(kB, kDepth / 2, 2 * kH)));
   }
   void TearDown() override { std::filesystem::remove_all(dir_); }
   std::string scene(const std::string& offset_table) {
@@ -135,7 +136,8 @@ TEST_F(SceneOffset, BadOffsetsNameTheLine) {
     }
     return std::string("accepted");
   };
-  EXPECT_NE(message("[centre_of_mass_offset]\nboulder = [0.0, 0.0, 0.1]\n").find("scene.toml:9: centre_of_mass_offset: the scene has no block 'boulder'"),
+  EXPECT_NE(message("[centre_of_mass_offset]\nboulder = [0.0, 0.0, 0.1]\n")
+                .find("scene.toml:9: centre_of_mass_offset: the scene has no block 'boulder'"),
             std::string::npos)
       << message("[centre_of_mass_offset]\nboulder = [0.0, 0.0, 0.1]\n");
   EXPECT_NE(message("[centre_of_mass_offset]\nrock = [0.5, 0.0, 0.0]\n").find("outside the block"), std::string::npos);

@@ -9,10 +9,10 @@
 #include <cstdio>
 #include <vector>
 
+#include "rigid/analysis/tilt_test.hpp"
 #include "rigid/geometry/polyhedron.hpp"
 #include "rigid/library/builders.hpp"
 #include "rigid/scenario/scene.hpp"
-#include "rigid/analysis/tilt_test.hpp"
 
 namespace rigid::scenario {
 using namespace library;
@@ -38,7 +38,8 @@ std::vector<std::array<int, 3>> triangulate(const std::vector<P2>& polygon) {
       for (int p : left) {
         if (p == a || p == b || p == c) continue;
         const P2& q = polygon[p];
-        if (cross2(polygon[b] - polygon[a], q - polygon[a]) >= 0 && cross2(polygon[c] - polygon[b], q - polygon[b]) >= 0 &&
+        if (cross2(polygon[b] - polygon[a], q - polygon[a]) >= 0 &&
+            cross2(polygon[c] - polygon[b], q - polygon[b]) >= 0 &&
             cross2(polygon[a] - polygon[c], q - polygon[c]) >= 0)
           empty = false;
       }
@@ -76,8 +77,8 @@ ClosedMesh closed(const TriangleSoup& soup, bool convex) {
   return geometry::make_closed_mesh(soup, options, "test mesh");
 }
 
-dynamics::BodyDef compound_body(const std::string& name, const TriangleSoup& mesh, const std::vector<TriangleSoup>& pieces,
-                                double density, bool fixed) {
+dynamics::BodyDef compound_body(const std::string& name, const TriangleSoup& mesh,
+                                const std::vector<TriangleSoup>& pieces, double density, bool fixed) {
   std::vector<ClosedMesh> convex;
   for (const auto& p : pieces) convex.push_back(closed(p, true));
   geometry::CompoundBody c = geometry::build_compound(closed(mesh, false), convex, density, geometry::MeshOptions{});
@@ -95,8 +96,9 @@ dynamics::BodyDef compound_body(const std::string& name, const TriangleSoup& mes
 constexpr double kFootLength = 1.0, kFootHeight = 0.3, kColumnWidth = 0.4, kTop = 1.0, kDepth = 0.3;
 
 Scene l_block_scene() {
-  const std::vector<P2> outline{{0, 0}, {kFootLength, 0}, {kFootLength, kFootHeight}, {kColumnWidth, kFootHeight},
-                                {kColumnWidth, kTop}, {0, kTop}};
+  const std::vector<P2> outline{
+      {0, 0},   {kFootLength, 0}, {kFootLength, kFootHeight}, {kColumnWidth, kFootHeight}, {kColumnWidth, kTop},
+      {0, kTop}};
   const double y0 = -0.5 * kDepth, y1 = 0.5 * kDepth;
   Scene scene;
   scene.law.friction = 1.2;  // it must tip, not slide: sliding starts at a = mu g
@@ -112,7 +114,8 @@ TEST(CompoundBody, LBlockMassPropertiesAreThoseOfItsTwoBoxes) {
   const Scene scene = l_block_scene();
   const auto& l = scene.bodies[1];
   const double v_foot = kFootLength * kFootHeight * kDepth, v_column = kColumnWidth * (kTop - kFootHeight) * kDepth;
-  const Vec3 c_foot(0.5 * kFootLength, 0, 0.5 * kFootHeight), c_column(0.5 * kColumnWidth, 0, 0.5 * (kFootHeight + kTop));
+  const Vec3 c_foot(0.5 * kFootLength, 0, 0.5 * kFootHeight),
+      c_column(0.5 * kColumnWidth, 0, 0.5 * (kFootHeight + kTop));
   const Vec3 centroid = (v_foot * c_foot + v_column * c_column) / (v_foot + v_column);
   EXPECT_NEAR(l.shape.volume, v_foot + v_column, 1e-12);
   EXPECT_NEAR(l.shape.mass, 2600 * (v_foot + v_column), 1e-8);
@@ -121,7 +124,8 @@ TEST(CompoundBody, LBlockMassPropertiesAreThoseOfItsTwoBoxes) {
   auto box_iyy = [](double m, double w, double h) { return m * (w * w + h * h) / 12.0; };
   const double m_foot = 2600 * v_foot, m_column = 2600 * v_column;
   const double iyy = box_iyy(m_foot, kFootLength, kFootHeight) + m_foot * (c_foot - centroid).squaredNorm() +
-                     box_iyy(m_column, kColumnWidth, kTop - kFootHeight) + m_column * (c_column - centroid).squaredNorm();
+                     box_iyy(m_column, kColumnWidth, kTop - kFootHeight) +
+                     m_column * (c_column - centroid).squaredNorm();
   const Mat3 r = l.orientation.toRotationMatrix();
   const Mat3 inertia = r * l.shape.inertia.asDiagonal() * r.transpose();
   EXPECT_NEAR(inertia(1, 1) / iyy, 1.0, 1e-9);
@@ -163,8 +167,8 @@ TEST(CompoundBody, PrismInAVGrooveTopplesOverTheFlankTop) {
   const double y0 = -0.5 * depth - 0.05, y1 = 0.5 * depth + 0.05;
   Scene scene;
   scene.law.friction = 0;
-  scene.bodies.push_back(compound_body("groove", extrude(v_shape, y0, y1), {extrude(left, y0, y1), extrude(right, y0, y1)},
-                                       2600, true));
+  scene.bodies.push_back(
+      compound_body("groove", extrude(v_shape, y0, y1), {extrude(left, y0, y1), extrude(right, y0, y1)}, 2600, true));
   const std::vector<P2> square{{0, 0}, {half, half}, {0, 2 * half}, {-half, half}};
   const TriangleSoup prism = extrude(square, -0.5 * depth, 0.5 * depth);
   scene.bodies.push_back(compound_body("prism", prism, {prism}, 2600, false));
@@ -184,9 +188,10 @@ TEST(CompoundBody, BoxCutInTwoBehavesAsTheBox) {
   const Vec3 lo(-0.2, -0.25, 0), hi(0.2, 0.25, 1.0);
   Scene whole = block_on_pedestal(0.2, 0.5, 0.5);
   Scene cut = whole;
-  cut.bodies[1] = compound_body("block", geometry::box_soup(lo, hi),
-                                {geometry::box_soup(lo, Vec3(0.05, hi.y(), hi.z())), geometry::box_soup(Vec3(0.05, lo.y(), lo.z()), hi)},
-                                2600, false);
+  cut.bodies[1] = compound_body(
+      "block", geometry::box_soup(lo, hi),
+      {geometry::box_soup(lo, Vec3(0.05, hi.y(), hi.z())), geometry::box_soup(Vec3(0.05, lo.y(), lo.z()), hi)}, 2600,
+      false);
   EXPECT_LT((cut.bodies[1].position - whole.bodies[1].position).norm(), 1e-12);
   EXPECT_NEAR(cut.bodies[1].shape.mass, whole.bodies[1].shape.mass, 1e-9);
   for (const double azimuth : {0.0, kPi}) {
@@ -239,14 +244,17 @@ TEST(TessellationIndependence, PenaltyContactCarriesTheSameRockOnTheSameIndentat
   const Scene coarse = rock_on_pedestal(32, 16, contact::ContactMethod::penalty);
   const Scene fine = rock_on_pedestal(128, 64, contact::ContactMethod::penalty);
   const Scene settled_coarse = equilibrate(coarse, {}), settled_fine = equilibrate(fine, {});
-  auto sink = [](const Scene& before, const Scene& after) { return before.bodies[1].position.z() - after.bodies[1].position.z(); };
+  auto sink = [](const Scene& before, const Scene& after) {
+    return before.bodies[1].position.z() - after.bodies[1].position.z();
+  };
   const double m = coarse.bodies[1].shape.mass;
   const double expected = std::pow(m * kGravity / (4 * coarse.law.normal_stiffness), 2.0 / 3.0);
   std::printf("sink: coarse %.4g m, fine %.4g m, per-patch statics %.4g m\n", sink(coarse, settled_coarse),
               sink(fine, settled_fine), expected);
   EXPECT_NEAR(sink(coarse, settled_coarse) / expected, 1.0, 0.05);
   EXPECT_NEAR(sink(fine, settled_fine) / expected, 1.0, 0.05);
-  const double a_coarse = tilt_test(settled_coarse, 0.0).acceleration, a_fine = tilt_test(settled_fine, 0.0).acceleration;
+  const double a_coarse = tilt_test(settled_coarse, 0.0).acceleration,
+               a_fine = tilt_test(settled_fine, 0.0).acceleration;
   std::printf("tilt test (penalty): coarse %.4f g, fine %.4f g\n", a_coarse, a_fine);
   EXPECT_NEAR(a_fine / a_coarse, 1.0, 0.02);
 }
@@ -258,7 +266,8 @@ TEST(TessellationIndependence, RigidContactTiltTestIsTheSameForBothMeshes) {
   // centroid): along x the rock leans over the base's end at 0.24 m
   const double a_coarse = tilt_test(coarse, 0.0).acceleration, a_fine = tilt_test(fine, 0.0).acceleration;
   const double statics = 0.24 / (fine.bodies[1].position.z() - (-0.3));
-  std::printf("tilt test (rigid): coarse %.4f g, fine %.4f g, statics of the ellipse %.4f g\n", a_coarse, a_fine, statics);
+  std::printf("tilt test (rigid): coarse %.4f g, fine %.4f g, statics of the ellipse %.4f g\n", a_coarse, a_fine,
+              statics);
   EXPECT_NEAR(a_fine / a_coarse, 1.0, 0.01);
   EXPECT_NEAR(a_fine / statics, 1.0, 0.01);
 }

@@ -4,12 +4,12 @@
 // physics.md §2), exact integrals of piecewise-linear velocities, the energy balance.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
-#include <unistd.h>
 #include <vector>
 
 #include "rigid/core/error.hpp"
@@ -145,9 +145,11 @@ TEST(Effects, SelectionIsExactBeforeAnyBlockSleeps) {
   for (std::size_t f = 0; f < frames[0].size(); ++f) {
     const auto &x = frames[0][f], &y = frames[1][f];
     ASSERT_EQ(std::memcmp(x.position.data(), y.position.data(), 3 * sizeof(double)), 0) << "frame " << f;
-    ASSERT_EQ(std::memcmp(x.orientation.coeffs().data(), y.orientation.coeffs().data(), 4 * sizeof(double)), 0) << "frame " << f;
+    ASSERT_EQ(std::memcmp(x.orientation.coeffs().data(), y.orientation.coeffs().data(), 4 * sizeof(double)), 0)
+        << "frame " << f;
     ASSERT_EQ(std::memcmp(x.velocity.data(), y.velocity.data(), 3 * sizeof(double)), 0) << "frame " << f;
-    ASSERT_EQ(std::memcmp(x.angular_momentum.data(), y.angular_momentum.data(), 3 * sizeof(double)), 0) << "frame " << f;
+    ASSERT_EQ(std::memcmp(x.angular_momentum.data(), y.angular_momentum.data(), 3 * sizeof(double)), 0)
+        << "frame " << f;
   }
   EXPECT_EQ(std::memcmp(&out[0].max_tilt_rad, &out[1].max_tilt_rad, sizeof(double)), 0);
   EXPECT_EQ(std::memcmp(&out[0].max_slip_m, &out[1].max_slip_m, sizeof(double)), 0);
@@ -185,9 +187,7 @@ TEST(Effects, ARestingBlockIsAwakeBeforeTheGroundReachesGTanAlpha) {
   // Still for 2 s, then the acceleration ramps to 0.95 g tan(alpha) at 6 s and holds: the block
   // sleeps while it is still, and must be awake well before the quasi-static uplift acceleration.
   const double limit = kGravity * std::tan(kAlpha);
-  auto accel = [limit](double t) {
-    return Vec3(t < 2.0 ? 0.0 : std::min(t - 2.0, 4.0) / 4.0 * 0.95 * limit, 0, 0);
-  };
+  auto accel = [limit](double t) { return Vec3(t < 2.0 ? 0.0 : std::min(t - 2.0, 4.0) / 4.0 * 0.95 * limit, 0, 0); };
   const auto drive = drive_from(8.0, accel);
   scenario::RunSettings s;
   s.free_time = 0;
@@ -214,7 +214,9 @@ TEST(Effects, PedestalWorkWhileAsleepKeepsTheEnergyBalance) {
   // carried. The pedestal's work on a carried block is that of the force m (a_ground + g z) along
   // the ground's path, so E = kinetic + potential + elastic - pedestal work changes only by
   // m v_rel . dv_ground, v_rel the frozen velocity relative to the ground.
-  const auto drive = drive_from(4.0, [](double t) { return Vec3(t < 0.5 ? 0.0 : t < 1.0 ? 0.01 * kGravity : 0.004 * kGravity, 0, 0); });
+  const auto drive = drive_from(4.0, [](double t) {
+    return Vec3(t < 0.5 ? 0.0 : t < 1.0 ? 0.01 * kGravity : 0.004 * kGravity, 0, 0);
+  });
   scenario::RunSettings s;
   s.free_time = 0;
   s.observe_interval = 0.05;
@@ -225,7 +227,8 @@ TEST(Effects, PedestalWorkWhileAsleepKeepsTheEnergyBalance) {
   };
   std::vector<Frame> frames;
   s.observer = [&frames](const dynamics::World& w) {
-    frames.push_back({w.stats().steps, w.kinetic_energy() + w.potential_energy() + w.elastic_energy() - w.pedestal_work(),
+    frames.push_back({w.stats().steps,
+                      w.kinetic_energy() + w.potential_energy() + w.elastic_energy() - w.pedestal_work(),
                       w.states()[1].velocity, w.states()[0].velocity});
   };
   const auto& scene = settled_block(kAlpha);
@@ -300,7 +303,8 @@ TEST(Effects, GroundDisplacementIsTheExactIntegral) {
     for (int i = 0; i < n; ++i) sum += d.at(t0 + (i + 0.5) * (t1 - t0) / n);
     return Vec3(sum * (t1 - t0) / n);
   };
-  for (const auto& [t0, t1] : std::vector<std::pair<double, double>>{{0.0, 2.0}, {0.03, 0.07}, {0.123, 1.777}, {-0.5, 0.35}, {1.5, 3.25}}) {
+  for (const auto& [t0, t1] :
+       std::vector<std::pair<double, double>>{{0.0, 2.0}, {0.03, 0.07}, {0.123, 1.777}, {-0.5, 0.35}, {1.5, 3.25}}) {
     EXPECT_LT((d.displacement(t0, t1) - fine(t0, t1)).norm(), 1e-8) << t0 << " " << t1;
   }
   EXPECT_EQ(d.displacement(1.0, 1.0), Vec3::Zero());
@@ -308,9 +312,11 @@ TEST(Effects, GroundDisplacementIsTheExactIntegral) {
 
 TEST(Effects, JobFileChoosesEffectsAndRefusesUnknownValues) {
   namespace fs = std::filesystem;
-  const fs::path path = fs::path(RIGID_SOURCE_DIR) / "jobs" / ("test_effects_job_" + std::to_string(::getpid()) + ".toml");
-  const std::string head = "[campaign]\nscales = \"0.1:0.2:0.1\"\n\n[[object]]\nscene = \"../models/demo/block_a02.toml\"\n\n"
-                           "[[record]]\nmotion = \"../waveforms/demo/stochastic_s1-X.AT2\"\n\n[run]\n";
+  const fs::path path =
+      fs::path(RIGID_SOURCE_DIR) / "jobs" / ("test_effects_job_" + std::to_string(::getpid()) + ".toml");
+  const std::string head =
+      "[campaign]\nscales = \"0.1:0.2:0.1\"\n\n[[object]]\nscene = \"../models/demo/block_a02.toml\"\n\n"
+      "[[record]]\nmotion = \"../waveforms/demo/stochastic_s1-X.AT2\"\n\n[run]\n";
   auto load = [&](const std::string& run) {
     std::ofstream(path) << head << run;
     return job::load_job(path.string());

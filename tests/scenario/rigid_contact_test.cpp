@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "rigid/rocking/housner.hpp"
 #include "rigid/library/builders.hpp"
 #include "rigid/library/rock_library.hpp"
+#include "rigid/rocking/housner.hpp"
 
 namespace rigid {
 namespace {
@@ -60,7 +60,8 @@ TEST_P(RigidOneSine, ThresholdWithinTwoPercentOfHousner) {
   // where a short pulse needs more than 0.5 g to overturn the block
   const double friction = std::max(0.6, 2.0 * a2d / kGravity);
   const scenario::Scene scene = rigid_block(c.alpha, c.height, c.depth, friction);
-  EXPECT_FALSE(overturns(scene, 0.98 * a2d, c.period)) << "overturned below the 2D threshold " << a2d / kGravity << " g";
+  EXPECT_FALSE(overturns(scene, 0.98 * a2d, c.period))
+      << "overturned below the 2D threshold " << a2d / kGravity << " g";
   EXPECT_TRUE(overturns(scene, 1.02 * a2d, c.period)) << "survived above the 2D threshold " << a2d / kGravity << " g";
 }
 
@@ -69,7 +70,8 @@ TEST_P(RigidOneSine, ThresholdWithinTwoPercentOfHousner) {
 // pulse at alpha 0.4 needs 2.4 g) throw the pivot off the ground, which the 2D model excludes.
 std::vector<PulseCase> pulse_grid() {
   std::vector<PulseCase> cases;
-  const std::array<std::array<double, 3>, 5> common{{{0.8, 0.8, 0.5}, {1.0, 0.3, 1.0}, {1.5, 1.2, 0.6}, {2.0, 0.8, 2.0}, {1.2, 0.4, 0.75}}};
+  const std::array<std::array<double, 3>, 5> common{
+      {{0.8, 0.8, 0.5}, {1.0, 0.3, 1.0}, {1.5, 1.2, 0.6}, {2.0, 0.8, 2.0}, {1.2, 0.4, 0.75}}};
   for (double a : {0.1, 0.2, 0.3, 0.4}) {
     for (const auto& s : common) cases.push_back({a, s[0], s[1], s[2]});
   }
@@ -136,7 +138,8 @@ TEST_P(RigidFreeRocking, EachImpactKeepsRSquaredOfTheEnergy) {
   ASSERT_GE(peaks.size(), 2u) << "the block did not rock";
   EXPECT_LT(conserved_error, 0.01) << "energy not conserved before the first impact";
   const double first = peaks[0] / e0, second = peaks[1] / peaks[0];
-  std::printf("alpha %.2f: energy kept per impact %.4f, %.4f; Housner r^2 %.4f (drift before impact %.2e, dt %.2e)\n", alpha, first, second, r * r, conserved_error, world.dt());
+  std::printf("alpha %.2f: energy kept per impact %.4f, %.4f; Housner r^2 %.4f (drift before impact %.2e, dt %.2e)\n",
+              alpha, first, second, r * r, conserved_error, world.dt());
   EXPECT_NEAR(first / (r * r), 1.0, 0.02);
   EXPECT_NEAR(second / (r * r), 1.0, 0.02);
 }
@@ -286,9 +289,11 @@ class RigidLibraryModel : public ::testing::TestWithParam<std::string> {};
 // 0.1 mm and turns less than 1e-4 rad.
 TEST_P(RigidLibraryModel, StandsTwentySecondsWithinATenthOfAMillimetre) {
   const auto library = library::rock_library();
-  const auto it = std::find_if(library.begin(), library.end(), [](const library::LibraryModel& m) { return m.name == GetParam(); });
+  const auto it =
+      std::find_if(library.begin(), library.end(), [](const library::LibraryModel& m) { return m.name == GetParam(); });
   ASSERT_NE(it, library.end());
-  const scenario::Scene settled = scenario::equilibrate(library::library_scene(*it, rigid_law()), dynamics::StepSettings{});
+  const scenario::Scene settled =
+      scenario::equilibrate(library::library_scene(*it, rigid_law()), dynamics::StepSettings{});
   dynamics::World world(settled.bodies, settled.law, dynamics::StepSettings{});
   const double dt = world.dt();
   const long steps = std::lround(20.0 / dt);

@@ -115,8 +115,7 @@ Vec3 one_sine(double t, double amplitude, double period, const Vec3& direction, 
 
 // harmonic velocity of peak acceleration `amplitude` (m/s^2) at `frequency` (Hz), switched on and
 // off by half-cosine ramps of one period each, so the velocity starts and ends at zero
-Vec3 sine(double t, double amplitude, double frequency, const Vec3& direction, double t0,
-          double t1, double phase = 0) {
+Vec3 sine(double t, double amplitude, double frequency, const Vec3& direction, double t0, double t1, double phase = 0) {
   if (t <= t0 || t >= t1) return Vec3::Zero();
   const double period = 1.0 / frequency;
   double envelope = 1;
@@ -135,7 +134,7 @@ struct Case {
   contact::ContactLaw law;
   dynamics::StepSettings step;  // dt = 0: the automatic step
   scenario::GroundDrive ground;
-  double duration = 1;          // unit: s
+  double duration = 1;  // unit: s
   /// Stop once a free block's centroid is below the lowest vertex of every fixed block (the
   /// study's failure rule): it has fallen off and only free fall is left.
   bool stop_when_fallen = true;
@@ -152,7 +151,7 @@ struct Outcome {
   double pedestal_work = 0;      ///< at the end (unit: J)
   double max_quat_error = 0;
   std::size_t max_subcontacts = 0;  ///< most subcontacts of one pair at once
-  double wall = 0;               ///< unit: s
+  double wall = 0;                  ///< unit: s
   bool fell = false;
   std::vector<dynamics::BodyState> final_states;
 };
@@ -189,8 +188,8 @@ void run_checked(const Case& c, Outcome& out) {
     // finite, unit quaternions
     for (std::size_t i = 0; i < n; ++i) {
       const auto& s = states[i];
-      ASSERT_TRUE(s.position.allFinite() && s.orientation.coeffs().allFinite() &&
-                  s.velocity.allFinite() && s.angular_momentum.allFinite())
+      ASSERT_TRUE(s.position.allFinite() && s.orientation.coeffs().allFinite() && s.velocity.allFinite() &&
+                  s.angular_momentum.allFinite())
           << c.name << ": block " << defs[i].name << " not finite at t = " << t1;
       const double q_error = std::abs(s.orientation.norm() - 1.0);
       out.max_quat_error = std::max(out.max_quat_error, q_error);
@@ -205,8 +204,8 @@ void run_checked(const Case& c, Outcome& out) {
       out.max_subcontacts = std::max(out.max_subcontacts, p.points.size());
       const double ratio = deepest / std::min(size[p.a], size[p.b]);
       out.max_overlap_ratio = std::max(out.max_overlap_ratio, ratio);
-      ASSERT_LT(ratio, 0.01) << c.name << ": overlap " << deepest << " m between "
-                             << defs[p.a].name << " and " << defs[p.b].name << " at t = " << t1;
+      ASSERT_LT(ratio, 0.01) << c.name << ": overlap " << deepest << " m between " << defs[p.a].name << " and "
+                             << defs[p.b].name << " at t = " << t1;
     }
     out.max_overlap = std::max(out.max_overlap, world.max_overlap());
 
@@ -215,8 +214,7 @@ void run_checked(const Case& c, Outcome& out) {
     const double margin = (tol + world.pedestal_work() - (e - e0)) / tol;
     out.min_energy_margin = std::min(out.min_energy_margin, margin);
     ASSERT_GE(margin, 0.0) << c.name << ": energy " << e - e0 << " J above the start exceeds the "
-                           << "pedestal work " << world.pedestal_work() << " J + tol " << tol
-                           << " J at t = " << t1;
+                           << "pedestal work " << world.pedestal_work() << " J + tol " << tol << " J at t = " << t1;
 
     if (c.stop_when_fallen) {
       double lowest_fixed = std::numeric_limits<double>::infinity();
@@ -262,15 +260,15 @@ Outcome check_one_model(const Case& c) {
   run_checked(c, second);
   if (::testing::Test::HasFatalFailure()) return first;
   EXPECT_EQ(first.steps, second.steps) << c.name;
-  EXPECT_TRUE(bit_identical(first.final_states, second.final_states))
-      << c.name << ": two runs of the same case differ";
+  EXPECT_TRUE(bit_identical(first.final_states, second.final_states)) << c.name << ": two runs of the same case differ";
   EXPECT_EQ(std::memcmp(&first.pedestal_work, &second.pedestal_work, sizeof(double)), 0) << c.name;
-  std::printf("%-22s dt %.3g s, %ld steps, %.3g s%s; max overlap/size %.3g (%.3g m); energy margin "
-              "min %.3f of tol %.3g J (pedestal work %.4g J); |q|-1 max %.2g; up to %zu subcontacts; "
-              "wall %.2f s per run\n",
-              c.name.c_str(), first.dt, first.steps, first.simulated, first.fell ? " (fell off)" : "",
-              first.max_overlap_ratio, first.max_overlap, first.min_energy_margin, first.energy_tol,
-              first.pedestal_work, first.max_quat_error, first.max_subcontacts, first.wall);
+  std::printf(
+      "%-22s dt %.3g s, %ld steps, %.3g s%s; max overlap/size %.3g (%.3g m); energy margin "
+      "min %.3f of tol %.3g J (pedestal work %.4g J); |q|-1 max %.2g; up to %zu subcontacts; "
+      "wall %.2f s per run\n",
+      c.name.c_str(), first.dt, first.steps, first.simulated, first.fell ? " (fell off)" : "", first.max_overlap_ratio,
+      first.max_overlap, first.min_energy_margin, first.energy_tol, first.pedestal_work, first.max_quat_error,
+      first.max_subcontacts, first.wall);
   return first;
 }
 
@@ -290,8 +288,7 @@ Outcome check_case(const Case& c) {
 // settled rectangular block on a pedestal (the study's set-up), width 2b, height 2h
 std::vector<BodyDef> settled_block(double b, double h, double depth, const contact::ContactLaw& law,
                                    double margin = 0.02, double pedestal_height = 0.2) {
-  const scenario::Scene s =
-      library::block_on_pedestal(b, h, depth, law, kDensity, margin, pedestal_height);
+  const scenario::Scene s = library::block_on_pedestal(b, h, depth, law, kDensity, margin, pedestal_height);
   return scenario::equilibrate(s, dynamics::StepSettings{}).bodies;
 }
 
@@ -321,8 +318,8 @@ TEST(Stability, FiveBlockLeaningStackAgainstWall) {
   const double s = 0.06;  // overhang of each block over the one below, towards the wall
   for (int k = 0; k < 5; ++k) {
     const double x = -0.1 - s * (4 - k);
-    c.bodies.push_back(box("block" + std::to_string(k), Vec3(x - 0.1, -0.15, 0.2 * k),
-                           Vec3(x + 0.1, 0.15, 0.2 * k + 0.2), false));
+    c.bodies.push_back(
+        box("block" + std::to_string(k), Vec3(x - 0.1, -0.15, 0.2 * k), Vec3(x + 0.1, 0.15, 0.2 * k + 0.2), false));
   }
   c.ground = sampled(4.0, 1e-3, [](double t) -> Vec3 { return sine(t, 0.2 * kGravity, 3.0, Vec3::UnitX(), 0.5, 3.5); });
   c.duration = 4.0;
@@ -419,7 +416,8 @@ TEST(Stability, CrossingEdgeEdge) {
   c.bodies.push_back(box("floor", Vec3(-1, -1, -2 * a - 0.2), Vec3(1, 1, -2 * a), true));
   c.bodies.push_back(hull_body("fixed bar", fixed_bar, true));
   c.bodies.push_back(hull_body("free bar", free_bar, false));
-  c.ground = sampled(3.0, 1e-3, [](double t) -> Vec3 { return one_sine(t, 0.05 * kGravity, 0.3, Vec3(1, 0.5, 0).normalized()); });
+  c.ground = sampled(3.0, 1e-3,
+                     [](double t) -> Vec3 { return one_sine(t, 0.05 * kGravity, 0.3, Vec3(1, 0.5, 0).normalized()); });
   c.duration = 3.0;
   check_case(c);
 }
@@ -442,7 +440,8 @@ TEST(Stability, VertexOnVertex) {
   }
   c.bodies.push_back(hull_body("roofed pedestal", roof, true));
   c.bodies.push_back(hull_body("pointed block", top, false));
-  c.ground = sampled(3.0, 1e-3, [](double t) -> Vec3 { return one_sine(t, 0.05 * kGravity, 0.3, Vec3(1, 0.3, 0).normalized()); });
+  c.ground = sampled(3.0, 1e-3,
+                     [](double t) -> Vec3 { return one_sine(t, 0.05 * kGravity, 0.3, Vec3(1, 0.3, 0).normalized()); });
   c.duration = 3.0;
   check_case(c);
 }
@@ -456,7 +455,8 @@ TEST(Stability, CentimetreBlockOnTenMetrePedestal) {
   c.bodies.push_back(box("pebble", Vec3(-0.005, -0.005, 0), Vec3(0.005, 0.005, 0.01), false));
   ASSERT_NEAR(c.bodies[0].shape.mass / c.bodies[1].shape.mass, 1e6, 1e-3);
   c.ground = sampled(0.5, 1e-3, [](double t) -> Vec3 {
-    return sine(t, 0.3 * kGravity, 5.0, Vec3::UnitX(), 0.05, 0.5) + sine(t, 0.2 * kGravity, 7.0, Vec3::UnitZ(), 0.05, 0.5);
+    return sine(t, 0.3 * kGravity, 5.0, Vec3::UnitX(), 0.05, 0.5) +
+           sine(t, 0.2 * kGravity, 7.0, Vec3::UnitZ(), 0.05, 0.5);
   });
   c.duration = 0.5;
   check_case(c);
@@ -491,10 +491,12 @@ TEST(Stability, TenGShaking) {
   c.duration = 3.0;
   const Outcome out = check_case(c);
   if (HasFatalFailure()) return;
-  const Vec3 slid = (out.final_states[1].position - out.final_states[0].position) -
-                    (c.bodies[1].position - c.bodies[0].position);
-  std::printf("10 g: the block slid (%.3f, %.3f) m on the pedestal (its edge is 0.2 m beyond the "
-              "block's)\n", slid.x(), slid.y());
+  const Vec3 slid =
+      (out.final_states[1].position - out.final_states[0].position) - (c.bodies[1].position - c.bodies[0].position);
+  std::printf(
+      "10 g: the block slid (%.3f, %.3f) m on the pedestal (its edge is 0.2 m beyond the "
+      "block's)\n",
+      slid.x(), slid.y());
 }
 
 // A 300 s run: a stocky 0.4 m block under a long low-level motion (sum of 24 harmonics of random
@@ -608,9 +610,8 @@ TEST(Stability, DegenerateMeshTenThousandFacets) {
   ASSERT_EQ(soup.size(), 10000u);
   c.bodies.push_back(box("pedestal", Vec3(-0.5, -0.4, -0.2), Vec3(0.5, 0.4, 0), true));
   c.bodies.push_back(library::body_from_soup("ellipsoid", soup, kDensity, false));
-  c.ground = sampled(3.0, 1e-3, [](double t) -> Vec3 {
-    return sine(t, 0.3 * kGravity, 1.5, Vec3(1, 0.5, 0).normalized(), 0.3, 2.7);
-  });
+  c.ground = sampled(
+      3.0, 1e-3, [](double t) -> Vec3 { return sine(t, 0.3 * kGravity, 1.5, Vec3(1, 0.5, 0).normalized(), 0.3, 2.7); });
   c.duration = 3.0;
   check_case(c);
 }

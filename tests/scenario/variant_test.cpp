@@ -8,9 +8,9 @@
 #include <cmath>
 #include <set>
 
-#include "rigid/library/builders.hpp"
 #include "rigid/analysis/rocking_parameters.hpp"
 #include "rigid/analysis/tilt_test.hpp"
+#include "rigid/library/builders.hpp"
 #include "rigid/scenario/variant.hpp"
 
 namespace rigid::scenario {
@@ -24,14 +24,19 @@ VariantSpace one(VariantKey key, double value) {
   VariantSpace s;
   s.method = "list";
   s.keys = {key};
-  s.variants = {{VariantValue{value, ""}}};
+  s.variants = {{VariantValue{value, "", std::nullopt}}};
   return s;
 }
 
 TEST(VariantDesign, LatinHypercubeUsesEveryStratumOnce) {
-  const std::vector<VariantDomain> domains{{VariantKey::friction, 0.4, 0.9, false, {}},
-                                           {VariantKey::normal_stiffness, 1e7, 1e9, true, {}},
-                                           {VariantKey::contact, 0, 0, false, {{0, "rigid"}, {0, "penalty"}}}};
+  const std::vector<VariantDomain> domains{
+      {VariantKey::friction, 0.4, 0.9, false, {}},
+      {VariantKey::normal_stiffness, 1e7, 1e9, true, {}},
+      {VariantKey::contact,
+       0,
+       0,
+       false,
+       {{0, "rigid", contact::ContactMethod::rigid}, {0, "penalty", contact::ContactMethod::penalty}}}};
   const int n = 20;
   const VariantSpace s = latin_hypercube(domains, n, 42);
   ASSERT_EQ(s.count(), n);
@@ -61,8 +66,13 @@ TEST(VariantDesign, LatinHypercubeUsesEveryStratumOnce) {
 }
 
 TEST(VariantDesign, GridIsTheFullFactorial) {
-  const std::vector<VariantDomain> domains{{VariantKey::friction, 0.5, 0.9, false, {}},
-                                           {VariantKey::com_offset_x, 0, 0, false, {{-0.01, ""}, {0.0, ""}, {0.02, ""}, {0.03, ""}}}};
+  const std::vector<VariantDomain> domains{
+      {VariantKey::friction, 0.5, 0.9, false, {}},
+      {VariantKey::com_offset_x,
+       0,
+       0,
+       false,
+       {{-0.01, "", std::nullopt}, {0.0, "", std::nullopt}, {0.02, "", std::nullopt}, {0.03, "", std::nullopt}}}};
   EXPECT_EQ(grid_size(domains, 3), 12.0);
   const VariantSpace s = grid_design(domains, 3);
   ASSERT_EQ(s.count(), 12);
@@ -97,15 +107,17 @@ TEST(VariantPhysics, SizeScaleIsASimilitude) {
     apply_variant(one(VariantKey::size_scale, s), 0, scene);
     const auto after = rocking_parameters(scene);
     ASSERT_TRUE(after.has_value());
-    EXPECT_NEAR(after->alpha, before->alpha, 1e-12);              // shape unchanged
-    EXPECT_NEAR(after->radius, s * before->radius, 1e-12);       // lengths scale
-    EXPECT_NEAR(after->p, before->p / std::sqrt(s), 1e-9);       // p = sqrt(3 g / 4 R) for a rectangle
+    EXPECT_NEAR(after->alpha, before->alpha, 1e-12);        // shape unchanged
+    EXPECT_NEAR(after->radius, s * before->radius, 1e-12);  // lengths scale
+    EXPECT_NEAR(after->p, before->p / std::sqrt(s), 1e-9);  // p = sqrt(3 g / 4 R) for a rectangle
     EXPECT_NEAR(after->p, std::sqrt(3 * kGravity / (4 * s * before->radius)), 1e-9);
     EXPECT_NEAR(scene.bodies[1].shape.mass, s * s * s * base.bodies[1].shape.mass, 1e-9 * base.bodies[1].shape.mass);
     // the block still rests on the pedestal: its lowest vertex meets the pedestal's top
     double block_bottom = 1e9, pedestal_top = -1e9;
-    for (const Vec3& v : scene.bodies[1].shape.vertices) block_bottom = std::min(block_bottom, (scene.bodies[1].position + scene.bodies[1].orientation * v).z());
-    for (const Vec3& v : scene.bodies[0].shape.vertices) pedestal_top = std::max(pedestal_top, (scene.bodies[0].position + scene.bodies[0].orientation * v).z());
+    for (const Vec3& v : scene.bodies[1].shape.vertices)
+      block_bottom = std::min(block_bottom, (scene.bodies[1].position + scene.bodies[1].orientation * v).z());
+    for (const Vec3& v : scene.bodies[0].shape.vertices)
+      pedestal_top = std::max(pedestal_top, (scene.bodies[0].position + scene.bodies[0].orientation * v).z());
     EXPECT_NEAR(block_bottom, pedestal_top, 1e-12);
   }
 }
@@ -123,7 +135,8 @@ TEST(VariantPhysics, ContactLawParameters) {
   Scene scene = block_on_pedestal(kB, kH, kDepth);
   VariantSpace s;
   s.keys = {VariantKey::friction, VariantKey::restitution, VariantKey::contact};
-  s.variants = {{VariantValue{0.35, ""}, VariantValue{0.2, ""}, VariantValue{0, "penalty", contact::ContactMethod::penalty}}};
+  s.variants = {{VariantValue{0.35, "", std::nullopt}, VariantValue{0.2, "", std::nullopt},
+                 VariantValue{0, "penalty", contact::ContactMethod::penalty}}};
   apply_variant(s, 0, scene);
   EXPECT_EQ(scene.law.friction, 0.35);
   EXPECT_EQ(scene.law.restitution, 0.2);

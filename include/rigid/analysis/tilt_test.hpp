@@ -30,17 +30,17 @@ struct TiltTestSettings {
 
 /// Result of the tilt test in one azimuth.
 struct TiltTestResult {
-  double azimuth = 0;          ///< direction of the ground acceleration, from +x towards +y (unit: rad)
+  double azimuth = 0;  ///< direction of the ground acceleration, from +x towards +y (unit: rad)
   /// Quasi-static toppling acceleration (unit: g): the middle of the final bracket between the
   /// highest held level the model stood and the lowest at which it went. +inf if it stood at
   /// max_acceleration during the ramp.
   double acceleration = 0;
-  double bracket_low = 0;      ///< highest level it stood for the hold time (unit: g)
-  double bracket_high = 0;     ///< lowest level at which a block went (unit: g)
-  double ramp_detection = 0;   ///< level at which the ramp alone first saw a block go (unit: g)
-  std::string block;           ///< the block that went at bracket_high
+  double bracket_low = 0;     ///< highest level it stood for the hold time (unit: g)
+  double bracket_high = 0;    ///< lowest level at which a block went (unit: g)
+  double ramp_detection = 0;  ///< level at which the ramp alone first saw a block go (unit: g)
+  std::string block;          ///< the block that went at bracket_high
   int hold_tests = 0;
-  long steps = 0;              ///< time steps simulated in total
+  long steps = 0;  ///< time steps simulated in total
 };
 
 /// Quasi-static tilt test of a settled scene: the smallest constant horizontal ground acceleration
@@ -56,10 +56,9 @@ TiltTestResult tilt_test(const scenario::Scene& settled, double azimuth, const T
 /// Tilt tests in `azimuths` directions evenly spaced from +x (8: every 45 degrees).
 struct TiltSurvey {
   std::vector<TiltTestResult> results;
-  double minimum = 0;          ///< smallest toppling acceleration (unit: g)
+  double minimum = 0;             ///< smallest toppling acceleration (unit: g)
   double azimuth_of_minimum = 0;  ///< unit: rad
 };
 TiltSurvey tilt_survey(const scenario::Scene& settled, int azimuths = 8, const TiltTestSettings& settings = {});
-
 
 }  // namespace rigid::analysis

@@ -9,9 +9,9 @@
 /// combined input digest) and a CRC-32 of both; then fixed-size records of a TaskResult (with
 /// its failure message and count of unconverged contact solves), an 8-byte fingerprint of the key
 /// and a CRC-32 (zlib) of both. Journals of the previous formats are read too: RIGIDJ03 (records
-/// without the count, read as -1, not recorded) and RIGIDJ02 (without the message either). Records are checked one by one: a
-/// bad one is reported and skipped, the others kept; the fingerprint lets records be trusted
-/// even when the header is damaged.
+/// without the count, read as -1, not recorded) and RIGIDJ02 (without the message either). Records are checked one by
+/// one: a bad one is reported and skipped, the others kept; the fingerprint lets records be trusted even when the
+/// header is damaged.
 #include <cstdint>
 #include <cstdio>
 #include <memory>

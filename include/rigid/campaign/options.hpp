@@ -5,9 +5,9 @@
 #include <functional>
 #include <string>
 
-#include "rigid/scenario/case.hpp"
 #include "rigid/job/job.hpp"
 #include "rigid/job/run_overrides.hpp"
+#include "rigid/scenario/case.hpp"
 
 namespace rigid::campaign {
 
@@ -31,20 +31,20 @@ struct OutputRemedies {
 };
 
 struct CampaignOptions {
-  std::string job;              ///< job file
-  std::string output;           ///< overrides the job's output path when not empty
-  bool force = false;           ///< start anew over an output written by another job
-  bool dry_run = false;         ///< run nothing; call on_dry_run on rank 0
-  bool noop = false;            ///< tasks return at once (measures dispatch throughput)
+  std::string job;       ///< job file
+  std::string output;    ///< overrides the job's output path when not empty
+  bool force = false;    ///< start anew over an output written by another job
+  bool dry_run = false;  ///< run nothing; call on_dry_run on rank 0
+  bool noop = false;     ///< tasks return at once (measures dispatch throughput)
   /// The run settings given with the command (model, contact, effects, accuracy), over the job
   /// file's [run]; called on every rank after the job file is read, so a bad value is reported
   /// as a job's error is (empty: none). The caller parses them (job::set_text_setting) and names
   /// its own flags in their errors.
   std::function<job::RunOverrides()> read_overrides;
-  double checkpoint_interval = 0;  ///< overrides the job's when > 0 (unit: s)
-  double grace = -1;            ///< overrides the job's when >= 0 (unit: s)
-  OutputRemedies remedies;      ///< offered in the errors about a refused output
-  bool verbose = false;         ///< also log dispatch internals (messages, checkpoint costs)
+  double checkpoint_interval_s = 0;  ///< overrides the job's when > 0 (unit: s)
+  double grace_s = -1;               ///< overrides the job's when >= 0 (unit: s)
+  OutputRemedies remedies;           ///< offered in the errors about a refused output
+  bool verbose = false;              ///< also log dispatch internals (messages, checkpoint costs)
   /// Called on rank 0 about every progress_interval seconds and once at the end (may be empty).
   std::function<void(const ProgressReport&)> on_progress;
   double progress_interval = 10;  ///< unit: s

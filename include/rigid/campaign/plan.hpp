@@ -51,8 +51,7 @@ class Plan {
  public:
   /// record_cost: relative expected cost of each record (e.g. its simulated duration), used to
   /// hand out the longest tasks first within a scale. stop_after = 0 disables the stop rule.
-  Plan(int objects, int records, int scales, int rotations, int stop_after,
-       std::vector<double> record_cost);
+  Plan(int objects, int records, int scales, int rotations, int stop_after, std::vector<double> record_cost);
 
   long size() const { return static_cast<long>(outcome_.size()); }
   Cell cell(long task) const;
@@ -68,7 +67,7 @@ class Plan {
   /// Returns a task that will not finish (abandoned) to the pool.
   void release(long task);
 
-  long done() const { return done_; }            ///< simulated (any outcome) or known failed
+  long done() const { return done_; }  ///< simulated (any outcome) or known failed
   long in_flight() const { return in_flight_; }
   long failures() const { return failures_; }
   /// True when no task remains to dispatch and none is in flight. Skips, once and for all,
@@ -94,13 +93,13 @@ class Plan {
   bool available(long task) const;
 
   int objects_, records_, scales_, rotations_, stop_after_;
-  std::vector<std::int8_t> outcome_;   // per task: CellOutcome or -1 in flight
-  std::vector<TaskResult> results_;    // per task
-  std::vector<long> order_;            // dispatch order
-  std::size_t cursor_ = 0;             // first position of order_ not yet handed out
-  std::vector<long> returned_;         // released tasks, handed out again first
-  std::vector<int> overturned_;        // per (object, record, scale): overturned rotations
-  std::vector<int> cutoff_;            // per (object, record)
+  std::vector<std::int8_t> outcome_;  // per task: CellOutcome or -1 in flight
+  std::vector<TaskResult> results_;   // per task
+  std::vector<long> order_;           // dispatch order
+  std::size_t cursor_ = 0;            // first position of order_ not yet handed out
+  std::vector<long> returned_;        // released tasks, handed out again first
+  std::vector<int> overturned_;       // per (object, record, scale): overturned rotations
+  std::vector<int> cutoff_;           // per (object, record)
   long done_ = 0, in_flight_ = 0, failures_ = 0;
 };
 

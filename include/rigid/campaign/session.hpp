@@ -8,8 +8,8 @@
 #include "rigid/campaign/plan.hpp"
 #include "rigid/io/cube.hpp"
 #include "rigid/io/provenance.hpp"
-#include "rigid/scenario/case.hpp"
 #include "rigid/job/job.hpp"
+#include "rigid/scenario/case.hpp"
 
 namespace rigid::campaign {
 
@@ -17,10 +17,10 @@ namespace rigid::campaign {
 /// command-line overrides, accuracy preset), the job file, the record list, every object's files
 /// and every record's motion files.
 struct Inputs {
-  io::Digests job;                    ///< (settings), job file, record list
-  std::vector<io::Digests> objects;   ///< per object: scene, model, STLs, state
-  std::vector<io::Digests> records;   ///< per record: motion files
-  std::string combined;               ///< over the contents only: the same files elsewhere match
+  io::Digests job;                   ///< (settings), job file, record list
+  std::vector<io::Digests> objects;  ///< per object: scene, model, STLs, state
+  std::vector<io::Digests> records;  ///< per record: motion files
+  std::string combined;              ///< over the contents only: the same files elsewhere match
 };
 
 /// Reads every input file once more (after the model was loaded from them).

@@ -3,8 +3,8 @@
 #include <cstdint>
 
 #include "rigid/campaign/plan.hpp"
-#include "rigid/scenario/case.hpp"
 #include "rigid/job/job.hpp"
+#include "rigid/scenario/case.hpp"
 
 namespace rigid::campaign {
 

@@ -48,10 +48,10 @@ struct ContactLaw {
 
 /// The plane between two blocks.
 struct CommonPlane {
-  Vec3 normal{0, 0, 1};    ///< unit normal pointing from A to B
-  double overlap = 0;      ///< > 0: depth of penetration along normal; < 0: gap (unit: m)
-  Vec3 point_a{0, 0, 0};   ///< witness point on A (unit: m)
-  Vec3 point_b{0, 0, 0};   ///< witness point on B (unit: m)
+  Vec3 normal{0, 0, 1};   ///< unit normal pointing from A to B
+  double overlap = 0;     ///< > 0: depth of penetration along normal; < 0: gap (unit: m)
+  Vec3 point_a{0, 0, 0};  ///< witness point on A (unit: m)
+  Vec3 point_b{0, 0, 0};  ///< witness point on B (unit: m)
 };
 
 /// Finds the common plane of A and B. Separated blocks: the perpendicular bisector of the

@@ -74,8 +74,8 @@ struct JobFile {
   int rotations = 2;
   std::vector<double> rotation_angles_deg;  ///< unit: deg; empty: random angles
   int stop_after = 10;
-  double checkpoint_interval = 30;     ///< unit: s
-  double grace = 30;                   ///< unit: s
+  double checkpoint_interval_s = 30;   ///< unit: s
+  double grace_s = 30;                 ///< unit: s
   std::vector<JobFileObject> objects;  ///< the [[object]]s present (optional absent ones left out)
   scenario::VariantSpace variants;     ///< [sweep] or [[variant]]; count() == 0 without
   std::vector<long> variant_lines;     ///< line of the [sweep] or of each [[variant]]
@@ -89,6 +89,5 @@ struct JobFile {
 /// Reads a job file. Scene, state and record-list paths are relative to the job file; the
 /// output path is relative to the current directory. Throws rigid::InputError naming file and line.
 JobFile read_job_file(const std::string& path);
-
 
 }  // namespace rigid::io

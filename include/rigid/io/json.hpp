@@ -22,10 +22,10 @@ inline Json json_or_null(const std::optional<double>& v) { return v ? Json(*v) :
 
 /// An object's full physics and run settings as one JSON object (the cube's physics_json
 /// attributes): its own contact model and law, density, failure rule and the time step its runs
-/// take (dynamics::time_step), with a job's run settings, accuracy preset and stop rule. Keys, in order: contact, restitution,
-/// normal_stiffness, shear_stiffness, friction, damping, density, failure_rule,
-/// failure_tilt_deg, step_s, dt_s, safety, integrator, duration_s, free_time_s, stop_after,
-/// accuracy, rest_speed_m_s, rest_angular_speed_rad_s, rest_time_s, effects.
+/// take (dynamics::time_step), with a job's run settings, accuracy preset and stop rule. Keys, in order: contact,
+/// restitution, normal_stiffness, shear_stiffness, friction, damping, density, failure_rule, failure_tilt_deg, step_s,
+/// dt_s, safety, integrator, duration_s, free_time_s, stop_after, accuracy, rest_speed_m_s, rest_angular_speed_rad_s,
+/// rest_time_s, effects.
 std::string physics_json(const scenario::Scene& scene, const scenario::RunSettings& run, const std::string& accuracy,
                          int stop_after);
 

@@ -57,13 +57,13 @@ LabFormat read_lab_format(const std::string& path);
 
 /// The raw columns of a recording, in the file's units (time in s).
 struct LabTable {
-  std::string source;             ///< the file
-  std::vector<std::string> header;///< header lines (line ends stripped)
-  std::vector<double> time;       ///< unit: s
+  std::string source;                ///< the file
+  std::vector<std::string> header;   ///< header lines (line ends stripped)
+  std::vector<double> time;          ///< unit: s
   std::vector<double> acceleration;  ///< the acceleration column in its unit; empty unless read
   std::vector<double> displacement;  ///< the displacement column in its unit; empty unless read
-  double dt = 0.0;                ///< (t_last - t_first) / (n - 1) (unit: s)
-  long first_data_line = 0;       ///< 1-based line of the first sample
+  double dt = 0.0;                   ///< (t_last - t_first) / (n - 1) (unit: s)
+  long first_data_line = 0;          ///< 1-based line of the first sample
 };
 
 /// Reads the time column and the column(s) f.channel needs from a file (gzip or plain text, detected

@@ -15,8 +15,8 @@ scenario::Scene load_scene(const std::string& path);
 
 /// Parses an original Rigid model file's text; STL paths are relative to `base_dir`.
 /// `source` names the text in messages; `first_line` is the line number of its first line.
-scenario::Scene parse_model_text(const std::string& text, const std::string& base_dir,
-                                 const std::string& source, long first_line = 1);
+scenario::Scene parse_model_text(const std::string& text, const std::string& base_dir, const std::string& source,
+                                 long first_line = 1);
 
 /// What a scene changed after loading (a campaign variant's size_scale, density, physics) must
 /// still satisfy of the checks load_scene makes: a density of 1 to 1e5 kg/m^3, a positive normal

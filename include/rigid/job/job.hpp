@@ -86,8 +86,8 @@ struct Job {
   std::optional<contact::ContactMethod> contact;
   /// Line of the job's dt_s (else safety, else [run]) key: where errors about the step point.
   long run_line = 0;
-  double checkpoint_interval = 30;  ///< unit: s
-  double grace = 30;                ///< time in-flight tasks get after a stop signal (unit: s)
+  double checkpoint_interval_s = 30;  ///< unit: s
+  double grace_s = 30;                ///< time in-flight tasks get after a stop signal (unit: s)
   /// What the reader left out and the user should hear of, one line each (an optional object
   /// whose scene does not exist: [[object]] optional = true).
   std::vector<std::string> notes;

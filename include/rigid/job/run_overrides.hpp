@@ -26,10 +26,10 @@ struct SettingSource {
 };
 
 struct RunOverrides {
-  std::optional<scenario::Engine> engine;     ///< dem3d or rocking2d (the `model` key)
+  std::optional<scenario::Engine> engine;         ///< dem3d or rocking2d (the `model` key)
   std::optional<contact::ContactMethod> contact;  ///< every object's contact model; none: each scene's
-  std::optional<bool> select_effects;            ///< effects "auto" (true) or "all" (false)
-  std::optional<std::string> accuracy;           ///< accuracy preset name (scenario/accuracy.hpp)
+  std::optional<bool> select_effects;             ///< effects "auto" (true) or "all" (false)
+  std::optional<std::string> accuracy;            ///< accuracy preset name (scenario/accuracy.hpp)
   std::optional<dynamics::RotationIntegrator> integrator;
   std::optional<double> duration;   ///< unit: s; 0 = the record plus free_time
   std::optional<double> free_time;  ///< unit: s

@@ -8,20 +8,18 @@
 namespace rigid::library {
 
 /// A block from a convex triangle soup placed where the soup's coordinates say.
-dynamics::BodyDef body_from_soup(const std::string& name, const geometry::TriangleSoup& soup,
-                                 double density, bool fixed);
+dynamics::BodyDef body_from_soup(const std::string& name, const geometry::TriangleSoup& soup, double density,
+                                 bool fixed);
 
 /// An axis-aligned box [lo, hi] (unit: m).
-dynamics::BodyDef box_body(const std::string& name, const Vec3& lo, const Vec3& hi, double density,
-                           bool fixed);
+dynamics::BodyDef box_body(const std::string& name, const Vec3& lo, const Vec3& hi, double density, bool fixed);
 
 /// A rectangular block of width 2b (x), depth `depth` (y) and height 2h (z) standing on a fixed
 /// pedestal whose top is z = 0, centred on the origin. The pedestal has the block's footprint
 /// enlarged by `pedestal_margin` on every side and is `pedestal_height` tall, so a block that
 /// topples falls off it (the study's validation set-up, physics.md §11).
 scenario::Scene block_on_pedestal(double b, double h, double depth, const contact::ContactLaw& law = {},
-                        double density = 2600, double pedestal_margin = 0.02,
-                        double pedestal_height = 0.2);
+                                  double density = 2600, double pedestal_margin = 0.02, double pedestal_height = 0.2);
 
 /// The ground drive of a one-sine acceleration pulse along x, a(t) = A sin(2 pi t / T) for
 /// 0 <= t <= T (unit: m/s^2, s): velocity A T / (2 pi) (1 - cos(2 pi t / T)) sampled every dt,

@@ -12,9 +12,9 @@ namespace rigid::library {
 
 /// One block of a library model, in its place (world coordinates at build time, unit: m).
 struct LibraryPiece {
-  std::string name;              ///< block name, also the STL file stem
-  geometry::TriangleSoup soup;   ///< closed, convex, outward triangles
-  bool fixed = false;            ///< true: driven by the ground (pedestal, base, wall, rock face)
+  std::string name;             ///< block name, also the STL file stem
+  geometry::TriangleSoup soup;  ///< closed, convex, outward triangles
+  bool fixed = false;           ///< true: driven by the ground (pedestal, base, wall, rock face)
 };
 
 /// A library model: pieces listed fixed ones first, free ones bottom to top.
@@ -22,8 +22,8 @@ struct LibraryModel {
   std::string name;         ///< directory and file stem, e.g. "single_rock_050"
   std::string description;  ///< one line: what it is an analogue of
   std::vector<LibraryPiece> pieces;
-  scenario::FailureRule failure;      ///< the rule that suits the model
-  std::string failure_note; ///< why that rule
+  scenario::FailureRule failure;  ///< the rule that suits the model
+  std::string failure_note;       ///< why that rule
   /// The free pieces form one vertical stack with horizontal interfaces, each resting only on the
   /// piece listed before it (the first free piece on the last fixed one), so the rigid-statics
   /// toppling estimate (static_toppling) applies.
@@ -36,8 +36,7 @@ std::vector<LibraryModel> rock_library();
 
 /// The scene of a model at build time (not yet settled), with the study's contact law and
 /// density (physics.md §11) unless given. Block names are the piece names.
-scenario::Scene library_scene(const LibraryModel& model, const contact::ContactLaw& law = {},
-                    double density = 2600);
+scenario::Scene library_scene(const LibraryModel& model, const contact::ContactLaw& law = {}, double density = 2600);
 
 /// Rigid-statics toppling acceleration of a simple stack (LibraryModel::simple_stack) at build
 /// time, an independent estimate: for every interface, the free pieces above it rock as one rigid

@@ -69,8 +69,8 @@ class GroundAcceleration {
   /// time start_time + k·dt (unit: s); linear interpolation between samples, zero before the
   /// first and after the last sample. The values are copied. Throws std::invalid_argument unless
   /// dt > 0, start_time and scale are finite and every sample is finite.
-  static GroundAcceleration sampled(std::span<const double> accel, double dt,
-                                    double start_time = 0.0, double scale = 1.0);
+  static GroundAcceleration sampled(std::span<const double> accel, double dt, double start_time = 0.0,
+                                    double scale = 1.0);
 
   /// Analytic history ü_g(t) (unit: m/s^2 as a function of s), used for t ≤ end_time (unit: s)
   /// and taken as zero after it. List every instant where `accel` jumps or has a kink in
@@ -193,7 +193,7 @@ struct RockingResult {
 /// std::invalid_argument for an invalid block (α outside (0, π/2), p ≤ 0, r outside [0, 1]),
 /// options or initial state, and std::logic_error if time stops advancing (an internal guard).
 RockingResult simulate_rocking(const RockingBlock& block, const GroundAcceleration& ground, double end_time,
-                       const RockingOptions& options = {}, const InitialState& initial = {});
+                               const RockingOptions& options = {}, const InitialState& initial = {});
 
 /// Ground acceleration magnitude that lifts the block from rest (unit: m/s^2): g tanα, or g α for
 /// the linearised equation (physics.md §2).
@@ -202,8 +202,7 @@ double uplift_acceleration(const RockingBlock& block, bool linearised = false);
 /// Mechanical energy per unit I_O of the block on a quiet base, zero at rest (unit: rad^2/s^2):
 /// ½θ̇² + p² [cos(α − |θ|) − cos α], or ½θ̇² + p² (α|θ| − θ²/2) for the linearised equation.
 /// Conserved between impacts when ü_g = 0; an impact multiplies it by r².
-double rocking_energy(const RockingBlock& block, double theta, double theta_dot,
-                      bool linearised = false);
+double rocking_energy(const RockingBlock& block, double theta, double theta_dot, bool linearised = false);
 
 /// Single pulses of physics.md §2 (Zhang & Makris 2001), starting at t = 0, zero outside:
 enum class PulseShape {
@@ -246,7 +245,6 @@ struct ThresholdOptions {
 /// symmetry note at the top). Returns +∞ if nothing up to max_ratio · uplift_acceleration
 /// overturns. Throws std::invalid_argument for invalid inputs.
 double min_overturning_amplitude(const RockingBlock& block, PulseShape shape, double duration,
-                                 const RockingOptions& options = {},
-                                 const ThresholdOptions& search = {});
+                                 const RockingOptions& options = {}, const ThresholdOptions& search = {});
 
 }  // namespace rigid::rocking

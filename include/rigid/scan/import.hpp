@@ -10,10 +10,10 @@
 #include <utility>
 #include <vector>
 
+#include "rigid/analysis/rocking_parameters.hpp"
 #include "rigid/core/types.hpp"
 #include "rigid/geometry/contact_shape.hpp"
 #include "rigid/repair/mesh_repair.hpp"
-#include "rigid/analysis/rocking_parameters.hpp"
 
 namespace rigid::scan {
 

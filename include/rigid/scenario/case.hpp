@@ -56,7 +56,7 @@ class Model {
   std::vector<Scene> scenes_;
   std::vector<motion::GroundMotion> records_;
   RunSettings run_;
-  std::vector<double> pga_factor_per_g_;        // per record; 0 = not given
+  std::vector<double> pga_factor_per_g_;         // per record; 0 = not given
   std::vector<rocking::RockingBlock> blocks2d_;  // per scene, for rocking2d
 };
 
@@ -92,9 +92,9 @@ enum class FailureReason : std::int32_t {
 struct CaseOutcome {
   CellOutcome outcome = CellOutcome::failed;  ///< survived, overturned or failed
   FailureReason reason = FailureReason::none;
-  std::string message;        ///< the error's text when reason = exception
-  std::exception_ptr error;   ///< the error itself when reason = exception (to rethrow)
-  RunOutcome run;       ///< the run's details (valid unless reason = exception)
+  std::string message;       ///< the error's text when reason = exception
+  std::exception_ptr error;  ///< the error itself when reason = exception (to rethrow)
+  RunOutcome run;            ///< the run's details (valid unless reason = exception)
 };
 
 /// The motion of a case: record `c.record` scaled to `c.target_pga_g` and, for the 3D model,

@@ -30,8 +30,8 @@ struct Scene {
   std::vector<dynamics::BodyDef> bodies;
   contact::ContactLaw law;
   FailureRule failure;
-  double density = 2600;          ///< unit: kg/m^3 (already applied to the bodies' masses)
-  std::string source;             ///< where it was read from, for messages
+  double density = 2600;  ///< unit: kg/m^3 (already applied to the bodies' masses)
+  std::string source;     ///< where it was read from, for messages
   /// Every file the scene was built from, in reading order (scene, model, STLs, state): what a
   /// campaign hashes to refuse a resume over changed inputs.
   std::vector<std::string> files;
@@ -101,22 +101,22 @@ struct ActiveEffects {
   long sliding_steps = 0;       ///< of those, evaluations that needed slip bookkeeping
   enum class End { full_duration, failure, at_rest };
   End end = End::full_duration;  ///< why the run stopped
-  double time_saved_s = 0;      ///< requested duration minus simulated time (unit: s)
+  double time_saved_s = 0;       ///< requested duration minus simulated time (unit: s)
 };
 
 /// What one run produced.
 struct RunOutcome {
   bool overturned = false;
   std::optional<double> failure_time_s;
-  std::string failed_block;            ///< name of the first block that failed
-  long steps = 0;             ///< steps computed (steps skipped asleep not counted)
+  std::string failed_block;  ///< name of the first block that failed
+  long steps = 0;            ///< steps computed (steps skipped asleep not counted)
   double dt_s = 0;
-  double simulated_s = 0;     ///< simulated time
-  double max_tilt_rad = 0;    ///< largest tilt of any free block
-  double max_slip_m = 0;      ///< largest accumulated frictional slip of any free block
-  double max_overlap_m = 0;   ///< deepest subcontact indentation seen
-  bool ended_at_rest = false; ///< stopped early because all blocks were at rest after the motion
-  bool finite = true;         ///< false if a NaN or Inf appeared (the run stops there)
+  double simulated_s = 0;      ///< simulated time
+  double max_tilt_rad = 0;     ///< largest tilt of any free block
+  double max_slip_m = 0;       ///< largest accumulated frictional slip of any free block
+  double max_overlap_m = 0;    ///< deepest subcontact indentation seen
+  bool ended_at_rest = false;  ///< stopped early because all blocks were at rest after the motion
+  bool finite = true;          ///< false if a NaN or Inf appeared (the run stops there)
   /// Rigid contact model: steps whose contact solve stopped at its sweep cap without converging
   /// (dynamics::StepStats); 0 for penalty contact and the 2D model, which have no such solve.
   long unconverged_steps = 0;

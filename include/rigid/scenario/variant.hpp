@@ -26,18 +26,18 @@ enum class VariantKey {
   com_offset_x,      ///< centre-of-mass offset of every free block, its mesh frame
   com_offset_y,
   com_offset_z,
-  size_scale,        ///< geometric similitude of the whole scene about the origin
-  scene,             ///< text: an alternative scene file of the object (another mesh of the rock)
+  size_scale,  ///< geometric similitude of the whole scene about the origin
+  scene,       ///< text: an alternative scene file of the object (another mesh of the rock)
 };
 
 /// A parameter's name in job files and cubes, its units and the values it admits.
 struct VariantParameterInfo {
   VariantKey key;
   const char* name;
-  const char* units;        ///< UDUNITS-2; "" for text
+  const char* units;  ///< UDUNITS-2; "" for text
   const char* description;
   bool text = false;
-  double lowest = 0;        ///< admitted values: lowest <= v (or < v when lowest_open) and v <= highest
+  double lowest = 0;  ///< admitted values: lowest <= v (or < v when lowest_open) and v <= highest
   bool lowest_open = false;
   double highest = 0;
 };
@@ -70,9 +70,9 @@ struct VariantDomain {
 
 /// The variants of a job: the parameters they change and each variant's values.
 struct VariantSpace {
-  std::string method;              ///< "lhs", "grid" or "list"
+  std::string method;  ///< "lhs", "grid" or "list"
   std::uint64_t seed = 0;
-  std::vector<VariantKey> keys;    ///< the parameters changed, in job order
+  std::vector<VariantKey> keys;                     ///< the parameters changed, in job order
   std::vector<std::vector<VariantValue>> variants;  ///< [variant][parameter]
   int count() const { return static_cast<int>(variants.size()); }
 };

@@ -15,8 +15,8 @@
 #include <string>
 #include <vector>
 
-#include "rigid/motion/ground_motion.hpp"
 #include "rigid/library/rock_library.hpp"
+#include "rigid/motion/ground_motion.hpp"
 #include "rigid/scenario/scene.hpp"
 
 namespace rigid::study {
@@ -29,11 +29,11 @@ inline constexpr double kNoValue = std::numeric_limits<double>::quiet_NaN();
 
 /// What the study sweeps.
 struct StudyOptions {
-  bool quick = false;             ///< a small subset (CI smoke test)
-  int repeat = 3;                 ///< runs per timing (1 when quick); the median wall time is kept
+  bool quick = false;               ///< a small subset (CI smoke test)
+  int repeat = 3;                   ///< runs per timing (1 when quick); the median wall time is kept
   double reference_safety = 0.025;  ///< safety factor of the converged reference run
-  std::vector<std::string> only;  ///< only these scenes or SCENE/MOTION cases (empty: all)
-  std::string contact = "both";   ///< contact models on the model axis: rigid, penalty or both
+  std::vector<std::string> only;    ///< only these scenes or SCENE/MOTION cases (empty: all)
+  std::string contact = "both";     ///< contact models on the model axis: rigid, penalty or both
 };
 
 /// One point of the sweep: numerical settings, or a contact model and its parameter.
@@ -80,7 +80,7 @@ struct Case {
   double free_time = 5.0;
   Oracle oracle = Oracle::none;
   double oracle_value = kNoValue;
-  std::string model_quantity;   ///< what a row's model_value is
+  std::string model_quantity;                    ///< what a row's model_value is
   std::optional<library::LibraryModel> library;  ///< for the rigid-statics oracle
 };
 
@@ -116,7 +116,7 @@ struct Row {
 struct StudyResult {
   std::vector<Case> cases;  ///< with their oracle values (and the pulses the reference chose)
   std::vector<Setting> settings;
-  std::vector<Row> rows;    ///< per case, per setting that applies to it
+  std::vector<Row> rows;  ///< per case, per setting that applies to it
 };
 
 /// Runs every case with every setting that applies to it (settings.front() is the reference).
