@@ -61,8 +61,7 @@ void register_campaign_command(CLI::App& app) {
                   "safety, integrator and dt_s still apply (recorded in the cube; docs/accuracy.md)");
   cmd->add_option("--effects", command->effects,
                   "auto (simulate only the effects the scenes and motions call for) or all (every effect, the "
-                  "reference): overrides the job's [run] effects (recorded in the cube)")
-      ->check(CLI::IsMember({"auto", "all"}));
+                  "reference): overrides the job's [run] effects (recorded in the cube)");
   cmd->add_option("--progress", command->progress,
                   "auto (a live line when a person watches: stderr is a terminal, or mpirun's is; log lines "
                   "otherwise), bar, log or none")
