@@ -7,6 +7,7 @@
 #include "commands.hpp"
 #include "number_checks.hpp"
 #include "rigid/campaign/driver.hpp"
+#include "rigid/job/job.hpp"
 #include "rigid/job/run_overrides.hpp"
 
 namespace rigid::app {
@@ -77,9 +78,9 @@ void register_campaign_command(CLI::App& app) {
   cmd->add_option("--checkpoint-interval", o->checkpoint_interval_s,
                   "Seconds between checkpoints (a journal fsync; the whole cube is rewritten only when that takes at "
                   "most 5 % of the time); default: the job's (30 s)")
-      ->check(positive_number());
+      ->check(number_admitted_by(job::checkpoint_interval_problem));
   cmd->add_option("--grace", o->grace_s, "Seconds in-flight tasks get after a stop signal; default: the job's (30 s)")
-      ->check(non_negative_number());
+      ->check(number_admitted_by(job::grace_problem));
   cmd->callback([command] {
     campaign::CampaignOptions& options = command->options;
     attach_progress(options, command->progress, command->log_interval);

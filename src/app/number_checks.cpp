@@ -31,11 +31,26 @@ CLI::Validator finite_number() {
 }
 
 CLI::Validator positive_number() {
-  return number_where([](double v) { return v > 0; }, "a positive number (leave the option out for the automatic value)");
+  return number_where([](double v) { return v > 0; },
+                      "a positive number (leave the option out for the automatic value)");
 }
 
 CLI::Validator non_negative_number() {
   return number_where([](double v) { return v >= 0; }, "a number >= 0");
+}
+
+CLI::Validator number_admitted_by(std::function<std::string(double)> problem) {
+  return CLI::Validator(
+      [problem](std::string& text) -> std::string {
+        char* end = nullptr;
+        errno = 0;
+        const double v = std::strtod(text.c_str(), &end);
+        if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE)
+          return "'" + text + "' is not a number";
+        const std::string why = problem(v);
+        return why.empty() ? why : "'" + text + "' " + why;
+      },
+      "NUMBER");
 }
 
 CLI::Validator angle_deg() {

@@ -3,6 +3,8 @@
 /// out of range is a usage error (`rigid: error: --OPTION: ...`, exit 2). An option's automatic
 /// choice is its absence, so 0 is no stand-in for "automatic".
 #include <CLI/CLI.hpp>
+#include <functional>
+#include <string>
 
 namespace rigid::app {
 
@@ -12,6 +14,9 @@ CLI::Validator finite_number();
 CLI::Validator positive_number();
 /// A finite number >= 0.
 CLI::Validator non_negative_number();
+/// A number that `problem` admits: the setting's own rule (for example
+/// job::checkpoint_interval_problem), which returns "" or what is wrong.
+CLI::Validator number_admitted_by(std::function<std::string(double)> problem);
 /// A finite angle of at most kMaxAngleDeg in magnitude (unit: deg).
 CLI::Validator angle_deg();
 

@@ -225,8 +225,6 @@ void read_campaign(const toml::table& root, JobFile& job) {
   }
   job.checkpoint_interval_s = optional_number(*c, "checkpoint_interval_s", job.checkpoint_interval_s, path);
   job.grace_s = optional_number(*c, "grace_s", job.grace_s, path);
-  if (!(job.checkpoint_interval_s > 0)) throw InputError(path, line_of(*c), "checkpoint_interval_s must be positive");
-  if (!(job.grace_s >= 0)) throw InputError(path, line_of(*c), "grace_s must not be negative");
 }
 
 void read_objects(const toml::table& root, const fs::path& base, JobFile& job) {

@@ -1,5 +1,6 @@
 #include "rigid/job/job.hpp"
 
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 
@@ -12,6 +13,14 @@ void apply_overrides(Job& job) {
   job.accuracy = accuracy_name(job.overrides);
   job.engine = job.overrides.engine.value_or(scenario::Engine::dem3d);
   job.contact = job.overrides.contact;
+}
+
+std::string checkpoint_interval_problem(double interval_s) {
+  return std::isfinite(interval_s) && interval_s > 0 ? "" : "must be a positive number of seconds";
+}
+
+std::string grace_problem(double grace_s) {
+  return std::isfinite(grace_s) && grace_s >= 0 ? "" : "must be a number of seconds >= 0";
 }
 
 Job one_cell_job(const RunOverrides& overrides) {

@@ -1,6 +1,7 @@
 #include "rigid/job/load.hpp"
 
 #include <cstdio>
+#include <utility>
 
 #include "rigid/core/error.hpp"
 #include "rigid/job/variants.hpp"
@@ -66,6 +67,11 @@ Job load_job(const std::string& path) {
   job.notes = std::move(file.notes);
   job.overrides = overrides_of(file.run, path);
   job.run_line = file.run.step_line;
+  for (const auto& [key, problem] :
+       {std::pair{"checkpoint_interval_s", checkpoint_interval_problem(job.checkpoint_interval_s)},
+        std::pair{"grace_s", grace_problem(job.grace_s)}}) {
+    if (!problem.empty()) throw InputError(job.path, file.campaign_line, std::string(key) + " " + problem);
+  }
   check_cell_count(job, file.campaign_line);
   apply_overrides(job);
   job.hash = job_hash(job);

@@ -2,10 +2,12 @@
 // work starts with the file, line and problem.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
 #include "rigid/core/error.hpp"
+#include "rigid/job/job.hpp"
 #include "rigid/job/load.hpp"
 
 namespace rigid::job {
@@ -178,6 +180,28 @@ TEST_F(JobFile, MissingMotionIsRefused) {
   std::string t = kGood;
   t.replace(t.find("stochastic_s1-X"), 15, "no_such_record-X");
   expect_error(t, "no_such_record-X.AT2");
+}
+
+// The checkpoint interval must be a positive number of seconds and the grace period a number of
+// seconds >= 0, by one rule for the job file (refused at its [campaign] line) and the flags.
+TEST_F(JobFile, CheckpointIntervalAndGraceFollowOneRule) {
+  const std::string good = kGood;
+  const auto with = [&](const std::string& line) {
+    return "[campaign]\n" + line + "\n" + good.substr(good.find('\n') + 1);
+  };
+  expect_error(with("checkpoint_interval_s = 0.0"), "checkpoint_interval_s must be a positive number of seconds", 1);
+  // a value that is no finite number is the reader's to refuse, at its own line
+  expect_error(with("checkpoint_interval_s = inf"), "checkpoint_interval_s must be a finite number", 2);
+  expect_error(with("grace_s = -1.0"), "grace_s must be a number of seconds >= 0", 1);
+  expect_error(with("grace_s = nan"), "grace_s must be a finite number", 2);
+  const Job zero_grace = load_job(write(with("grace_s = 0.0")));
+  EXPECT_EQ(zero_grace.grace_s, 0.0);
+  const Job tiny = load_job(write(with("checkpoint_interval_s = 0.001")));
+  EXPECT_EQ(tiny.checkpoint_interval_s, 0.001);
+  EXPECT_FALSE(checkpoint_interval_problem(-1.0).empty());
+  EXPECT_FALSE(checkpoint_interval_problem(std::nan("")).empty());
+  EXPECT_TRUE(grace_problem(0.0).empty());
+  EXPECT_FALSE(grace_problem(-0.5).empty());
 }
 
 TEST_F(JobFile, EmptyScaleListIsRefused) {

@@ -100,6 +100,11 @@ struct Job {
 /// the one place a job's overrides are applied.
 void apply_overrides(Job& job);
 
+/// The one rule of the campaign's checkpoint interval and grace period (unit: s), whether a job
+/// file or a flag gives them: "" when admissible, else what is wrong ("must be ...").
+std::string checkpoint_interval_problem(double interval_s);
+std::string grace_problem(double grace_s);
+
 /// A job of one cell: one object, one record simulated as it is (no PGA scaling, no rotation),
 /// with these overrides applied. `rigid run` simulates such a job.
 Job one_cell_job(const RunOverrides& overrides);
