@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <functional>
+#include <optional>
 #include <string>
 
 namespace rigid::app {
@@ -14,17 +15,22 @@ namespace {
 CLI::Validator number_where(std::function<bool(double)> ok, const std::string& wanted) {
   return CLI::Validator(
       [ok, wanted](std::string& text) -> std::string {
-        char* end = nullptr;
-        errno = 0;
-        const double v = std::strtod(text.c_str(), &end);
-        const bool parsed = !text.empty() && end == text.c_str() + text.size() && errno != ERANGE;
-        if (parsed && std::isfinite(v) && ok(v)) return {};
+        const std::optional<double> v = whole_number(text);
+        if (v && std::isfinite(*v) && ok(*v)) return {};
         return "'" + text + "' is not " + wanted;
       },
       wanted);
 }
 
 }  // namespace
+
+std::optional<double> whole_number(const std::string& text) {
+  char* end = nullptr;
+  errno = 0;
+  const double v = std::strtod(text.c_str(), &end);
+  if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE) return std::nullopt;
+  return v;
+}
 
 CLI::Validator finite_number() {
   return number_where([](double) { return true; }, "a finite number");
@@ -42,12 +48,9 @@ CLI::Validator non_negative_number() {
 CLI::Validator number_admitted_by(std::function<std::string(double)> problem) {
   return CLI::Validator(
       [problem](std::string& text) -> std::string {
-        char* end = nullptr;
-        errno = 0;
-        const double v = std::strtod(text.c_str(), &end);
-        if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE)
-          return "'" + text + "' is not a number";
-        const std::string why = problem(v);
+        const std::optional<double> v = whole_number(text);
+        if (!v) return "'" + text + "' is not a number";
+        const std::string why = problem(*v);
         return why.empty() ? why : "'" + text + "' " + why;
       },
       "NUMBER");

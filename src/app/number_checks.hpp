@@ -4,9 +4,13 @@
 /// choice is its absence, so 0 is no stand-in for "automatic".
 #include <CLI/CLI.hpp>
 #include <functional>
+#include <optional>
 #include <string>
 
 namespace rigid::app {
+
+/// The whole text as a double; nothing when it is empty, has trailing characters or overflows.
+std::optional<double> whole_number(const std::string& text);
 
 /// Any finite number.
 CLI::Validator finite_number();

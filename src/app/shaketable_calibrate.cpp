@@ -11,12 +11,14 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <optional>
 #include <set>
 #include <sstream>
 
 #include "campaign_report.hpp"
 #include "commands.hpp"
 #include "import_report.hpp"
+#include "number_checks.hpp"
 #include "rigid/campaign/driver.hpp"
 #include "rigid/core/error.hpp"
 #include "rigid/io/json.hpp"
@@ -77,9 +79,8 @@ void check(const CalibrateOptions& o) {
   }
   for (const std::string& c : o.contact_models) {
     if (c == "rigid") continue;
-    char* end = nullptr;
-    const double k = std::strtod(c.c_str(), &end);
-    if (end == c.c_str() || *end || !(k >= 1e5 && k <= 1e13))
+    const std::optional<double> k = whole_number(c);
+    if (!k || !(*k >= 1e5 && *k <= 1e13))
       throw InputError(
           "", 0, "--contact-models: '" + c + "' is neither rigid nor a penalty stiffness K_N in [1e5, 1e13] N/m^1.5");
   }
@@ -235,7 +236,7 @@ campaign::CampaignOptions prepare(Calibration& c, const CalibrateOptions& o) {
       p.base = base_name(mm);
       p.flatten_m = mm * 1e-3;
       p.contact = model == "rigid" ? "rigid" : "penalty";
-      if (model != "rigid") p.normal_stiffness = std::strtod(model.c_str(), nullptr);
+      if (model != "rigid") p.normal_stiffness = *whole_number(model);  // check() refused any other text
       p.restitution = o.restitution.front();
       p.damping = o.damping.front();
       p.friction = o.friction.front();

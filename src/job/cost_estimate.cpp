@@ -43,7 +43,7 @@ CostEstimate estimate_cost(const Job& job, const scenario::Model& model) {
         out.run.dt_s > 0 ? out.run.dt_s : dynamics::time_step(model.scene(o).bodies, model.scene(o).law, probe.step);
     cost.seconds_per_step = out.run.steps > 0 ? seconds / double(out.run.steps) : 0.0;
     cost.steps = e.simulated_per_object_s / cost.dt_s;
-    cost.core_seconds = e.simulated_per_object_s / cost.dt_s * cost.seconds_per_step;
+    cost.core_seconds = cost.steps * cost.seconds_per_step;
     e.objects.push_back(cost);
   }
   return e;

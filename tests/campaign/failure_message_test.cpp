@@ -18,7 +18,6 @@
 #include "rigid/library/builders.hpp"
 
 namespace rigid::campaign {
-using namespace library;
 namespace {
 
 namespace fs = std::filesystem;

@@ -15,7 +15,6 @@
 #include "rigid/motion/measures.hpp"
 
 namespace rigid::io {
-using namespace library;
 namespace {
 
 std::vector<double> cosine(double amplitude, double phase, std::size_t n, double dt) {
