@@ -21,7 +21,7 @@ double degrees(double rad) { return rad * 180.0 / kPi + 0.0; }
 io::Json rocking_json(const analysis::RockingParameters& r) {
   io::Json j;
   j["alpha_rad"] = r.alpha;
-  j["static_toppling_g"] = std::tan(r.alpha);
+  j["static_toppling_g"] = analysis::static_toppling_g(r);
   j["radius_m"] = r.radius;
   j["p_rad_s"] = r.p;
   j["weakest_azimuth_deg"] = degrees(r.azimuth);
@@ -39,7 +39,7 @@ io::Json rocking_json(const analysis::RockingParameters& r) {
 
 void print_rocking(const analysis::RockingParameters& r) {
   std::printf("rocking: alpha %.4g rad (static toppling %.4g g) towards azimuth %.1f deg, R %.4g m, p %.4g rad/s\n",
-              r.alpha, std::tan(r.alpha), degrees(r.azimuth), r.radius, r.p);
+              r.alpha, analysis::static_toppling_g(r), degrees(r.azimuth), r.radius, r.p);
   std::printf("  support polygon: %zu corners; alpha by azimuth of the ground acceleration (deg: rad):",
               r.support_polygon.size());
   for (std::size_t k = 0; k < r.alpha_by_azimuth.size(); ++k) {

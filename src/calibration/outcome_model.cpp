@@ -30,9 +30,11 @@ std::vector<int> OutcomeGrid::window(int centre, double spread_deg) const {
   return out;
 }
 
-namespace {
+double member_probability(double overturned_share, double lapse) {
+  return 0.5 * lapse + (1.0 - lapse) * overturned_share;
+}
 
-double with_lapse(double p, double lapse) { return 0.5 * lapse + (1.0 - lapse) * p; }
+namespace {
 
 double window_mean(const OutcomeGrid& grid, int variant, int test, const std::vector<int>& window) {
   int n = 0;
@@ -51,7 +53,7 @@ bool better(const Candidate& a, const Candidate& b) {
 }  // namespace
 
 double overturn_probability(const OutcomeGrid& grid, const Candidate& c, int test) {
-  return with_lapse(window_mean(grid, c.variant, test, grid.window(c.heading, c.spread_deg)), c.lapse);
+  return member_probability(window_mean(grid, c.variant, test, grid.window(c.heading, c.spread_deg)), c.lapse);
 }
 
 double log_likelihood(const OutcomeGrid& grid, const Candidate& c, const std::vector<int>& observed,
@@ -60,7 +62,7 @@ double log_likelihood(const OutcomeGrid& grid, const Candidate& c, const std::ve
   double sum = 0;
   for (int t = 0; t < grid.tests(); ++t) {
     if (!use[std::size_t(t)]) continue;
-    const double p = with_lapse(window_mean(grid, c.variant, t, window), c.lapse);
+    const double p = member_probability(window_mean(grid, c.variant, t, window), c.lapse);
     sum += observed[std::size_t(t)] ? std::log(p) : std::log1p(-p);
   }
   return sum;

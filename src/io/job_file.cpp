@@ -13,6 +13,7 @@
 #include <toml++/toml.h>
 
 #include "input_file.hpp"
+#include "job_record_names.hpp"
 #include "job_variants.hpp"
 #include "lab_toml.hpp"
 #include "rigid/core/error.hpp"
@@ -117,27 +118,6 @@ std::vector<double> parse_scales(const toml::node& n, const std::string& src, st
     if (i > 0 && !(out[i] > out[i - 1])) throw InputError(src, line_of(n), "scales must be strictly increasing");
   }
   return out;
-}
-
-std::string record_name(const std::string& spec) {
-  std::string first = spec.substr(0, spec.find(','));
-  const auto eq = first.find('=');
-  if (eq != std::string::npos) first = first.substr(eq + 1);
-  std::string stem = fs::path(first).stem().string();
-  if (stem.size() > 2 && stem[stem.size() - 2] == '-' && (stem.back() == 'X' || stem.back() == 'x')) {
-    stem.resize(stem.size() - 2);
-  }
-  return stem;
-}
-
-// A lab recording's name: its file name without .gz and the text extension (Test013.txt.gz -> Test013).
-std::string lab_record_name(const std::string& file) {
-  std::string name = fs::path(file).filename().string();
-  for (const std::string ext : {".gz", ".txt", ".csv", ".tsv", ".dat"}) {
-    if (name.size() > ext.size() && name.compare(name.size() - ext.size(), ext.size(), ext) == 0)
-      name.resize(name.size() - ext.size());
-  }
-  return name;
 }
 
 // Makes every file of a set spec absolute against base (keeping roles such as x=).
@@ -409,6 +389,27 @@ RunTable read_run(const toml::table& root, const std::string& path) {
 }
 
 }  // namespace
+
+std::string record_name(const std::string& spec) {
+  std::string first = spec.substr(0, spec.find(','));
+  const auto eq = first.find('=');
+  if (eq != std::string::npos) first = first.substr(eq + 1);
+  std::string stem = fs::path(first).stem().string();
+  if (stem.size() > 2 && stem[stem.size() - 2] == '-' && (stem.back() == 'X' || stem.back() == 'x')) {
+    stem.resize(stem.size() - 2);
+  }
+  return stem;
+}
+
+// A lab recording's name: its file name without .gz and the text extension (Test013.txt.gz -> Test013).
+std::string lab_record_name(const std::string& file) {
+  std::string name = fs::path(file).filename().string();
+  for (const std::string ext : {".gz", ".txt", ".csv", ".tsv", ".dat"}) {
+    if (name.size() > ext.size() && name.compare(name.size() - ext.size(), ext.size(), ext) == 0)
+      name.resize(name.size() - ext.size());
+  }
+  return name;
+}
 
 JobFile read_job_file(const std::string& path) {
   JobFile job;

@@ -334,6 +334,44 @@ LabFormat lab_format_from_table(const toml::table& root, const std::string& file
   return f;
 }
 
+toml::table lab_format_table(const LabFormat& f) {
+  const LabFormat d;
+  toml::table t;
+  const auto column = [&](const char* key, const LabColumn& c, const LabColumn& fallback) {
+    if (c.index == fallback.index && c.name == fallback.name) return;
+    if (c.index > 0) {
+      t.insert(key, c.index);
+    } else {
+      t.insert(key, c.name);
+    }
+  };
+  const auto value = [&](const char* key, const auto& v, const auto& fallback) {
+    if (v != fallback) t.insert(key, v);
+  };
+  if (f.delimiter != d.delimiter) t.insert("delimiter", lab_delimiter_name(f.delimiter));
+  value("header_lines", f.header_lines, d.header_lines);
+  column("time_column", f.time, d.time);
+  if (f.channel != d.channel) t.insert("channel", lab_channel_name(f.channel));
+  column("acceleration_column", f.acceleration, d.acceleration);
+  value("acceleration_unit", f.acceleration_unit, d.acceleration_unit);
+  column("displacement_column", f.displacement, d.displacement);
+  value("displacement_unit", f.displacement_unit, d.displacement_unit);
+  value("volts_to_length", f.volts_to_length, d.volts_to_length);
+  value("volts_length_unit", f.volts_length_unit, d.volts_length_unit);
+  value("scale", f.scale, d.scale);
+  const motion::LabProcessing &p = f.processing, &dp = d.processing;
+  if (p.baseline != dp.baseline) t.insert("baseline", motion::lab_baseline_name(p.baseline));
+  value("baseline_degree", p.baseline_degree, dp.baseline_degree);
+  if (!p.band_pass) {
+    t.insert("band_hz", "none");
+  } else if (p.low_hz != dp.low_hz || p.high_hz != dp.high_hz) {
+    t.insert("band_hz", toml::array{p.low_hz, p.high_hz});
+  }
+  value("filter_order", p.order, dp.order);
+  value("crossover_hz", p.crossover_hz, dp.crossover_hz);
+  return t;
+}
+
 LabTable read_lab_table(const std::filesystem::path& path_in, const LabFormat& f) {
   const std::string path = path_in.string();
   const std::string text = file_text(path);
@@ -510,7 +548,9 @@ std::string describe_lab_processing(const LabFormat& f) {
 }
 
 LabFormat read_lab_format(const std::string& path) {
-  return lab_format_from_toml(read_input_file(path, kMaxTextFileBytes), path);
+  const toml::table root = parse_toml(read_input_file(path, kMaxTextFileBytes), path);
+  if (!root.contains("lab")) throw InputError(path, 1, "has no [lab] table (the recordings' format)");
+  return lab_format_from_table(root, path);
 }
 
 }  // namespace rigid::io

@@ -11,4 +11,8 @@ namespace rigid::io {
 /// The [lab] table of root (defaults when absent); see lab_format_from_toml.
 LabFormat lab_format_from_table(const toml::table& root, const std::string& file);
 
+/// The [lab] table that lab_format_from_table reads back as `format`: the keys whose values
+/// differ from the defaults (an empty table for the default format).
+toml::table lab_format_table(const LabFormat& format);
+
 }  // namespace rigid::io

@@ -136,7 +136,7 @@ io::Json import_json(const ImportOptions& o, const ImportResult& result) {
   report["bodies"] = bodies;
   if (result.rocking) {
     report["alpha_rad"] = result.rocking->alpha;
-    report["static_toppling_g"] = std::tan(result.rocking->alpha);
+    report["static_toppling_g"] = analysis::static_toppling_g(*result.rocking);
   }
   return report;
 }

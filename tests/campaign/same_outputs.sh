@@ -7,9 +7,15 @@
 #
 # Runs jobs/demo.toml, jobs/validation_ci.toml (3D, and 2D with --model rocking2d) and
 # jobs/uncertainty_demo.toml on 1 and on 2 MPI ranks, then `rigid fragility --json/--csv` and
-# `rigid hazard --json` on the demo cube. --compare checks every cube dataset bit for bit
-# (tests/python/compare_cubes.py: wall times excepted) and the fragility/hazard text outputs
-# byte for byte. About 10 minutes on 2 cores. Exit status: 0 same, 1 different, 2 bad usage.
+# `rigid hazard --json` on the demo cube; then the shake-table commands on a small test list of
+# ../shared/shaketable (18 tests of 3 motions): `shaketable calibrate` (a 2 x 4-heading design,
+# --flatten-mm, the old spelling), `predict` and `fragility` on 2 ranks, in one fixed folder
+# (/tmp/rigid_same_outputs_shaketable, moved to OUTDIR/shaketable after), so that the paths their
+# designed jobs state, and so the jobs' hashes, are the same for both builds. --compare checks every
+# cube dataset bit for bit (tests/python/compare_cubes.py: wall times excepted), the
+# fragility/hazard text outputs, the shake-table jobs, scenes, predictions and fragility table byte
+# for byte, and the calibration JSON but for its wall time. About 12 minutes on 2 cores. Exit
+# status: 0 same, 1 different, 2 bad usage.
 set -uo pipefail
 repo=$(cd "$(dirname "$0")/../.." && pwd)
 cubes=(demo validation_ci_3d validation_ci_2d uncertainty_demo)
@@ -39,6 +45,19 @@ if [[ ${1:-} == --compare ]]; then
     fi
     rm -f /tmp/same_outputs.diff.$$
   done
+  # the shake-table commands: every file of the fixed folder
+  if [[ -d $2/shaketable || -d $3/shaketable ]]; then
+    while IFS= read -r rel; do
+      fa=$2/shaketable/$rel fb=$3/shaketable/$rel
+      if [[ ! -f $fb ]]; then echo "DIFFERENT: shaketable/$rel missing in $3"; status=1; continue; fi
+      case $rel in
+        *.h5) /usr/bin/python3 "$repo/tests/python/compare_cubes.py" --other-build "$fa" "$fb" >/dev/null 2>&1 ;;
+        *.calibration.json) diff <(grep -v '"wall_s"' "$fa") <(grep -v '"wall_s"' "$fb") >/dev/null ;;
+        *.toml | *.csv | *.json) cmp -s "$fa" "$fb" ;;
+        *) true ;;  # figures, logs and journals: not results
+      esac && echo "same: shaketable/$rel" || { echo "DIFFERENT: shaketable/$rel"; status=1; }
+    done < <(cd "$2/shaketable" && find . -type f | sed 's|^\./||' | sort)
+  fi
   exit $status
 fi
 
@@ -68,4 +87,29 @@ demo=$out/demo.np2.h5
 "$rigid" fragility "$demo" --csv "$out/fragility.csv" >/dev/null 2>&1 || { echo "FAILED: fragility --csv"; exit 1; }
 "$rigid" hazard "$demo" --object block_a03 --curve models/hazard/synthetic_pga_curve.csv --age 10000 --json \
   >"$out/hazard.json" 2>/dev/null || { echo "FAILED: hazard --json"; exit 1; }
+
+# the shake-table commands, in a folder whose path both builds share
+st=/tmp/rigid_same_outputs_shaketable shared=$(realpath ../shared)
+rm -rf "$st" "$out/shaketable" && mkdir -p "$st"
+/usr/bin/python3 - "$shared/shaketable/tests.csv" "$st" <<'PY'
+import csv, os, sys
+src, st = sys.argv[1], sys.argv[2]
+rows = [r for r in csv.DictReader(open(src)) if r["record"] in ("RSN147_COYOTELK", "RSN722_SUPER", "RSN1840_HECTOR_WHD090.AT2")]
+for r in rows:
+    r["file"] = os.path.join(os.path.dirname(src), r["file"])
+for name, keep in (("tests.csv", rows), ("holdout.csv", rows[::3])):
+    with open(os.path.join(st, name), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0]))
+        w.writeheader()
+        w.writerows(keep)
+PY
+for spec in "calibrate $shared/scans/sp1_rock.obj --tests $st/tests.csv --out $st/cal/sp1 --flatten-mm 5 --contact-models rigid,5e5 --damping 4,2 --friction 0.6 --restitution 0 --headings 4" \
+    "predict $st/cal/sp1.toml --tests $st/holdout.csv --out $st/predictions.csv" \
+    "fragility $st/cal/sp1.toml --tests $st/tests.csv --out $st/frag/sp1 --bootstrap 50 --per-decade 6"; do
+  read -ra a <<<"$spec"
+  echo "$(date +%T) shaketable ${a[0]}"
+  launch 2 shaketable "${a[@]}" --progress none >"$out/shaketable_${a[0]}.log" 2>&1 ||
+    { echo "FAILED: shaketable ${a[0]}: $(tail -n 3 "$out/shaketable_${a[0]}.log")"; exit 1; }
+done
+mv "$st" "$out/shaketable"
 echo "outputs in $out"

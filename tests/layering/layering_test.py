@@ -9,7 +9,7 @@ calls and the `rigid` executable's link line; docs/architecture.md, "Layout and 
   scenario <- dynamics, motion, rocking;  library, analysis, statistics <- scenario;
   study <- library, analysis;  io <- statistics;  job <- io, analysis;
   campaign <- job;  calibration <- core;  repair <- geometry;  scan <- io, repair, analysis;
-  app <- campaign, study, calibration, scan
+  shaketable <- campaign, scan, calibration;  app <- shaketable, campaign, study, calibration, scan
 
 (a module may include its own headers and those of every module below it, transitively), and the
 third-party rules: the engine core (geometry .. scenario, library, analysis, statistics, study,
@@ -19,7 +19,8 @@ alone: io and the tests that link it stay free of CGAL's compile); nlohmann-json
 zlib is io's (gzip lab recordings) and campaign's (journal checksums); spdlog is campaign's and app's (campaign/log.hpp); only app includes CLI11; POSIX headers (unistd.h, sys/...)
 only io, scan (its staging folder), campaign and app. The required order (REQUIRED_ABOVE): library
 and analysis above scenario; io above statistics; job above io, scenario and analysis; scan (the
-scan import) above io and repair; campaign above job; app above job, campaign and scan. A quoted
+scan import) above io and repair; campaign above job; the shake-table workflow above campaign,
+scan and calibration; app above job, campaign, scan and the shake-table workflow. A quoted
 include that is not "rigid/..." must be a private header of the module's own src/<module>/ folder.
 No engine module (ENGINE) depends on a module outside the engine.
 
@@ -58,7 +59,7 @@ THIRD_PARTY = {
     "nettle": {"io"},
     "assimp": {"io"},
     "cgal": {"repair"},
-    "json": {"io", "campaign", "app"},
+    "json": {"io", "campaign", "shaketable", "app"},
     "mpi": {"campaign"},
     "zlib": {"io", "campaign"},
     "spdlog": {"campaign", "app"},
@@ -76,7 +77,8 @@ REQUIRED_ABOVE = {
     "job": {"io", "scenario", "analysis"},
     "scan": {"io", "repair"},
     "campaign": {"job"},
-    "app": {"job", "campaign", "scan"},
+    "shaketable": {"campaign", "scan", "calibration"},
+    "app": {"job", "campaign", "scan", "shaketable"},
 }
 
 # Deliberate exceptions: (module, included header) -> reason. Empty today.

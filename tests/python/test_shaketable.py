@@ -79,15 +79,14 @@ def check_fragility_thresholds(work, rows):
     import numpy as np
     with h5py.File(os.path.join(work, "fragility.h5"), "r") as f:
         scales = f["axes/scale_g"][()]
-        outcome = f["objects/rock/outcome"][()]  # [variant, record, scale, rotation]
-    with open(os.path.join(work, "members.json")) as fh:
-        members = json.load(fh)
     with open(os.path.join(work, "motions.csv")) as fh:
         motions = [m["record"] for m in csv.DictReader(fh)]
-    total = sum(m["weight"] for m in members)
+    # the calibrated model's P(overturn) per motion and PGA, as the command wrote it for the fit
+    with open(os.path.join(work, "model.csv")) as fh:
+        model = list(csv.DictReader(fh))
     ratio = scales[1] / scales[0]  # the grid is geometric
     for r, record in enumerate(motions):
-        p = sum(m["weight"] / total * np.mean(outcome[m["variant"], r][:, m["rotations"]] == 2, axis=1) for m in members)
+        p = [float(m["p_overturn"]) for m in model if int(m["record_index"]) == r]
         first = next((s for s, q in zip(scales, p) if q >= 0.5), math.inf)
         tests = sorted((float(x["pga_g"]), x["overturned"]) for x in rows if x["record"] == record)
         over = [a for a, o in tests if o]

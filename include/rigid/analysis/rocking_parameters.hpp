@@ -2,6 +2,7 @@
 /// Rocking parameters of a scene with one free block (physics.md §2): the slenderness alpha and
 /// frequency parameter p that normalise its fragility (the probit of the plots is in
 /// ln(PGA / (g tan alpha)) and ln((PGV/PGA) p / alpha)). Rigid statics of the block as it rests.
+#include <cmath>
 #include <optional>
 #include <vector>
 
@@ -24,6 +25,10 @@ struct RockingParameters {
   /// above that boundary point (unit: rad). Its minimum over all directions is `alpha`.
   std::vector<double> alpha_by_azimuth;
 };
+
+/// The quasi-static toppling acceleration of the block along its weakest direction, tan(alpha)
+/// (unit: g): below it a block at rest on a rigid base cannot start to rock (physics.md §2).
+inline double static_toppling_g(const RockingParameters& r) { return std::tan(r.alpha); }
 
 /// Directions of RockingParameters::alpha_by_azimuth: every 22.5 degrees, a superset of the
 /// tilt test's eight (analysis::tilt_survey).

@@ -59,6 +59,11 @@ struct SearchSettings {
   std::vector<double> lapses{0.02, 0.05, 0.1, 0.2, 0.3};  ///< unit: 1
 };
 
+/// The one rule of a member's P(overturn): with probability `lapse` the outcome is a coin toss,
+/// else it is the share of the member's headings that overturned the simulated rock:
+/// lapse/2 + (1 - lapse) x share. Ensembles average it over members by weight.
+double member_probability(double overturned_share, double lapse);
+
 /// P(overturn) of test `test` under candidate c.
 double overturn_probability(const OutcomeGrid& grid, const Candidate& c, int test);
 

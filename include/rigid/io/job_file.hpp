@@ -90,4 +90,12 @@ struct JobFile {
 /// output path is relative to the current directory. Throws rigid::InputError naming file and line.
 JobFile read_job_file(const std::string& path);
 
+/// The mirror of read_job_file: writes `job` as a job file that read_job_file reads back as the same
+/// settings, objects, variants, records, [lab] and [run] (paths written absolute; a sampled
+/// [sweep] as the [[variant]] list it drew; a record list by its file). Keys at the reader's
+/// defaults are left out, but for seed and stop_after, which a reader of the file should see.
+/// `comment` becomes `#` lines at the top. Written through a temporary file renamed into place
+/// (a half-written job never stands under the name); InputError naming the path when it cannot be.
+void write_job_file(const std::string& path, const JobFile& job, const std::string& comment = "");
+
 }  // namespace rigid::io

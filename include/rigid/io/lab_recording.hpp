@@ -52,7 +52,8 @@ LabColumn parse_lab_column(std::string_view text);
 /// an integer (1-based) or a header name. Unknown keys and bad values: InputError at their line.
 LabFormat lab_format_from_toml(std::string_view toml_text, const std::string& file);
 
-/// lab_format_from_toml of a file (read through the bounded reader of every text input).
+/// The [lab] table of a format file (read through the bounded reader of every text input). A file
+/// without one is refused: a misspelt table ([labb]) or an empty file must not mean the defaults.
 LabFormat read_lab_format(const std::string& path);
 
 /// The raw columns of a recording, in the file's units (time in s).

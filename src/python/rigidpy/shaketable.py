@@ -1,25 +1,25 @@
 """`rigid shaketable fragility`'s fits: the shake-table rock's fragility from the lab's outcomes
 beside the calibrated model's, per PGV/PGA bin, with one table of medians and one figure.
 
-    shaketable_fragility.py CUBE --lab LAB.csv --motions MOTIONS.csv --members MEMBERS.json --out OUT
+    shaketable_fragility.py CUBE --lab LAB.csv --motions MOTIONS.csv --model MODEL.csv --out OUT
                             [--bins E0,E1,...] [--bootstrap N] [--seed N] [--level 0.9] [--format png]
 
 The command writes LAB.csv (each test's measured PGA, PGV/PGA and outcome), MOTIONS.csv (which
-recording each of the cube's records is) and MEMBERS.json (the calibration's ensemble) beside
-the cube of its designed campaign, then runs this script.
+recording each of the cube's records is) and MODEL.csv (the calibrated ensemble's P(overturn) per
+motion and PGA, by the ensemble rule of the C++ calibration module: Python holds no copy of it)
+beside the cube of its designed campaign, then runs this script.
 
 Both fits are the project's scalar probit P = Phi(ln(PGA/theta)/beta) (fit.py) with
 motions as the resampled unit of the bootstrap: the tests of one motion share its waveform, as
 the cells of one record do in a campaign. Lab: each test is one Bernoulli outcome at its measured
-PGA. Model: at each PGA of the grid, the ensemble's probability of overturning (each member's
-share of overturned headings, weighted; the calibration's lapse rate is the lab's, not the rock's,
-and is left out) with the weight of the mean number of headings a member sees. A motion's bin is
+PGA. Model: at each PGA of the grid, the ensemble's probability of overturning (the lapse rate is
+the lab's, not the rock's, and is left out) with the weight of the mean number of headings a
+member sees. A motion's bin is
 that of its PGV/PGA (the recording the model scales): lab and model fits in a bin are over the
 same motions. Exit status: 0 done, 2 bad input, 1 internal error.
 """
 import argparse
 import csv
-import json
 import math
 import sys
 
@@ -77,21 +77,20 @@ def lab_cells(lab_rows, motion_index):
     return BinnedCells(k, n, pga)
 
 
-def model_cells(cube, members):
-    """Per (motion, scale): the ensemble's P(overturn) x the mean headings per member, over that
-    many cells."""
+def model_cells(cube, model_rows):
+    """Per (motion, scale): the ensemble's P(overturn) as the command computed it (MODEL.csv:
+    p_overturn over `cells` cells, 0 cells where not every member's headings were run)."""
     R, S = len(cube.records), len(cube.scales)
-    total = sum(m["weight"] for m in members)
     p = np.zeros((R, S))
-    simulated = np.ones((R, S), bool)
-    for m in members:
-        outcome = cube.objects[m["variant"]].outcome[:, :, m["rotations"]]
-        over, sim = simulated_counts(outcome)
-        simulated &= sim == len(m["rotations"])
-        p += m["weight"] / total * over / len(m["rotations"])
-    weight = float(np.mean([len(m["rotations"]) for m in members]))
-    n = np.where(simulated, weight, 0.0)
-    return BinnedCells(p * n, n, cube.scales), p, simulated
+    n = np.zeros((R, S))
+    column = {float(v): s for s, v in enumerate(cube.scales)}
+    for i, row in enumerate(model_rows, start=2):
+        r, scale = int(row["record_index"]), float(row["scale_g"])
+        if not 0 <= r < R or scale not in column:
+            raise InputError(f"model.csv:{i}: record {r} at {scale} g is not a cell of the cube")
+        p[r, column[scale]] = float(row["p_overturn"])
+        n[r, column[scale]] = float(row["cells"])
+    return BinnedCells(p * n, n, cube.scales), p, n > 0
 
 
 def bin_edges(text, pgv_pga):
@@ -147,7 +146,7 @@ def fragility_command(argv=None):
     ap.add_argument("cube")
     ap.add_argument("--lab", required=True)
     ap.add_argument("--motions", required=True)
-    ap.add_argument("--members", required=True)
+    ap.add_argument("--model", required=True)
     ap.add_argument("--out", required=True)
     ap.add_argument("--bins", default="")
     ap.add_argument("--bootstrap", type=int, default=1000)
@@ -161,13 +160,9 @@ def fragility_command(argv=None):
     motion_rows = read_csv(args.motions, ["record", "pgv_over_pga_s"])
     if len(motion_rows) != len(cube.records):
         raise InputError(f"{args.motions}: {len(motion_rows)} motions, the cube has {len(cube.records)} records")
-    try:
-        with open(args.members) as fh:
-            members = json.load(fh)
-    except (OSError, ValueError) as e:
-        raise InputError(f"{args.members}: not the ensemble's members ({e})")
-    if not members or any(m["variant"] >= len(cube.objects) or not m["rotations"] for m in members):
-        raise InputError(f"{args.members}: members do not match the cube's variants and rotations")
+    model_rows = read_csv(args.model, ["record_index", "scale_g", "p_overturn", "cells"])
+    if len(model_rows) != len(cube.records) * len(cube.scales):
+        raise InputError(f"{args.model}: {len(model_rows)} rows, the cube has {len(cube.records)} x {len(cube.scales)} cells")
 
     motion_index = {row["record"]: i for i, row in enumerate(motion_rows)}
     unknown = sorted({row["record"] for row in lab_rows} - set(motion_index))
@@ -176,7 +171,7 @@ def fragility_command(argv=None):
     pgv_pga = np.array([float(row["pgv_over_pga_s"]) for row in motion_rows])
     edges = bin_edges(args.bins, pgv_pga)
     lab = lab_cells(lab_rows, motion_index)
-    model, model_p, simulated = model_cells(cube, members)
+    model, model_p, simulated = model_cells(cube, model_rows)
 
     groups = []  # (label, lower, upper, motion indices)
     for b in range(len(edges) - 1):
@@ -210,7 +205,7 @@ def fragility_command(argv=None):
 
     table = args.out + ".fragility.csv"
     figure = args.out + ".fragility." + args.format
-    inputs = [args.cube, args.lab, args.motions, args.members]
+    inputs = [args.cube, args.lab, args.motions, args.model]
     with cube_files.output_text(table, "--out", inputs, newline="") as fh:
         w = csv.writer(fh)
         w.writerow(["pgv_pga_bin", "pgv_pga_lower_s", "pgv_pga_upper_s", "motions", "tests", "tests_overturned", "source",

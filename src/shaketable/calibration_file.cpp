@@ -1,4 +1,4 @@
-#include "shaketable_report.hpp"
+#include "calibration_file.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -11,7 +11,7 @@
 #include "rigid/io/output_file.hpp"
 #include "rigid/io/scene_writer.hpp"
 
-namespace rigid::app::shaketable {
+namespace rigid::shaketable {
 namespace {
 
 namespace fs = std::filesystem;
@@ -39,14 +39,14 @@ io::Json physics_json(const Physics& p) {
   io::Json j;
   j["base"] = p.base;
   j["flatten_base_m"] = p.flatten_m;
-  j["contact"] = p.contact;
-  if (p.contact == "penalty") {
-    j["normal_stiffness_n_m1_5"] = p.normal_stiffness;
-    j["damping_s_m"] = p.damping;
+  j["contact"] = contact::contact_method_name(p.law.method);
+  if (p.penalty()) {
+    j["normal_stiffness_n_m1_5"] = p.law.normal_stiffness;
+    j["damping_s_m"] = p.law.damping;
   } else {
-    j["restitution"] = p.restitution;
+    j["restitution"] = p.law.restitution;
   }
-  j["friction"] = p.friction;
+  j["friction"] = p.law.friction;
   return j;
 }
 
@@ -85,14 +85,7 @@ io::Json variants_table(const OutcomeGrid& grid, const std::vector<Physics>& phy
 
 }  // namespace
 
-void print_scores(const char* title, const Scores& s) {
-  std::printf("%s: accuracy %.3f, balanced accuracy %.3f, precision %.3f, recall %.3f, Brier %.3f\n", title, s.accuracy,
-              s.balanced_accuracy, s.precision, s.recall, s.brier);
-  std::printf("  confusion (rows observed, columns predicted): overturned %d | %d   stood %d | %d\n", s.true_positive,
-              s.false_negative, s.false_positive, s.true_negative);
-}
-
-void write_calibration(const CalibrationReport& r) {
+CalibrationSummary write_calibration(const CalibrationReport& r) {
   const OutcomeGrid& grid = *r.stages.back().first;
   const std::vector<Physics>& physics = r.stages.back().second;
   const std::vector<int>& y = r.observed;
@@ -162,14 +155,14 @@ void write_calibration(const CalibrationReport& r) {
     lapse_lo = std::min(lapse_lo, m.candidate.lapse);
     lapse_hi = std::max(lapse_hi, m.candidate.lapse);
     bases.insert(p.base);
-    contacts.insert(p.contact);
-    if (p.contact == "penalty") {
-      stiffness.insert(p.normal_stiffness);
-      damping.insert(p.damping);
+    contacts.insert(contact::contact_method_name(p.law.method));
+    if (p.penalty()) {
+      stiffness.insert(p.law.normal_stiffness);
+      damping.insert(p.law.damping);
     } else {
-      restitution.insert(p.restitution);
+      restitution.insert(p.law.restitution);
     }
-    friction.insert(p.friction);
+    friction.insert(p.law.friction);
   }
   io::Json j;
   j["scan"] = r.scan;
@@ -186,14 +179,14 @@ void write_calibration(const CalibrationReport& r) {
   params["heading_spread_deg"] = {{"value", best.spread_deg}, {"interval", {0.0, spread_hi}}};
   params["lapse"] = {{"value", best.lapse}, {"interval", {lapse_lo, lapse_hi}}};
   params["base"] = {{"value", chosen.base}, {"in_region", bases}};
-  params["contact"] = {{"value", chosen.contact}, {"in_region", contacts}};
-  if (chosen.contact == "penalty") {
-    params["normal_stiffness_n_m1_5"] = {{"value", chosen.normal_stiffness}, {"in_region", stiffness}};
-    params["damping_s_m"] = {{"value", chosen.damping}, {"in_region", damping}};
+  params["contact"] = {{"value", contact::contact_method_name(chosen.law.method)}, {"in_region", contacts}};
+  if (chosen.penalty()) {
+    params["normal_stiffness_n_m1_5"] = {{"value", chosen.law.normal_stiffness}, {"in_region", stiffness}};
+    params["damping_s_m"] = {{"value", chosen.law.damping}, {"in_region", damping}};
   } else {
-    params["restitution"] = {{"value", chosen.restitution}, {"in_region", restitution}};
+    params["restitution"] = {{"value", chosen.law.restitution}, {"in_region", restitution}};
   }
-  params["friction"] = {{"value", chosen.friction}, {"in_region", friction}};
+  params["friction"] = {{"value", chosen.law.friction}, {"in_region", friction}};
   j["parameters"] = params;
   j["log_likelihood"] = best.log_likelihood;
   j["region_size"] = long(region.size());
@@ -214,11 +207,19 @@ void write_calibration(const CalibrationReport& r) {
   const std::string json_path = r.out + ".calibration.json";
   io::write_output_file(json_path, [&](std::ostream& out) { out << j.dump(2) << "\n"; });
 
-  std::printf("\ncalibrated: %s, heading %.1f deg [%.1f, %.1f] (spread %.0f deg, lapse %.2f)\n", chosen.label().c_str(),
-              heading, heading + turn_lo, heading + turn_hi, best.spread_deg, best.lapse);
-  print_scores("in sample", in);
-  print_scores("cross-validated (one recorded motion left out at a time)", cv);
-  std::printf("wrote %s, %s (%.0f s)\n", scene.c_str(), json_path.c_str(), r.wall_s);
+  CalibrationSummary summary;
+  summary.label = chosen.label();
+  summary.heading_deg = heading;
+  summary.heading_low_deg = heading + turn_lo;
+  summary.heading_high_deg = heading + turn_hi;
+  summary.spread_deg = best.spread_deg;
+  summary.lapse = best.lapse;
+  summary.in_sample = in;
+  summary.cross_validated = cv;
+  summary.scene = scene;
+  summary.json = json_path;
+  summary.wall_s = r.wall_s;
+  return summary;
 }
 
-}  // namespace rigid::app::shaketable
+}  // namespace rigid::shaketable

@@ -1,0 +1,113 @@
+#pragma once
+/// `rigid shaketable calibrate` as a workflow: fits a scanned rock's uncertain physics (its
+/// heading on the table, the model of its rough base, the contact law and its compliance,
+/// restitution, friction) to observed shake-table outcomes by maximum likelihood, over campaigns
+/// it designs in two stages: (1) every base model and contact law at a coarse ring of headings,
+/// (2) the best of those, crossed with the impact law and friction, at a finer ring around their
+/// best headings. The campaigns are ordinary campaigns (MPI, checkpoints, resume); the caller runs
+/// each one `next` returns (docs/validation-shaketable.md).
+#include <chrono>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "rigid/calibration/outcome_model.hpp"
+#include "rigid/campaign/driver.hpp"
+#include "rigid/shaketable/lab.hpp"
+#include "rigid/shaketable/physics.hpp"
+#include "rigid/shaketable/workflow.hpp"
+
+namespace rigid::shaketable {
+
+/// One contact law a design compares: rigid, or the penalty model at this K_N.
+struct ContactChoice {
+  contact::ContactMethod method = contact::ContactMethod::rigid;
+  double normal_stiffness = 0;  ///< penalty only (unit: N/m^1.5)
+};
+
+/// What a calibration compares and how (each value's range: check_settings).
+struct CalibrationSettings {
+  std::string scan, tests, out, lab_format;  ///< out: DIR/NAME
+  double scale = 1.0;                        ///< scan units to metres
+  std::string up = "z";
+  std::vector<double> flatten_base_m{0.005};  ///< base models (unit: m)
+  std::vector<ContactChoice> contact_models{{contact::ContactMethod::rigid, 0},
+                                            {contact::ContactMethod::penalty, 5e5},
+                                            {contact::ContactMethod::penalty, 1e6},
+                                            {contact::ContactMethod::penalty, 2e6}};
+  std::vector<double> restitution{0.0, 0.5};
+  std::vector<double> damping{2.0, 1.0, 4.0};  ///< unit: s/m
+  std::vector<double> friction{0.6, 0.9};
+  int headings = 12;             ///< stage 1: a full ring
+  int keep = 1;                  ///< stage 2: the best stage-1 variants refined
+  double refine_step_deg = 10;   ///< stage 2: heading step around each kept variant's best heading
+  double tilt_deg = 30;          ///< overturned = tilted beyond this angle
+  int max_vertices = 64;         ///< the rock's hull
+  double pedestal_margin = 0.5;  ///< the table: overhang of the box under the rock (unit: m)
+};
+
+/// Throws InputError naming the setting (as its flag) when a value is outside its range.
+void check_settings(const CalibrationSettings& s);
+
+/// A contact law as the command line names it: "rigid" or a penalty stiffness K_N in
+/// [1e5, 1e13] N/m^1.5. Nothing for any other text.
+std::optional<ContactChoice> parse_contact_choice(const std::string& text);
+
+/// "flat_5mm": a base model's name from its depth.
+std::string base_name(double flatten_m);
+
+/// `count` headings on a full ring from 0 (unit: deg).
+std::vector<double> heading_ring(int count);
+
+/// Stage 1: every base model (its scene) with every contact law, the first impact law and friction.
+std::vector<Physics> first_stage_physics(const std::map<double, std::string>& base_scenes, const CalibrationSettings& s);
+
+/// Stage 2 from the stage-1 grid: the `keep` best variants, each crossed with every value of its
+/// impact law (restitution for rigid, damping for penalty) and friction, at the headings within
+/// two refine steps of its best heading.
+struct SecondStage {
+  std::vector<Physics> physics;
+  std::vector<double> headings_deg;
+  std::vector<std::string> kept;  ///< one line per kept variant, for the log
+};
+SecondStage second_stage_design(const calibration::OutcomeGrid& grid, const std::vector<int>& observed,
+                                const std::vector<Physics>& stage1, const CalibrationSettings& s);
+
+/// What a finished calibration found, for the command to print.
+struct CalibrationSummary {
+  std::string label;  ///< the chosen physics
+  double heading_deg = 0, heading_low_deg = 0, heading_high_deg = 0, spread_deg = 0, lapse = 0;
+  calibration::Scores in_sample, cross_validated;
+  std::string scene, json;
+  double wall_s = 0;
+};
+
+/// The calibration's stages: `next` returns each designed campaign in turn (nothing when done),
+/// given the previous one's result; `finish` (rank 0, after the last) writes OUT.toml and
+/// OUT.calibration.json.
+class Calibrator {
+ public:
+  Calibrator(CalibrationSettings settings, Callbacks callbacks);
+  std::optional<campaign::CampaignOptions> next(const campaign::CampaignResult* previous);
+  CalibrationSummary finish() const;
+
+ private:
+  campaign::CampaignOptions prepare();
+  campaign::CampaignOptions stage_options(int stage, const std::vector<Physics>& physics,
+                                          const std::vector<double>& headings) const;
+  CalibrationSettings settings_;
+  Callbacks callbacks_;
+  io::LabTestList tests_;
+  std::vector<int> observed_, group_;
+  std::vector<io::JobRecord> windows_;
+  LabInput lab_;
+  std::string work_;
+  std::vector<Physics> stage1_, stage2_;
+  std::vector<double> headings1_, headings2_;
+  std::optional<calibration::OutcomeGrid> grid1_, grid2_;
+  int stage_ = 0;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+};
+
+}  // namespace rigid::shaketable

@@ -1,0 +1,280 @@
+#include "rigid/shaketable/calibrate.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <set>
+
+#include "calibration_file.hpp"
+#include "rigid/core/error.hpp"
+#include "rigid/core/types.hpp"
+#include "rigid/io/scene_file.hpp"
+#include "rigid/io/scene_writer.hpp"
+#include "rigid/scenario/scene.hpp"
+#include "rigid/shaketable/ensemble.hpp"
+
+namespace rigid::shaketable {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string format(const char* fmt, auto... args) {
+  char text[512];
+  std::snprintf(text, sizeof text, fmt, args...);
+  return text;
+}
+
+double wrap360(double deg) {
+  double h = std::fmod(deg, 360.0);
+  if (h < 0) h += 360.0;
+  return std::round(h * 1e6) / 1e6;
+}
+
+// The base model's scene with the contact model's law, settled with it: a soft contact sinks and
+// leans the rock, and a run that started from the rigid pose would begin with that motion.
+std::string settled_scene(const std::string& scan, const std::string& base_scene, const Physics& p,
+                          const fs::path& work) {
+  const std::string name =
+      p.penalty() ? format("%s_k%.3g", p.base.c_str(), p.law.normal_stiffness) : format("%s_rigid", p.base.c_str());
+  fs::create_directories(work / name);
+  const std::string scene = fs::absolute(work / name / (name + ".toml")).lexically_normal().string();
+  io::SceneChanges changes;
+  changes.physics = p.contact_law_table();
+  changes.comment = name + ": " + base_scene + " with the " + contact::contact_method_name(p.law.method) +
+                    " contact model, settled with it";
+  io::write_derived_scene(base_scene, scene, changes);
+  const scenario::Scene placed = io::load_scene(scene);
+  const scenario::Scene settled = scenario::equilibrate(placed, dynamics::StepSettings{});
+  for (std::size_t i = 0; i < placed.bodies.size(); ++i) {
+    const double turned = scenario::tilt(placed.bodies[i].orientation, settled.bodies[i].orientation) * 180 / kPi;
+    if (!placed.bodies[i].fixed && turned > 5.0) {
+      throw InputError(scan, 0,
+                       format("does not stand on its base: settling with %s contact tilted it %.1f deg",
+                              contact::contact_method_name(p.law.method), turned));
+    }
+  }
+  io::save_state(scene.substr(0, scene.size() - 5) + ".state.toml", settled);
+  return scene;
+}
+
+// The best candidate of each variant, best variants first.
+std::vector<calibration::Candidate> best_per_variant(const calibration::OutcomeGrid& grid, const std::vector<int>& y) {
+  const std::vector<bool> all(y.size(), true);
+  std::vector<calibration::Candidate> out;
+  std::set<int> seen;
+  for (const auto& cand : calibration::rank_candidates(grid, y, all, {})) {
+    if (seen.insert(cand.variant).second) out.push_back(cand);
+  }
+  return out;
+}
+
+}  // namespace
+
+std::optional<ContactChoice> parse_contact_choice(const std::string& text) {
+  if (text == "rigid") return ContactChoice{contact::ContactMethod::rigid, 0};
+  // a strict number: all of the text, finite
+  char* end = nullptr;
+  const double k = std::strtod(text.c_str(), &end);
+  if (text.empty() || end != text.c_str() + text.size() || !(k >= 1e5 && k <= 1e13)) return std::nullopt;
+  return ContactChoice{contact::ContactMethod::penalty, k};
+}
+
+void check_settings(const CalibrationSettings& o) {
+  if (o.flatten_base_m.empty() || o.contact_models.empty() || o.restitution.empty() || o.damping.empty() ||
+      o.friction.empty())
+    throw InputError("", 0,
+                     "--flatten-base, --contact-models, --restitution, --damping and --friction need at least one "
+                     "value each");
+  for (double d : o.damping) {
+    if (!(d >= 0 && d <= 100)) throw InputError("", 0, "--damping: values must be in [0, 100] s/m");
+  }
+  for (double f : o.flatten_base_m) {
+    if (!(f >= 0 && f < 0.1)) throw InputError("", 0, "--flatten-base: depths must be in [0, 0.1) m");
+  }
+  for (double e : o.restitution) {
+    if (!(e >= 0 && e <= 1)) throw InputError("", 0, "--restitution: values must be in [0, 1]");
+  }
+  for (double mu : o.friction) {
+    if (!(mu > 0 && mu <= 10)) throw InputError("", 0, "--friction: values must be in (0, 10]");
+  }
+  if (o.headings < 4 || o.headings > 72) throw InputError("", 0, "--headings must be 4 to 72");
+  if (o.keep < 1 || o.keep > 10) throw InputError("", 0, "--keep must be 1 to 10");
+  if (!(o.refine_step_deg > 0 && o.refine_step_deg < 360.0 / o.headings))
+    throw InputError("", 0, "--refine-step must be positive and below the coarse heading step");
+  if (!(o.tilt_deg > 0 && o.tilt_deg < 90)) throw InputError("", 0, "--tilt-rule must be in (0, 90) deg");
+  if (fs::path(o.out).filename().empty()) throw InputError("", 0, "--out needs DIR/NAME");
+}
+
+std::string base_name(double flatten_m) { return format("flat_%gmm", flatten_m * 1e3); }
+
+std::vector<double> heading_ring(int count) {
+  std::vector<double> h;
+  for (int k = 0; k < count; ++k) h.push_back(360.0 * k / count);
+  return h;
+}
+
+std::vector<Physics> first_stage_physics(const std::map<double, std::string>& base_scenes,
+                                         const CalibrationSettings& s) {
+  std::vector<Physics> out;
+  for (const auto& [flatten_m, scene] : base_scenes) {
+    for (const ContactChoice& c : s.contact_models) {
+      Physics p;
+      p.base = base_name(flatten_m);
+      p.flatten_m = flatten_m;
+      p.base_scene = scene;
+      p.law.method = c.method;
+      if (c.method == contact::ContactMethod::penalty) p.law.normal_stiffness = c.normal_stiffness;
+      p.law.restitution = s.restitution.front();
+      p.law.damping = s.damping.front();
+      p.law.friction = s.friction.front();
+      out.push_back(p);
+    }
+  }
+  return out;
+}
+
+SecondStage second_stage_design(const calibration::OutcomeGrid& grid, const std::vector<int>& observed,
+                                const std::vector<Physics>& stage1, const CalibrationSettings& s) {
+  const std::vector<calibration::Candidate> best = best_per_variant(grid, observed);
+  SecondStage out;
+  std::set<double> headings;
+  for (int k = 0; k < std::min<int>(s.keep, int(best.size())); ++k) {
+    const Physics& p = stage1[std::size_t(best[std::size_t(k)].variant)];
+    const double h = grid.heading_deg(best[std::size_t(k)].heading);
+    for (int j = -2; j <= 2; ++j) headings.insert(wrap360(h + j * s.refine_step_deg));
+    // the impact law: restitution for rigid contact, damping for the penalty springs
+    for (double law : p.penalty() ? s.damping : s.restitution) {
+      for (double mu : s.friction) {
+        Physics q = p;
+        (p.penalty() ? q.law.damping : q.law.restitution) = law;
+        q.law.friction = mu;
+        out.physics.push_back(q);
+      }
+    }
+    out.kept.push_back(format("stage 1 keeps %s at heading %g deg (log-likelihood %.2f)", p.label().c_str(), h,
+                              best[std::size_t(k)].log_likelihood));
+  }
+  out.headings_deg.assign(headings.begin(), headings.end());
+  return out;
+}
+
+Calibrator::Calibrator(CalibrationSettings settings, Callbacks callbacks)
+    : settings_(std::move(settings)), callbacks_(std::move(callbacks)) {
+  if (!callbacks_.import_scan) callbacks_.import_scan = [](const scan::ImportOptions& o) { scan::import_scan(o); };
+}
+
+campaign::CampaignOptions Calibrator::stage_options(int stage, const std::vector<Physics>& physics,
+                                                    const std::vector<double>& headings) const {
+  const CalibrationSettings& o = settings_;
+  io::JobFile job = designed_job(physics.front().base_scene, lab_);
+  job.variants = physics_variants(physics);
+  job.records = windows_;
+  job.rotation_angles_deg = headings;
+  const std::string path = (fs::path(work_) / ("stage" + std::to_string(stage) + ".toml")).string();
+  io::write_job_file(path, job,
+                     "stage " + std::to_string(stage) + " of rigid shaketable calibrate " + o.scan + " --tests " +
+                         o.tests + "\n(written by the command; run again to resume)");
+  campaign::CampaignOptions options;
+  options.job = path;
+  options.output = (fs::path(work_) / ("stage" + std::to_string(stage) + ".h5")).string();
+  if (callbacks_.on_campaign) callbacks_.on_campaign(options);
+  callbacks_.tell(format("shaketable: stage %d: %zu physics variants x %zu headings x %zu tests = %zu runs (%s)", stage,
+                         physics.size(), headings.size(), windows_.size(),
+                         physics.size() * headings.size() * windows_.size(), path.c_str()));
+  return options;
+}
+
+campaign::CampaignOptions Calibrator::prepare() {
+  const CalibrationSettings& o = settings_;
+  check_settings(o);
+  tests_ = io::read_lab_tests(o.tests);
+  if (!tests_.has_outcomes)
+    throw InputError(o.tests, 1, "has no 'overturned' column: calibration fits the observed outcomes");
+  std::map<std::string, int> groups;
+  for (const io::LabTest& t : tests_.tests) {
+    observed_.push_back(*t.overturned);
+    group_.push_back(groups.emplace(t.record, int(groups.size())).first->second);
+  }
+  const long overturned = std::count(observed_.begin(), observed_.end(), 1);
+  if (overturned == 0 || overturned == long(observed_.size())) {
+    throw InputError(o.tests, 0,
+                     std::string("all ") + std::to_string(observed_.size()) + " tests " +
+                         (overturned ? "overturned" : "stood") +
+                         ": outcomes that are all equal cannot identify the rock's parameters");
+  }
+  lab_ = lab_input(o.lab_format);
+  work_ = o.out + ".calibration";
+  std::error_code ec;
+  fs::create_directories(work_, ec);
+  if (ec) throw InputError(work_, 0, "cannot create the calibration's folder: " + ec.message());
+  // the scan once per base model
+  std::map<double, std::string> bases;
+  for (double flatten_m : o.flatten_base_m) {
+    const std::string name = base_name(flatten_m);
+    scan::ImportOptions in;
+    in.scan = o.scan;
+    in.out = (fs::path(work_) / name / name).string();
+    in.scale = o.scale;
+    in.up = o.up;
+    in.max_vertices = o.max_vertices;
+    in.pedestal_margin = o.pedestal_margin;
+    in.flatten_base = flatten_m;
+    in.tilt_deg = o.tilt_deg;
+    callbacks_.tell(format("shaketable: base model %s (--flatten-base %g m)", name.c_str(), in.flatten_base));
+    callbacks_.import_scan(in);
+    bases[flatten_m] = fs::absolute(fs::path(work_) / name / (name + ".toml")).lexically_normal().string();
+  }
+  // the window's level (window_level_g): the design's contact laws decide, not the bases' scenes
+  const bool rigid_only = std::all_of(o.contact_models.begin(), o.contact_models.end(),
+                                      [](const ContactChoice& c) { return c.method == contact::ContactMethod::rigid; });
+  double weakest = 1e300;
+  for (const auto& [_, scene] : bases) weakest = std::min(weakest, static_toppling_g(scene));
+  const double level_g = window_level_g(rigid_only, weakest);
+  windows_ = strong_motion_records(tests_, lab_, level_g);
+  double kept = 0;
+  for (const auto& w : windows_) kept += w.end - w.start;
+  callbacks_.tell(format(
+      "shaketable: %zu tests of %zu recorded motions (%ld overturned); strong-motion windows (|a| > %.3f g, "
+      "%s of the weakest base's static toppling acceleration%s) keep %.0f s of motion",
+      tests_.tests.size(), groups.size(), overturned, level_g, rigid_only ? "half" : "a tenth",
+      rigid_only ? "" : ": penalty contact rocks the rock below it", kept));
+  stage1_ = first_stage_physics(bases, o);
+  for (Physics& p : stage1_) p.base_scene = settled_scene(o.scan, p.base_scene, p, work_);
+  headings1_ = heading_ring(o.headings);
+  stage_ = 1;
+  return stage_options(1, stage1_, headings1_);
+}
+
+std::optional<campaign::CampaignOptions> Calibrator::next(const campaign::CampaignResult* previous) {
+  if (stage_ == 0) return prepare();
+  if (stage_ == 1) {
+    grid1_ = outcome_grid(*previous->cube, headings1_);
+    SecondStage second = second_stage_design(*grid1_, observed_, stage1_, settings_);
+    for (const std::string& line : second.kept) callbacks_.tell("shaketable: " + line);
+    stage2_ = std::move(second.physics);
+    headings2_ = std::move(second.headings_deg);
+    stage_ = 2;
+    return stage_options(2, stage2_, headings2_);
+  }
+  if (stage_ == 2) {
+    grid2_ = outcome_grid(*previous->cube, headings2_);
+    stage_ = 3;
+  }
+  return std::nullopt;
+}
+
+CalibrationSummary Calibrator::finish() const {
+  CalibrationReport report;
+  report.scan = settings_.scan;
+  report.tests_csv = settings_.tests;
+  report.out = settings_.out;
+  report.observed = observed_;
+  report.group = group_;
+  report.stages = {{&*grid1_, stage1_}, {&*grid2_, stage2_}};
+  report.lab_format_file = lab_.format_file;
+  report.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  return write_calibration(report);
+}
+
+}  // namespace rigid::shaketable
