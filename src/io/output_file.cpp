@@ -4,6 +4,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
@@ -21,6 +22,42 @@ void refuse_output_over_inputs(const std::string& output, const std::vector<std:
     struct stat in {};
     if (::stat(input.c_str(), &in) == 0 && in.st_dev == out.st_dev && in.st_ino == out.st_ino)
       throw InputError(output, 0, "is the input " + input + "; choose another output file");
+  }
+}
+
+void InputFiles::add(const std::string& path) {
+  struct stat in {};
+  if (::stat(path.c_str(), &in) != 0) return;
+  for (const Identity& f : files_) {
+    if (f.device == in.st_dev && f.inode == in.st_ino) return;
+  }
+  files_.push_back({static_cast<unsigned long long>(in.st_dev), static_cast<unsigned long long>(in.st_ino), path});
+}
+
+void InputFiles::add(const std::vector<std::string>& paths) {
+  for (const std::string& p : paths) add(p);
+}
+
+void InputFiles::refuse_as_output(const std::string& output) const {
+  struct stat out {};
+  if (::stat(output.c_str(), &out) != 0) return;
+  if (S_ISDIR(out.st_mode)) throw InputError(output, 0, "is a directory; an output file cannot replace it");
+  for (const Identity& f : files_) {
+    if (f.device == static_cast<unsigned long long>(out.st_dev) && f.inode == static_cast<unsigned long long>(out.st_ino))
+      throw InputError(output, 0, "is the input " + f.path + "; choose another output file");
+  }
+}
+
+void InputFiles::refuse_folder(const std::string& folder) const {
+  std::error_code ec;
+  const std::filesystem::path dir = std::filesystem::weakly_canonical(folder, ec);
+  if (ec) return;
+  for (const Identity& f : files_) {
+    const std::filesystem::path in = std::filesystem::weakly_canonical(f.path, ec);
+    if (ec) continue;
+    const auto [d, i] = std::mismatch(dir.begin(), dir.end(), in.begin(), in.end());
+    if (d == dir.end())
+      throw InputError(folder, 0, "holds the input " + f.path + ", and the command writes into it; choose another --out");
   }
 }
 

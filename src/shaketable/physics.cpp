@@ -35,8 +35,9 @@ PhysicsTable Physics::physics_table() const {
 
 const std::vector<scenario::VariantKey>& physics_variant_keys() {
   using scenario::VariantKey;
-  static const std::vector<VariantKey> keys{VariantKey::scene, VariantKey::friction, VariantKey::damping,
-                                            VariantKey::restitution};
+  // in the catalogue's order, the order the job reader gives them back in
+  static const std::vector<VariantKey> keys{VariantKey::friction, VariantKey::restitution, VariantKey::damping,
+                                            VariantKey::scene};
   return keys;
 }
 
@@ -47,7 +48,7 @@ scenario::VariantSpace physics_variants(const std::vector<Physics>& physics) {
   for (const Physics& p : physics) {
     scenario::VariantValue scene;
     scene.text = p.base_scene;
-    space.variants.push_back({scene, {p.law.friction, "", {}}, {p.law.damping, "", {}}, {p.law.restitution, "", {}}});
+    space.variants.push_back({{p.law.friction, "", {}}, {p.law.restitution, "", {}}, {p.law.damping, "", {}}, scene});
   }
   return space;
 }

@@ -32,8 +32,8 @@ struct Physics {
   PhysicsTable physics_table() const;
 };
 
-/// The parameters every variant of a designed calibration sets (scene, friction, damping,
-/// restitution): each law ignores the other's, and a job's variants must all set the same ones.
+/// The parameters every variant of a designed calibration sets (friction, restitution, damping,
+/// scene): each law ignores the other's, and a job's variants must all set the same ones.
 const std::vector<scenario::VariantKey>& physics_variant_keys();
 /// A design's physics as the [[variant]] list of its job, in physics_variant_keys' order.
 scenario::VariantSpace physics_variants(const std::vector<Physics>& physics);
