@@ -23,7 +23,12 @@ void print_summary(const rigid::shaketable::CalibrationSummary& s) {
   std::printf("\ncalibrated: %s, heading %.1f deg [%.1f, %.1f] (spread %.0f deg, lapse %.2f)\n", s.label.c_str(),
               s.heading_deg, s.heading_low_deg, s.heading_high_deg, s.spread_deg, s.lapse);
   shaketable::print_scores("in sample", s.in_sample);
-  shaketable::print_scores("cross-validated (one recorded motion left out at a time)", s.cross_validated);
+  if (s.cross_validated) {
+    shaketable::print_scores("cross-validated (one recorded motion left out at a time)", *s.cross_validated);
+  } else {
+    std::printf("cross-validated: not available (fewer than %d recorded motions)\n",
+                calibration::kMinCrossValidationGroups);
+  }
   std::printf("wrote %s, %s (%.0f s)\n", s.scene.c_str(), s.json.c_str(), s.wall_s);
 }
 
@@ -93,6 +98,9 @@ void add_shaketable_calibrate(CLI::App& parent) {
   cmd->add_option("--max-vertices", o.max_vertices, "Vertex budget of the rock's hull")->capture_default_str();
   cmd->add_option("--pedestal-margin", o.pedestal_margin, "The table: overhang of the box under the rock (m)")
       ->capture_default_str();
+  cmd->add_flag("--restart", o.restart,
+               "Start over: remove the work folder OUT.calibration/ of an earlier calibration into the same OUT (a "
+               "rerun otherwise resumes it, and is refused when its inputs, settings or outcomes changed)");
   shaketable::add_recording_options(*cmd, o.lab_format, f->progress);
   cmd->callback([f, cmd] {
     if (cmd->count("--flatten-mm") && cmd->count("--flatten-base"))

@@ -1,11 +1,11 @@
 // `rigid shaketable fragility`: the flags of the fragility workflow (rigid::shaketable::FragilityDesign),
 // then the fits, the table of medians and the figure, which are src/python/shaketable_fragility.py's,
 // run once the campaign has ended (docs/validation-shaketable.md).
+#include <cstdio>
 #include <memory>
 
 #include "python_script.hpp"
 #include "rigid/core/error.hpp"
-#include "rigid/io/output_file.hpp"
 #include "rigid/shaketable/fragility.hpp"
 #include "shaketable.hpp"
 
@@ -14,7 +14,7 @@ namespace {
 
 struct FragilityFlags {
   rigid::shaketable::FragilitySettings settings;
-  std::string bins, format = "png", progress = "auto";
+  std::string progress = "auto";
   int bootstrap = 1000;
   long seed = 1;
 };
@@ -43,21 +43,20 @@ void add_shaketable_fragility(CLI::App& parent) {
   cmd->add_option("--per-decade", o.per_decade, "PGAs per decade of the geometric grid")
       ->capture_default_str()
       ->check(CLI::Range(2, 100));
-  cmd->add_option("--bins", f->bins,
+  cmd->add_option("--bins", o.bins_s,
                   "PGV/PGA bin edges (s), comma-separated, e.g. 0.02,0.06,0.1,0.3; default: three bins holding a "
-                  "third of the motions each");
+                  "third of the motions each")
+      ->delimiter(',');
   cmd->add_option("--bootstrap", f->bootstrap, "Bootstrap replicates of the 90 % intervals")
       ->capture_default_str()
       ->check(CLI::Range(0, 100000));
   cmd->add_option("--seed", f->seed, "Seed of the bootstrap")->capture_default_str()->check(CLI::Range(0L, 1L << 62));
-  cmd->add_option("--format", f->format, "Figure format: png, pdf or svg")
+  cmd->add_option("--format", o.figure_format, "Figure format: png, pdf or svg")
       ->capture_default_str()
       ->check(CLI::IsMember({"png", "pdf", "svg"}));
   shaketable::add_recording_options(*cmd, o.lab_format, f->progress);
   cmd->callback([f] {
     const rigid::shaketable::FragilitySettings& o = f->settings;
-    io::refuse_output_over_inputs(o.out + ".fragility.csv", {o.tests, o.scene});
-    io::refuse_output_over_inputs(o.out + ".fragility." + f->format, {o.tests, o.scene});
     std::unique_ptr<rigid::shaketable::FragilityDesign> design;
     std::filesystem::path work;
     shaketable::run_designed_campaigns(
@@ -85,10 +84,16 @@ void add_shaketable_fragility(CLI::App& parent) {
                                   "--seed",
                                   std::to_string(f->seed),
                                   "--format",
-                                  f->format};
-    if (!f->bins.empty()) {
+                                  o.figure_format};
+    if (!o.bins_s.empty()) {
+      std::string edges;
+      char edge[32];
+      for (double e : o.bins_s) {
+        std::snprintf(edge, sizeof edge, "%.17g", e);
+        edges += (edges.empty() ? "" : ",") + std::string(edge);
+      }
       args.push_back("--bins");
-      args.push_back(f->bins);
+      args.push_back(edges);
     }
     exec_python(script, args,
                 "`rigid shaketable fragility` needs Debian's python3 with python3-numpy, python3-h5py, python3-scipy "

@@ -162,6 +162,12 @@ std::vector<double> cross_validated_probability(const OutcomeGrid& grid, const s
   return p;
 }
 
+bool cross_validation_possible(const std::vector<int>& group) {
+  std::vector<int> distinct = group;
+  std::sort(distinct.begin(), distinct.end());
+  return std::unique(distinct.begin(), distinct.end()) - distinct.begin() >= kMinCrossValidationGroups;
+}
+
 Scores score(const std::vector<double>& probability, const std::vector<int>& observed) {
   Scores s;
   s.tests = int(probability.size());

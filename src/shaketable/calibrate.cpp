@@ -4,11 +4,15 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <set>
+#include <sstream>
 
 #include "calibration_file.hpp"
 #include "rigid/core/error.hpp"
 #include "rigid/core/types.hpp"
+#include "rigid/io/output_file.hpp"
+#include "rigid/io/provenance.hpp"
 #include "rigid/io/scene_file.hpp"
 #include "rigid/io/scene_writer.hpp"
 #include "rigid/scenario/scene.hpp"
@@ -104,6 +108,38 @@ void check_settings(const CalibrationSettings& o) {
     throw InputError("", 0, "--refine-step must be positive and below the coarse heading step");
   if (!(o.tilt_deg > 0 && o.tilt_deg < 90)) throw InputError("", 0, "--tilt-rule must be in (0, 90) deg");
   if (fs::path(o.out).filename().empty()) throw InputError("", 0, "--out needs DIR/NAME");
+}
+
+std::string calibration_manifest(const CalibrationSettings& s, const io::LabTestList& tests) {
+  std::ostringstream m;
+  m.precision(17);
+  const auto list = [&](const char* name, const std::vector<double>& values) {
+    m << name << ":";
+    for (double v : values) m << " " << v;
+    m << "\n";
+  };
+  m << "scan: " << io::file_sha256(s.scan) << "\n";
+  m << "lab format: " << (s.lab_format.empty() ? std::string("default") : io::file_sha256(s.lab_format)) << "\n";
+  m << "scale: " << s.scale << "\nup: " << s.up << "\n";
+  list("flatten base (m)", s.flatten_base_m);
+  m << "contact models:";
+  for (const ContactChoice& c : s.contact_models)
+    m << " " << (c.method == contact::ContactMethod::rigid ? std::string("rigid") : format("%.17g", c.normal_stiffness));
+  m << "\n";
+  list("restitution", s.restitution);
+  list("damping (s/m)", s.damping);
+  list("friction", s.friction);
+  m << "headings: " << s.headings << "\nkeep: " << s.keep << "\nrefine step (deg): " << s.refine_step_deg
+    << "\ntilt rule (deg): " << s.tilt_deg << "\nmax vertices: " << s.max_vertices
+    << "\npedestal margin (m): " << s.pedestal_margin << "\n";
+  // the tests by what the campaigns run (number, motion, recording's contents), their outcomes apart
+  std::string listed, outcomes;
+  for (const io::LabTest& t : tests.tests) {
+    listed += std::to_string(t.test_no) + "," + t.record + "," + io::file_sha256(t.file) + "\n";
+    outcomes += t.overturned ? char('0' + *t.overturned) : '?';
+  }
+  m << "tests: " << io::sha256_hex(listed) << "\noutcomes: " << io::sha256_hex(outcomes) << "\n";
+  return m.str();
 }
 
 std::string base_name(double flatten_m) { return format("flat_%gmm", flatten_m * 1e3); }
@@ -205,9 +241,12 @@ campaign::CampaignOptions Calibrator::prepare() {
   }
   lab_ = lab_input(o.lab_format);
   work_ = o.out + ".calibration";
-  std::error_code ec;
-  fs::create_directories(work_, ec);
-  if (ec) throw InputError(work_, 0, "cannot create the calibration's folder: " + ec.message());
+  {  // every output checked against every input before the first write
+    const io::InputFiles inputs = command_inputs(o.tests, tests_, lab_, {}, {o.scan});
+    for (const char* ending : {".toml", ".state.toml", ".calibration.json"}) inputs.refuse_as_output(o.out + ending);
+    inputs.refuse_folder(work_);
+  }
+  claim_work_folder(calibration_manifest(o, tests_));
   // the scan once per base model
   std::map<double, std::string> bases;
   for (double flatten_m : o.flatten_base_m) {
@@ -244,6 +283,39 @@ campaign::CampaignOptions Calibrator::prepare() {
   headings1_ = heading_ring(o.headings);
   stage_ = 1;
   return stage_options(1, stage1_, headings1_);
+}
+
+void Calibrator::claim_work_folder(const std::string& manifest) {
+  const fs::path work(work_), manifest_file = fs::path(work_) / "calibration.manifest";
+  std::error_code ec;
+  fs::create_directories(fs::absolute(settings_.out).parent_path(), ec);
+  lock_ = std::make_unique<campaign::OutputLock>(settings_.out, "--out");
+  if (settings_.restart) fs::remove_all(work, ec);
+  if (fs::exists(manifest_file)) {
+    std::ifstream in(manifest_file);
+    std::stringstream then;
+    then << in.rdbuf();
+    if (then.str() != manifest) {
+      std::istringstream a(then.str()), b(manifest);
+      std::string was, now;
+      while (std::getline(a, was) && std::getline(b, now) && was == now) {
+      }
+      const bool outcomes_only = now.rfind("outcomes:", 0) == 0;
+      throw InputError(work_, 0,
+                       outcomes_only
+                           ? "was started on other outcomes of " + settings_.tests +
+                                 " (the second stage is designed on them): run again with --restart to start over"
+                           : "holds a calibration of other inputs or settings (then '" + was + "', now '" + now +
+                                 "'): choose another --out, or --restart to start over");
+    }
+    return;  // the same calibration: its campaigns resume
+  }
+  if (fs::exists(work) && !fs::is_empty(work, ec))
+    throw InputError(work_, 0, "exists and is not a calibration's work folder (no calibration.manifest): choose another "
+                               "--out, or --restart to start over");
+  fs::create_directories(work, ec);
+  if (ec) throw InputError(work_, 0, "cannot create the calibration's folder: " + ec.message());
+  io::write_output_file(manifest_file.string(), [&](std::ostream& out) { out << manifest; });
 }
 
 std::optional<campaign::CampaignOptions> Calibrator::next(const campaign::CampaignResult* previous) {

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <set>
 
 #include "rigid/core/error.hpp"
@@ -69,7 +70,9 @@ io::Json variants_table(const OutcomeGrid& grid, const std::vector<Physics>& phy
     std::vector<double> p_in(y.size());
     for (std::size_t t = 0; t < y.size(); ++t) p_in[t] = calibration::overturn_probability(one, best, int(t));
     const Scores in = calibration::score(p_in, y);
-    const Scores cv = calibration::score(calibration::cross_validated_probability(one, y, group, {}), y);
+    const bool cv_possible = calibration::cross_validation_possible(group);
+    const Scores cv =
+        cv_possible ? calibration::score(calibration::cross_validated_probability(one, y, group, {}), y) : Scores{};
     io::Json row = physics_json(physics[std::size_t(v)]);
     row["label"] = physics[std::size_t(v)].label();
     row["heading_deg"] = grid.heading_deg(best.heading);
@@ -77,7 +80,11 @@ io::Json variants_table(const OutcomeGrid& grid, const std::vector<Physics>& phy
     row["lapse"] = best.lapse;
     row["log_likelihood"] = best.log_likelihood;
     row["in_sample"] = {{"accuracy", in.accuracy}, {"balanced_accuracy", in.balanced_accuracy}};
-    row["cross_validated"] = {{"accuracy", cv.accuracy}, {"balanced_accuracy", cv.balanced_accuracy}};
+    if (cv_possible) {
+      row["cross_validated"] = {{"accuracy", cv.accuracy}, {"balanced_accuracy", cv.balanced_accuracy}};
+    } else {
+      row["cross_validated"] = nullptr;
+    }
     rows.push_back(row);
   }
   return rows;
@@ -97,7 +104,9 @@ CalibrationSummary write_calibration(const CalibrationReport& r) {
   const Physics& chosen = physics[std::size_t(best.variant)];
   const double heading = grid.heading_deg(best.heading);
   const Scores in = calibration::score(calibration::ensemble_probability(grid, members), y);
-  const Scores cv = calibration::score(calibration::cross_validated_probability(grid, y, r.group, {}), y);
+  std::optional<Scores> cv;
+  if (calibration::cross_validation_possible(r.group))
+    cv = calibration::score(calibration::cross_validated_probability(grid, y, r.group, {}), y);
 
   // the calibrated scene: the chosen base model and contact law, the rock turned so that the
   // table's axis is the scene's x axis
@@ -191,7 +200,13 @@ CalibrationSummary write_calibration(const CalibrationReport& r) {
   j["log_likelihood"] = best.log_likelihood;
   j["region_size"] = long(region.size());
   j["in_sample"] = scores_json(in);
-  j["cross_validated"] = scores_json(cv);
+  if (cv) {
+    j["cross_validated"] = scores_json(*cv);
+  } else {
+    j["cross_validated"] = {{"available", false},
+                            {"reason", "fewer than " + std::to_string(calibration::kMinCrossValidationGroups) +
+                                           " recorded motions: leaving one out leaves too little to fit"}};
+  }
   j["ensemble"] = ensemble;
   io::Json stages = io::Json::array();
   for (const auto& [g, phys] : r.stages) {

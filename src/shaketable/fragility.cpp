@@ -28,6 +28,17 @@ std::vector<double> pga_grid(double low, double high, int per_decade) {
   return grid;
 }
 
+void check_settings(const FragilitySettings& s) {
+  if (!s.bins_s.empty()) {
+    bool increasing = s.bins_s.size() >= 2;
+    for (std::size_t i = 0; i < s.bins_s.size(); ++i)
+      increasing = increasing && std::isfinite(s.bins_s[i]) && s.bins_s[i] > 0 && (i == 0 || s.bins_s[i] > s.bins_s[i - 1]);
+    if (!increasing) throw InputError("", 0, "--bins: at least two positive, strictly increasing edges (s)");
+  }
+  if (s.figure_format != "png" && s.figure_format != "pdf" && s.figure_format != "svg")
+    throw InputError("", 0, "--format must be png, pdf or svg");
+}
+
 FragilityDesign::FragilityDesign(FragilitySettings settings, Callbacks callbacks)
     : settings_(std::move(settings)), callbacks_(std::move(callbacks)) {}
 
@@ -35,12 +46,22 @@ std::optional<campaign::CampaignOptions> FragilityDesign::next(const campaign::C
   if (prepared_) return std::nullopt;
   prepared_ = true;
   const FragilitySettings& o = settings_;
+  check_settings(o);
   tests_ = io::read_lab_tests(o.tests);
   if (!tests_.has_outcomes)
     throw InputError(o.tests, 1, "has no overturned column: the lab's fragility is fitted on the observed outcomes");
   lab_ = lab_input(o.lab_format);
   ensemble_ = load_ensemble(o.scene);
   const Ensemble& e = ensemble_;
+  work_ = o.out + ".fragility.work";
+  {  // every output checked against every input before the first write
+    std::vector<std::string> scenes = e.scenes;
+    scenes.push_back(o.scene);
+    const io::InputFiles inputs = command_inputs(o.tests, tests_, lab_, scenes, {e.json});
+    inputs.refuse_as_output(o.out + ".fragility.csv");
+    inputs.refuse_as_output(o.out + ".fragility." + o.figure_format);
+    inputs.refuse_folder(work_.string());
+  }
 
   // one recording per motion: its median test by measured PGA. The table does not reproduce a
   // motion alike at every amplitude (its hardest tests add high-frequency content: PGV/PGA falls
@@ -86,7 +107,6 @@ std::optional<campaign::CampaignOptions> FragilityDesign::next(const campaign::C
   // `rigid fragility` does)
   job.stop_after = 3;
 
-  work_ = o.out + ".fragility.work";
   std::error_code ec;
   fs::create_directories(work_, ec);
   if (ec) throw InputError(work_.string(), 0, "cannot create the fragility's folder: " + ec.message());

@@ -18,6 +18,20 @@ LabInput lab_input(const std::string& format_file) {
   return in;
 }
 
+io::InputFiles command_inputs(const std::string& tests_csv, const io::LabTestList& tests, const LabInput& lab,
+                              const std::vector<std::string>& scenes, const std::vector<std::string>& others) {
+  io::InputFiles in;
+  in.add(tests_csv);
+  for (const io::LabTest& t : tests.tests) in.add(t.file);
+  if (!lab.format_file.empty()) in.add(lab.format_file);
+  for (const std::string& scene : scenes) {
+    in.add(scene);
+    in.add(io::load_scene(scene).files);
+  }
+  in.add(others);
+  return in;
+}
+
 io::JobRecord lab_record(const std::string& file, double start_s, double end_s) {
   io::JobRecord r;
   r.spec = file;

@@ -19,7 +19,6 @@ std::optional<campaign::CampaignOptions> Predictor::next(const campaign::Campaig
   if (prepared_) return std::nullopt;
   prepared_ = true;
   const PredictionSettings& o = settings_;
-  io::refuse_output_over_inputs(o.out, {o.tests, o.scene});
   tests_ = io::read_lab_tests(o.tests);
   lab_ = lab_input(o.lab_format);
   ensemble_ = load_ensemble(o.scene);
@@ -27,8 +26,12 @@ std::optional<campaign::CampaignOptions> Predictor::next(const campaign::Campaig
   io::JobFile job = ensemble_job(o.scene, e, lab_);
   std::vector<std::string> scenes = e.scenes;
   scenes.push_back(job.objects.front().scene);
-  job.records = strong_motion_records(tests_, lab_, window_level_g(scenes));
+  // every output checked against every input before the first write
   const std::string work = o.out + ".work";
+  const io::InputFiles inputs = command_inputs(o.tests, tests_, lab_, scenes, {e.json});
+  inputs.refuse_as_output(o.out);
+  inputs.refuse_folder(work);
+  job.records = strong_motion_records(tests_, lab_, window_level_g(scenes));
   std::error_code ec;
   fs::create_directories(work, ec);
   if (ec) throw InputError(work, 0, "cannot create the prediction's folder: " + ec.message());

@@ -85,7 +85,7 @@ TEST(ShaketableEnsemble, MembersAverageTheOneRuleByWeight) {
   EXPECT_NEAR(e.probability(overturned, false), 0.75 * 2.0 / 3.0 + 0.25, 1e-15);
 
   // its designed job: one object, the scenes as variants, the headings as rotation angles
-  const io::JobFile job = shaketable::ensemble_job((dir / "rock.toml").string(), e, shaketable::LabInput{});
+  const io::JobFile job = shaketable::ensemble_job((dir / "rock.toml").string(), e, shaketable::lab_input(""));
   ASSERT_EQ(job.variants.count(), 2);
   EXPECT_EQ(job.variants.variants[1][0].text, (dir / "member_v2.toml").string());
   EXPECT_EQ(job.rotation_angles_deg, e.rotations_deg);

@@ -102,6 +102,12 @@ std::vector<double> ensemble_probability(const OutcomeGrid& grid, const std::vec
 std::vector<double> cross_validated_probability(const OutcomeGrid& grid, const std::vector<int>& observed,
                                                 const std::vector<int>& group, const SearchSettings& settings);
 
+/// The fewest groups (recorded motions) a leave-one-group-out score means something with: with
+/// one, no fold has a training test; with two, each fold is fitted on one motion alone.
+inline constexpr int kMinCrossValidationGroups = 3;
+/// Whether `group` has at least kMinCrossValidationGroups distinct groups.
+bool cross_validation_possible(const std::vector<int>& group);
+
 /// Scores of probabilities against outcomes; predicted = p >= 0.5.
 struct Scores {
   int tests = 0, true_positive = 0, false_positive = 0, true_negative = 0, false_negative = 0;

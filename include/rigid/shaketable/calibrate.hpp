@@ -8,12 +8,14 @@
 /// each one `next` returns (docs/validation-shaketable.md).
 #include <chrono>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "rigid/calibration/outcome_model.hpp"
 #include "rigid/campaign/driver.hpp"
+#include "rigid/campaign/output_lock.hpp"
 #include "rigid/shaketable/lab.hpp"
 #include "rigid/shaketable/physics.hpp"
 #include "rigid/shaketable/workflow.hpp"
@@ -45,10 +47,19 @@ struct CalibrationSettings {
   double tilt_deg = 30;          ///< overturned = tilted beyond this angle
   int max_vertices = 64;         ///< the rock's hull
   double pedestal_margin = 0.5;  ///< the table: overhang of the box under the rock (unit: m)
+  /// Start over: the work folder of an earlier calibration into the same OUT is removed first (it
+  /// is otherwise resumed, and refused when its inputs or settings differ)
+  bool restart = false;
 };
 
 /// Throws InputError naming the setting (as its flag) when a value is outside its range.
 void check_settings(const CalibrationSettings& s);
+
+/// What a calibration's work folder was started with, one "what: value" line each: the settings,
+/// the SHA-256 of the scan, of the lab format and of the test list without its outcomes, and of
+/// the outcomes on their own line (the second stage is designed on them). A rerun resumes only
+/// where every line is the same.
+std::string calibration_manifest(const CalibrationSettings& s, const io::LabTestList& tests);
 
 /// A contact law as the command line names it: "rigid" or a penalty stiffness K_N in
 /// [1e5, 1e13] N/m^1.5. Nothing for any other text.
@@ -78,7 +89,9 @@ SecondStage second_stage_design(const calibration::OutcomeGrid& grid, const std:
 struct CalibrationSummary {
   std::string label;  ///< the chosen physics
   double heading_deg = 0, heading_low_deg = 0, heading_high_deg = 0, spread_deg = 0, lapse = 0;
-  calibration::Scores in_sample, cross_validated;
+  calibration::Scores in_sample;
+  /// Leave-one-motion-out; nothing with fewer than calibration::kMinCrossValidationGroups motions
+  std::optional<calibration::Scores> cross_validated;
   std::string scene, json;
   double wall_s = 0;
 };
@@ -94,6 +107,9 @@ class Calibrator {
 
  private:
   campaign::CampaignOptions prepare();
+  /// Takes OUT's lock, then resumes the work folder only over the same inputs and settings (or
+  /// starts it anew with --restart): all before the first write.
+  void claim_work_folder(const std::string& manifest);
   campaign::CampaignOptions stage_options(int stage, const std::vector<Physics>& physics,
                                           const std::vector<double>& headings) const;
   CalibrationSettings settings_;
@@ -107,6 +123,7 @@ class Calibrator {
   std::vector<double> headings1_, headings2_;
   std::optional<calibration::OutcomeGrid> grid1_, grid2_;
   int stage_ = 0;
+  std::unique_ptr<campaign::OutputLock> lock_;  ///< OUT.lock, held for the whole calibration
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
 

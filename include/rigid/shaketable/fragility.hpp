@@ -18,7 +18,14 @@ struct FragilitySettings {
   double min_pga_g = 0.02;
   double max_pga_g = 0;  ///< 0: 1.25 x the largest measured PGA
   int per_decade = 24;
+  std::string figure_format = "png";  ///< OUT.fragility.FORMAT: png, pdf or svg
+  /// PGV/PGA bin edges (unit: s), at least two, positive, increasing; empty: three bins of a third
+  /// of the motions each (chosen by the fit)
+  std::vector<double> bins_s;
 };
+
+/// Throws InputError naming the flag when the settings cannot be run (checked before the campaign).
+void check_settings(const FragilitySettings& s);
 
 /// A geometric grid from `low` to at least `high` (the lognormal's own spacing: as many points
 /// below the median as above it), each value rounded to 4 significant digits so that the job

@@ -9,6 +9,7 @@
 #include "rigid/io/cube.hpp"
 #include "rigid/io/job_file.hpp"
 #include "rigid/io/lab_tests.hpp"
+#include "rigid/io/output_file.hpp"
 #include "rigid/motion/ground_motion.hpp"
 #include "rigid/motion/lab_format.hpp"
 
@@ -20,6 +21,12 @@ struct LabInput {
   motion::LabFormat format;
 };
 LabInput lab_input(const std::string& format_file);
+
+/// Every file a shake-table command reads: the test list and each test's recording, the lab
+/// format file, each scene with every file it is built from, and `others` (a scan, a calibration
+/// file). No output of the command may be one of them (io::InputFiles).
+io::InputFiles command_inputs(const std::string& tests_csv, const io::LabTestList& tests, const LabInput& lab,
+                              const std::vector<std::string>& scenes, const std::vector<std::string>& others);
 
 /// One recording as a designed job's [[record]] (lab = FILE), windowed.
 io::JobRecord lab_record(const std::string& file, double start_s, double end_s);
