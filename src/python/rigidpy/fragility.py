@@ -6,6 +6,7 @@ codes read, and the probability that a rock survived a hazard model over its exp
     rigid_fragility.py hazard CUBE --curve CURVE.csv --age YEARS [--object NAME] [--variant K]
                        [--pgv-pga S | --pgv-pga-dist lognormal:MEDIAN,BETA] [--site ID]
                        [--confidence 0.95] [--plot PNG] [--json]
+    rigid_fragility.py hazard reweight OQ_DIR --rock CUBE:OBJECT --age YEARS ...  (hazard_reweight.py)
 
 Fits (fit.py): per PGV/PGA bin a lognormal (theta, beta) on the records of the bin, and
 the vector fit P = Phi((u - mu(x)) / sigma(x)) over all records, evaluated at a chosen PGV/PGA;
@@ -185,7 +186,9 @@ def build_parser():
     f.add_argument("--no-store", action="store_true", help="do not store the fits in the cube's /fragility group")
     f.set_defaults(func=cmd_fragility)
 
-    h = sub.add_parser("hazard", help="toppling rate and survival probability under a PGA hazard curve")
+    h = sub.add_parser("hazard", help="toppling rate and survival probability under a PGA hazard curve",
+                       epilog="rigid hazard reweight OQ_DIR --rock CUBE:OBJECT --age YEARS ...: reweight the branches "
+                              "of an OpenQuake logic tree by the rock's survival (rigid hazard reweight --help)")
     common(h)
     h.add_argument("--object", help="the object (needed when the cube has several)")
     h.add_argument("--curve", required=True, help="hazard curve CSV (PGA g, annual rate; OpenQuake or nshmp-haz layouts)")
@@ -199,6 +202,10 @@ def build_parser():
 
 
 def main(argv=None):
+    argv = sys.argv[1:] if argv is None else argv
+    if argv[:2] == ["hazard", "reweight"]:  # a command of its own: an OpenQuake logic tree, not one curve
+        from .hazard_reweight import main as reweight
+        return reweight(argv[2:])
     parser = build_parser()
     args = parser.parse_args(argv)
     try:
