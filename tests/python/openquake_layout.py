@@ -24,8 +24,9 @@ def write_realizations(folder, rows, calc_id=CALC_ID):
     return path
 
 
-def write_curve(folder, kind, imls, sites, investigation_time, calc_id=CALC_ID, imt="PGA", name=None):
-    """sites: [((lon, lat), [PoE per IML])]; kind 'rlz-000', 'mean', 'quantile-0.16'."""
+def write_curve(folder, kind, imls, sites, investigation_time, calc_id=CALC_ID, imt="PGA", name=None, poe_format="{:.6E}"):
+    """sites: [((lon, lat), [PoE per IML])]; kind 'rlz-000', 'mean', 'quantile-0.16'; poe_format "{!r}" keeps
+    every digit."""
     if name is None:
         stem = {"mean": "hazard_curve-mean"}.get(kind, f"hazard_curve-{kind}")
         if kind.startswith("quantile-"):
@@ -36,13 +37,13 @@ def write_curve(folder, kind, imls, sites, investigation_time, calc_id=CALC_ID, 
         f.write(header(kind, investigation_time, imt, len(imls)))
         f.write("lon,lat,depth," + ",".join(f"poe-{a:.7f}" for a in imls) + "\n")
         for (lon, lat), poes in sites:
-            f.write(f"{lon:.5f},{lat:.5f},0.00000," + ",".join(f"{p:.6E}" for p in poes) + "\n")
+            f.write(f"{lon:.5f},{lat:.5f},0.00000," + ",".join(poe_format.format(p) for p in poes) + "\n")
     return path
 
 
-def write_export(folder, branches, imls, investigation_time, site=(0.0, 0.0), calc_id=CALC_ID):
+def write_export(folder, branches, imls, investigation_time, site=(0.0, 0.0), calc_id=CALC_ID, poe_format="{:.6E}"):
     """branches: [(branch_path, weight, [PoE per IML])]: the realizations and their curves at one site."""
     write_realizations(folder, [(i, b, w) for i, (b, w, _) in enumerate(branches)], calc_id)
     for i, (_, _, poes) in enumerate(branches):
-        write_curve(folder, f"rlz-{i:03d}", imls, [(site, poes)], investigation_time, calc_id)
+        write_curve(folder, f"rlz-{i:03d}", imls, [(site, poes)], investigation_time, calc_id, poe_format=poe_format)
     return folder

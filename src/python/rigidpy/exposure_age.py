@@ -18,6 +18,7 @@ import numpy as np
 from scipy import integrate
 from scipy.special import log_ndtr
 
+from . import hazard as hc
 from .errors import InputError
 
 KINDS = ("normal", "lognormal")
@@ -43,8 +44,8 @@ class ExposureAge:
     def survival(self, rate):
         """E[exp(-rate T)] for one rate or an array of rates (per year)."""
         nu = np.asarray(rate, float)
-        if self.kind == "fixed":
-            return np.exp(-nu * self.years)
+        if self.kind == "fixed":  # hazard.survival's own arithmetic, so `rigid hazard` agrees to the last bit
+            return np.vectorize(lambda r: hc.survival(r, self.years), otypes=[float])(nu)
         if self.kind == "normal":
             return self._truncated_normal(nu)
         return self._lognormal(nu)

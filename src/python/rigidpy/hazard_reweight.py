@@ -85,7 +85,7 @@ def build_parser():
 
 
 def main(argv):
-    args = build_parser().parse_args(argv)
+    args = build_parser().parse_args(joined_site(argv))
     try:
         return run(args)
     except (InputError, cube_files.OutputError) as e:
@@ -97,6 +97,20 @@ def main(argv):
     except Exception as e:  # a bug of ours, not the input's: one line, exit 1
         sys.stderr.write(f"rigid hazard reweight: internal error: {type(e).__name__}: {e}\n")
         return 1
+
+
+def joined_site(argv):
+    """`--site -122.5,38.1` as `--site=-122.5,38.1`: argparse takes a value that starts with '-' and
+    holds a comma for an option, and western longitudes are negative."""
+    out, i = [], 0
+    while i < len(argv):
+        if argv[i] == "--site" and i + 1 < len(argv):
+            out.append(f"--site={argv[i + 1]}")
+            i += 2
+        else:
+            out.append(argv[i])
+            i += 1
+    return out
 
 
 # --------------------------------------------------------------------------------------------
