@@ -215,11 +215,16 @@ PLOT_FORMATS = ("png", "pdf", "svg", "eps", "ps", "jpg", "jpeg", "tif", "tiff", 
 
 def check_plot_path(args):
     """--plot: a figure format matplotlib writes, and neither the cube nor the curve."""
-    ext = os.path.splitext(args.plot)[1].lower().lstrip(".")
+    check_figure_path(args.plot, [args.cube, args.curve])
+
+
+def check_figure_path(path, inputs):
+    """A figure's file: a format matplotlib writes, and none of the command's inputs."""
+    ext = os.path.splitext(path)[1].lower().lstrip(".")
     if ext not in PLOT_FORMATS:
-        raise InputError(f"--plot {args.plot}: the file name must end in one of "
+        raise InputError(f"--plot {path}: the file name must end in one of "
                          f"{', '.join('.' + f for f in PLOT_FORMATS)} (the figure's format)")
-    cube_files.refuse_output_over_inputs(args.plot, "--plot", [args.cube, args.curve])
+    cube_files.refuse_output_over_inputs(path, "--plot", inputs)
 
 
 def curve_end(curve, mixture):

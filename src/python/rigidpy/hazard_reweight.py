@@ -20,11 +20,11 @@ import numpy as np
 from . import files as cube_files
 from . import logic_tree_weights as lt
 from . import openquake_export as oq
-from .command_line import OneLineParser
+from .command_line import OneLineParser, exit_status
 from .errors import InputError
 from .exposure_age import KINDS, ExposureAge
 from .fragility_report import fmt_probability, json_clean
-from .hazard_command import PLOT_FORMATS, RockFragility, is_pooled, object_fragility, pooled_fragility, select_rock
+from .hazard_command import RockFragility, check_figure_path, is_pooled, object_fragility, pooled_fragility, select_rock
 
 BAKER = "survival weights w' = w S / sum w S (Baker et al. 2013)"
 
@@ -86,17 +86,7 @@ def build_parser():
 
 def main(argv):
     args = build_parser().parse_args(joined_site(argv))
-    try:
-        return run(args)
-    except (InputError, cube_files.OutputError) as e:
-        sys.stderr.write(f"rigid hazard reweight: error: {e}\n")
-        return 2
-    except OSError as e:
-        sys.stderr.write(f"rigid hazard reweight: error: {e}\n")
-        return 2
-    except Exception as e:  # a bug of ours, not the input's: one line, exit 1
-        sys.stderr.write(f"rigid hazard reweight: internal error: {type(e).__name__}: {e}\n")
-        return 1
+    return exit_status("rigid hazard reweight", lambda: run(args), args)
 
 
 def joined_site(argv):
@@ -138,13 +128,10 @@ def check_options(args):
             raise InputError(f"--rock {r['rock']}: {cube}: no such cube")
         r["cube"], r["object"] = cube, name or None
     inputs = [r["cube"] for r in args.rocks]
-    for option in ("csv", "plot"):
-        path = getattr(args, option)
-        if path:
-            cube_files.refuse_output_over_inputs(path, f"--{option}", inputs)
-    if args.plot and os.path.splitext(args.plot)[1].lower().lstrip(".") not in PLOT_FORMATS:
-        raise InputError(f"--plot {args.plot}: the file name must end in one of "
-                         f"{', '.join('.' + f for f in PLOT_FORMATS)} (the figure's format)")
+    if args.csv:
+        cube_files.refuse_output_over_inputs(args.csv, "--csv", inputs)
+    if args.plot:
+        check_figure_path(args.plot, inputs)
     if args.write_curves and os.path.abspath(args.write_curves) == os.path.abspath(args.oq_dir):
         raise InputError(f"--write-curves {args.write_curves}: the export being read; choose another folder")
 
