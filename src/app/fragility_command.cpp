@@ -50,7 +50,8 @@ void register_fragility_commands(CLI::App& app) {
       "Annual toppling rate of a rock under a PGA hazard curve (CSV: two columns, OpenQuake or nshmp-haz "
       "layouts), its survival probability over an exposure age with the fit's interval, and how far the "
       "curve must rise before the rock's survival rules it out: `rigid hazard CUBE --curve CSV --age "
-      "YEARS`; `rigid hazard --help` for the options");
+      "YEARS`; `rigid hazard reweight OQ_DIR --rock CUBE:OBJECT --age YEARS` reweights the branches of an "
+      "OpenQuake logic tree by the rock's survival; `rigid hazard [reweight] --help` for the options");
 }
 
 }  // namespace rigid::app

@@ -96,3 +96,16 @@ def write_cube(path, pgv_pga, objects, root_attrs=None, wall_s=None):
                 g.create_dataset("wall_s", data=np.full(outcome.shape, float(wall_s)))
         cube_checksums.seal(f)
 
+
+
+if __name__ == "__main__":
+    # `python3 tests/python/synthetic_cube.py OUT.h5`: a cube of one rock drawn from the planted probit
+    # model (median toppling PGA about 0.3 g at PGV/PGA 0.1 s), for worked examples that need a
+    # cube without running a campaign (README: the logic-tree reweighting)
+    import sys
+
+    if len(sys.argv) != 2:
+        sys.exit("usage: synthetic_cube.py OUT.h5")
+    rng = np.random.default_rng(20260301)
+    pgv = np.exp(rng.uniform(math.log(0.035), math.log(0.5), R))
+    write_cube(sys.argv[1], pgv, [("rock", planted_outcomes(rng, pgv, MU0, MU1, SIGMA), {"alpha_rad": ALPHA, "p_rad_s": P})])

@@ -6,6 +6,7 @@ import math
 import sys
 
 from .errors import InputError
+from .files import OutputError
 
 
 class OneLineParser(argparse.ArgumentParser):
@@ -15,6 +16,25 @@ class OneLineParser(argparse.ArgumentParser):
         self.exit(2, f"{self.prog}: error: {message} (--help for the options)\n")
 
 
+
+
+def exit_status(command, run, args):
+    """run() as a command does: its status; bad input (InputError, OutputError, an OSError) one line
+    `COMMAND: error: ...` and 2; anything else is a bug of ours, one line and 1. A cube that cannot
+    be fitted may be one whose campaign has not run the cells yet (`args.incomplete`): said too."""
+    try:
+        return run()
+    except (InputError, OutputError) as e:
+        incomplete = getattr(args, "incomplete", None)
+        more = f" ({incomplete})" if incomplete and incomplete not in str(e) else ""
+        sys.stderr.write(f"{command}: error: {e}{more}\n")
+        return 2
+    except OSError as e:
+        sys.stderr.write(f"{command}: error: {e}\n")
+        return 2
+    except Exception as e:
+        sys.stderr.write(f"{command}: internal error: {type(e).__name__}: {e}\n")
+        return 1
 
 
 def number_in(text, option, low=None, high=None):

@@ -6,6 +6,7 @@ codes read, and the probability that a rock survived a hazard model over its exp
     rigid_fragility.py hazard CUBE --curve CURVE.csv --age YEARS [--object NAME] [--variant K]
                        [--pgv-pga S | --pgv-pga-dist lognormal:MEDIAN,BETA] [--site ID]
                        [--confidence 0.95] [--plot PNG] [--json]
+    rigid_fragility.py hazard reweight OQ_DIR --rock CUBE:OBJECT --age YEARS ...  (hazard_reweight.py)
 
 Fits (fit.py): per PGV/PGA bin a lognormal (theta, beta) on the records of the bin, and
 the vector fit P = Phi((u - mu(x)) / sigma(x)) over all records, evaluated at a chosen PGV/PGA;
@@ -34,7 +35,7 @@ try:
     from . import nrml
     from .cube import Cube
     from .errors import InputError
-    from .command_line import OneLineParser, check_completeness, warn_incomplete
+    from .command_line import OneLineParser, check_completeness, exit_status, warn_incomplete
     from .fragility_report import (csv_rows, json_document, nrml_functions, nrml_range_text, pooled_csv_row,
                                    print_table, print_variant_tables, variant_nrml_functions)
     from .fragility_store import store
@@ -185,7 +186,9 @@ def build_parser():
     f.add_argument("--no-store", action="store_true", help="do not store the fits in the cube's /fragility group")
     f.set_defaults(func=cmd_fragility)
 
-    h = sub.add_parser("hazard", help="toppling rate and survival probability under a PGA hazard curve")
+    h = sub.add_parser("hazard", help="toppling rate and survival probability under a PGA hazard curve",
+                       epilog="rigid hazard reweight OQ_DIR --rock CUBE:OBJECT --age YEARS ...: reweight the branches "
+                              "of an OpenQuake logic tree by the rock's survival (rigid hazard reweight --help)")
     common(h)
     h.add_argument("--object", help="the object (needed when the cube has several)")
     h.add_argument("--curve", required=True, help="hazard curve CSV (PGA g, annual rate; OpenQuake or nshmp-haz layouts)")
@@ -199,32 +202,27 @@ def build_parser():
 
 
 def main(argv=None):
+    argv = sys.argv[1:] if argv is None else argv
+    if argv[:2] == ["hazard", "reweight"]:  # a command of its own: an OpenQuake logic tree, not one curve
+        from .hazard_reweight import main as reweight
+        return reweight(argv[2:])
     parser = build_parser()
     args = parser.parse_args(argv)
-    try:
-        if not 0 <= args.seed < 2 ** 63:
-            raise InputError(f"--seed {args.seed}: must be a whole number from 0 to 2^63 - 1")
-        if args.bootstrap < 20 or args.bootstrap > 100000:
-            raise InputError(f"--bootstrap {args.bootstrap}: must be 20-100000")
-        if not 0.5 <= args.level < 1:
-            raise InputError(f"--level {args.level}: must be in [0.5, 1)")
-        if args.pgv_pga is not None and not (args.pgv_pga > 0 and math.isfinite(args.pgv_pga)):
-            raise InputError(f"--pgv-pga {args.pgv_pga}: must be a positive number of seconds")
-        if getattr(args, "pgv_pga_dist", None) and args.pgv_pga is not None:
-            raise InputError("--pgv-pga and --pgv-pga-dist: give one")
-        return args.func(args)
-    except (InputError, cube_files.OutputError) as e:
-        # a cube that cannot be fitted may be one whose campaign has not run the cells yet: say so
-        incomplete = getattr(args, "incomplete", None)
-        more = f" ({incomplete})" if incomplete and incomplete not in str(e) else ""
-        sys.stderr.write(f"rigid {args.command}: error: {e}{more}\n")
-        return 2
-    except OSError as e:
-        sys.stderr.write(f"rigid {args.command}: error: {e}\n")
-        return 2
-    except Exception as e:  # a bug of ours, not the input's: one line, exit 1
-        sys.stderr.write(f"rigid {args.command}: internal error: {type(e).__name__}: {e}\n")
-        return 1
+    return exit_status(f"rigid {args.command}", lambda: checked_run(args), args)
+
+
+def checked_run(args):
+    if not 0 <= args.seed < 2 ** 63:
+        raise InputError(f"--seed {args.seed}: must be a whole number from 0 to 2^63 - 1")
+    if args.bootstrap < 20 or args.bootstrap > 100000:
+        raise InputError(f"--bootstrap {args.bootstrap}: must be 20-100000")
+    if not 0.5 <= args.level < 1:
+        raise InputError(f"--level {args.level}: must be in [0.5, 1)")
+    if args.pgv_pga is not None and not (args.pgv_pga > 0 and math.isfinite(args.pgv_pga)):
+        raise InputError(f"--pgv-pga {args.pgv_pga}: must be a positive number of seconds")
+    if getattr(args, "pgv_pga_dist", None) and args.pgv_pga is not None:
+        raise InputError("--pgv-pga and --pgv-pga-dist: give one")
+    return args.func(args)
 
 
 if __name__ == "__main__":

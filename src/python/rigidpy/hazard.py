@@ -171,7 +171,7 @@ def _wide_curve(path, header, body, columns, imls, site, header_line, investigat
         names.append(",".join(cells[i].strip() for i in key_columns))
     if site is None:
         if len(body) > 1:
-            raise CurveError(f"{path}: {len(body)} sites; choose one with --site (a row's "
+            raise CurveError(f"{path}: line {body[1][0]}: {len(body)} sites; choose one with --site (a row's "
                              f"{'/'.join(header[i] for i in key_columns)}, or its 0-based index)")
         chosen = 0
     else:
@@ -275,6 +275,18 @@ def mixture_rate(curve, fragilities):
 
 def survival(rate, years):
     return math.exp(-rate * years)
+
+
+def pga_at_rate(pga_g, rate, target):
+    """The PGA (g) exceeded at the annual rate `target` on the curve (pga_g, rate), interpolated
+    linearly in log-log as HazardCurve is; NaN when the curve's positive rates do not reach it."""
+    pga_g, rate = np.asarray(pga_g, float), np.asarray(rate, float)
+    positive = rate > 0
+    a, h = pga_g[positive], rate[positive]
+    if len(a) == 0 or not h[-1] <= target <= h[0]:
+        return math.nan
+    # rates fall with PGA: interpolate ln a against -ln h, which rises
+    return float(math.exp(np.interp(-math.log(target), -np.log(h), np.log(a))))
 
 
 def ruling_factors(curve, fragilities, years, confidence):

@@ -36,6 +36,134 @@ def pgv_pga_points(args, fit_records_s):
     return [(1.0, s)]
 
 
+class RockFragility:
+    """A rock's fragility as a hazard integral needs it: `mixture`, the fitted fragility as a
+    weighted mixture of lognormals [(weight, theta_g, beta)] (one per PGV/PGA point, or per variant),
+    and its uncertainty as an ensemble of `members` [(weight, mixture)], weights summing to 1.
+    Today the members are the bootstrap replicates over records (`replicates`), equally weighted,
+    or the fitted mixture alone when there are none; a calibration ensemble's members with their
+    own weights fit the same slot (pass `members`)."""
+
+    def __init__(self, label, mixture, replicates, source, members=None):
+        self.label = label
+        self.mixture = mixture
+        self.replicates = replicates
+        self.source = source  # where the members come from, for the report
+        if members is None:
+            members = [(1.0 / len(replicates), m) for m in replicates] if replicates else [(1.0, mixture)]
+        self.members = members
+
+
+def select_rock(args):
+    """The cube of `args.cube` and the objects (one, or every variant of one) standing for the rock
+    `args.object` (None: the cube's only object)."""
+    state = cube_files.campaign_state(args.cube)
+    cube = Cube(args.cube)
+    check_completeness(cube, state, args)
+    objs = cube.select([args.object] if args.object else None, args.variant)
+    names = cube.base_names() if not args.object else [args.object]
+    if len(names) > 1:
+        raise InputError(f"{args.cube}: {len(names)} objects; choose one with --object "
+                         f"({', '.join(names)})")
+    return cube, objs
+
+
+def is_pooled(cube, args):
+    return cube.variants is not None and args.variant is None
+
+
+def object_fragility(args, cube, obj):
+    """One object's (or one variant's) fitted fragility: (RockFragility, its ObjectFit, the vector
+    fit's result `v`, the PGV/PGA points [(weight, s)]). A variant whose outcomes are separated
+    stands as its empirical threshold, a step without bootstrap."""
+    cells = ff.Cells(obj.outcome, cube.scales, cube.pgv_pga)
+    points = pgv_pga_points(args, cube.pgv_pga[cells.records_with_cells()])
+    args.pgv_pga = None
+    start_progress(cube, [obj], "hazard")
+    try:
+        fit = ObjectFit(cube, obj, args, points_s=[s for _, s in points])
+    finally:
+        end_progress()
+    v = fit.vector
+    if "points" not in v and fit.threshold is not None:
+        t = fit.threshold["theta_g"]
+        used_s = cube.pgv_pga[cells.records_with_cells()]
+        v = dict(v, points=[{"pgv_pga_s": s, "theta_g": t, "beta": 0.0, "theta_interval_g": ff.NO_INTERVAL,
+                             "beta_interval": ff.NO_INTERVAL, "source": THRESHOLD_SOURCE} for _, s in points],
+                 replicate_theta_g=np.empty((0, len(points))), replicate_beta=np.empty((0, len(points))),
+                 pgv_pga_range_s=[float(used_s.min()), float(used_s.max())])
+    if "points" not in v:
+        raise InputError(f"{args.cube}: object {obj.label}: no vector fit ({v.get('reason')})")
+    mixture = [(w, p["theta_g"], p["beta"]) for (w, _), p in zip(points, v["points"])]
+    replicates = []
+    for i in range(v["replicate_theta_g"].shape[0]):
+        t, b = v["replicate_theta_g"][i], v["replicate_beta"][i]
+        if np.all(np.isfinite(t)):
+            replicates.append([(w, t[j], b[j]) for j, (w, _) in enumerate(points)])
+    source = ("bootstrap over records" if replicates else
+              "the fitted fragility alone (" + (THRESHOLD_SOURCE if fit.threshold is not None
+                                                else f"no bootstrap replicate: {v['n_records']} record(s)") + ")")
+    rock = RockFragility(obj.label, mixture, replicates, source)
+    return rock, fit, v, points
+
+
+def pooled_fragility(args, cube, objs):
+    """The pooled (mixture) fragility of an object's variants: (RockFragility, the ObjectFits,
+    [(fit, source, mixture)] of the variants that have one, the PGV/PGA points, the records used).
+    Its members are the pooled bootstrap replicates: replicate i of every variant resamples the
+    same records (ObjectFit says why) and the pooled replicate mixes them."""
+    used = set()
+    for o in objs:
+        used |= set(ff.Cells(o.outcome, cube.scales, cube.pgv_pga).records_with_cells().tolist())
+    if not used:
+        raise InputError(f"{args.cube}: object {objs[0].name}: no simulated cell in any variant")
+    points = pgv_pga_points(args, cube.pgv_pga[sorted(used)])
+    args.pgv_pga = None
+    start_progress(cube, objs, "hazard")
+    try:
+        fits = [ObjectFit(cube, o, args, points_s=[s for _, s in points], require_fragility=False) for o in objs]
+    finally:
+        end_progress()
+    per_variant = []  # (variant, source, [(weight, theta, beta)] over the PGV/PGA points)
+    for f in fits:
+        source = fragility_source(f)
+        if source == "vector fit":
+            mix = [(w, p["theta_g"], p["beta"]) for (w, _), p in zip(points, f.vector["points"])]
+        elif source == SCALAR_SOURCE:  # over all PGV/PGA
+            mix = [(1.0, f.scalar["theta_g"], f.scalar["beta"])]
+        elif source == THRESHOLD_SOURCE:  # a step does not depend on PGV/PGA
+            mix = [(1.0, f.threshold["theta_g"], 0.0)]
+        else:
+            continue
+        per_variant.append((f, source, mix))
+    if not per_variant:
+        raise InputError(f"{args.cube}: object {objs[0].name}: no variant has a fragility ({fits[0].vector.get('reason')})")
+    n = len(per_variant)
+    mixture = [(w / n, t, b) for _, _, mix in per_variant for w, t, b in mix]
+    # replicate i of the pooled fragility; a variant without vector bootstrap (a threshold or the
+    # scalar fit) is held fixed, and one whose fit does not exist in resample i (few records: the
+    # resample's outcomes are separated) sits that replicate out, the others reweighted; with many
+    # variants and few records nearly every resample loses one, and requiring all of them left a
+    # handful of replicates and a degenerate interval
+    boot = [f.vector["replicate_theta_g"].shape[0] for f, src, _ in per_variant if src == "vector fit"]
+    replicates = []
+    for i in range(min(boot) if boot else 0):
+        members = []
+        for f, src, mix in per_variant:
+            if src == "vector fit":
+                t, b = f.vector["replicate_theta_g"][i], f.vector["replicate_beta"][i]
+                if np.all(np.isfinite(t)):
+                    members.append([(w, t[j], b[j]) for j, (w, _) in enumerate(points)])
+            else:
+                members.append(mix)
+        if members:
+            replicates.append([(w / len(members), th, be) for m in members for w, th, be in m])
+    rock = RockFragility(f"{objs[0].name} (pooled)", mixture, replicates,
+                         "bootstrap over records, variants pooled" if replicates else
+                         "the pooled fragility alone (no bootstrap replicate)")
+    return rock, fits, per_variant, points, used
+
+
 def cmd_hazard(args):
     if not (args.age > 0 and math.isfinite(args.age)):
         raise InputError(f"--age {args.age}: must be a positive number of years")
@@ -47,45 +175,16 @@ def cmd_hazard(args):
         curve = hc.read_curve(args.curve, args.site)
     except hc.CurveError as e:
         raise InputError(str(e))
-    state = cube_files.campaign_state(args.cube)
-    cube = Cube(args.cube)
-    check_completeness(cube, state, args)
-    objs = cube.select([args.object] if args.object else None, args.variant)
-    names = cube.base_names() if not args.object else [args.object]
-    if len(names) > 1:
-        raise InputError(f"{args.cube}: {len(names)} objects; choose one with --object "
-                         f"({', '.join(names)})")
-    if cube.variants is not None and args.variant is None:
+    cube, objs = select_rock(args)
+    if is_pooled(cube, args):
         return hazard_pooled(args, cube, curve, objs)
     obj = objs[0]
-    cells = ff.Cells(obj.outcome, cube.scales, cube.pgv_pga)
-    points = pgv_pga_points(args, cube.pgv_pga[cells.records_with_cells()])
-    args.pgv_pga = None
-    start_progress(cube, [obj], "hazard")
-    try:
-        fit = ObjectFit(cube, obj, args, points_s=[s for _, s in points])
-    finally:
-        end_progress()
-    v = fit.vector
-    if "points" not in v and fit.threshold is not None:
-        # one variant whose outcomes are separated: its empirical threshold, a step, without bootstrap
-        t = fit.threshold["theta_g"]
-        used_s = cube.pgv_pga[cells.records_with_cells()]
-        v = dict(v, points=[{"pgv_pga_s": s, "theta_g": t, "beta": 0.0, "theta_interval_g": ff.NO_INTERVAL,
-                             "beta_interval": ff.NO_INTERVAL, "source": THRESHOLD_SOURCE} for _, s in points],
-                 replicate_theta_g=np.empty((0, len(points))), replicate_beta=np.empty((0, len(points))),
-                 pgv_pga_range_s=[float(used_s.min()), float(used_s.max())])
-    if "points" not in v:
-        raise InputError(f"{args.cube}: object {obj.label}: no vector fit ({v.get('reason')})")
+    rock, fit, v, points = object_fragility(args, cube, obj)
     lo_s, hi_s = v["pgv_pga_range_s"]
     outside = sum(w for w, s in points if not lo_s <= s <= hi_s)
-    mixture = [(w, p["theta_g"], p["beta"]) for (w, _), p in zip(points, v["points"])]
+    mixture = rock.mixture
     lam, extended = hc.mixture_rate(curve, mixture)
-    reps = []
-    for i in range(v["replicate_theta_g"].shape[0]):
-        t, b = v["replicate_theta_g"][i], v["replicate_beta"][i]
-        if np.all(np.isfinite(t)):
-            reps.append(hc.mixture_rate(curve, [(w, t[j], b[j]) for j, (w, _) in enumerate(points)])[0])
+    reps = [hc.mixture_rate(curve, m)[0] for m in rock.replicates]
     lam_lo, lam_hi = ff.percentile_interval(reps, args.level, v["n_records"])
     surv = hc.survival(lam, args.age)
     rate_factor, pga_factor = hc.ruling_factors(curve, mixture, args.age, args.confidence)
@@ -116,11 +215,16 @@ PLOT_FORMATS = ("png", "pdf", "svg", "eps", "ps", "jpg", "jpeg", "tif", "tiff", 
 
 def check_plot_path(args):
     """--plot: a figure format matplotlib writes, and neither the cube nor the curve."""
-    ext = os.path.splitext(args.plot)[1].lower().lstrip(".")
+    check_figure_path(args.plot, [args.cube, args.curve])
+
+
+def check_figure_path(path, inputs):
+    """A figure's file: a format matplotlib writes, and none of the command's inputs."""
+    ext = os.path.splitext(path)[1].lower().lstrip(".")
     if ext not in PLOT_FORMATS:
-        raise InputError(f"--plot {args.plot}: the file name must end in one of "
+        raise InputError(f"--plot {path}: the file name must end in one of "
                          f"{', '.join('.' + f for f in PLOT_FORMATS)} (the figure's format)")
-    cube_files.refuse_output_over_inputs(args.plot, "--plot", [args.cube, args.curve])
+    cube_files.refuse_output_over_inputs(path, "--plot", inputs)
 
 
 def curve_end(curve, mixture):
@@ -147,61 +251,16 @@ def emit_hazard(args, result, draw):
 
 def hazard_pooled(args, cube, curve, objs):
     """`rigid hazard` on an object with variants: the pooled (mixture) fragility integrated, its
-    aleatory interval (bootstrap over records: replicate i of every variant resamples the same
-    records, ObjectFit says why, and the pooled replicate mixes them), and the epistemic 5-95 %
-    range over variants of the survival probability, each variant's own lognormal integrated."""
-    used = set()
-    for o in objs:
-        used |= set(ff.Cells(o.outcome, cube.scales, cube.pgv_pga).records_with_cells().tolist())
-    if not used:
-        raise InputError(f"{args.cube}: object {objs[0].name}: no simulated cell in any variant")
-    points = pgv_pga_points(args, cube.pgv_pga[sorted(used)])
-    args.pgv_pga = None
-    start_progress(cube, objs, "hazard")
-    try:
-        fits = [ObjectFit(cube, o, args, points_s=[s for _, s in points], require_fragility=False) for o in objs]
-    finally:
-        end_progress()
-    per_variant = []  # (variant, source, [(weight, theta, beta)] over the PGV/PGA points)
-    for f in fits:
-        source = fragility_source(f)
-        if source == "vector fit":
-            mix = [(w, p["theta_g"], p["beta"]) for (w, _), p in zip(points, f.vector["points"])]
-        elif source == SCALAR_SOURCE:  # over all PGV/PGA
-            mix = [(1.0, f.scalar["theta_g"], f.scalar["beta"])]
-        elif source == THRESHOLD_SOURCE:  # a step does not depend on PGV/PGA
-            mix = [(1.0, f.threshold["theta_g"], 0.0)]
-        else:
-            continue
-        per_variant.append((f, source, mix))
-    if not per_variant:
-        raise InputError(f"{args.cube}: object {objs[0].name}: no variant has a fragility ({fits[0].vector.get('reason')})")
+    aleatory interval (the pooled bootstrap replicates), and the epistemic 5-95 % range over
+    variants of the survival probability, each variant's own lognormal integrated."""
+    rock, fits, per_variant, points, used = pooled_fragility(args, cube, objs)
     n = len(per_variant)
-    mixture = [(w / n, t, b) for _, _, mix in per_variant for w, t, b in mix]
+    mixture = rock.mixture
     lam, extended = hc.mixture_rate(curve, mixture)
     rates = [hc.mixture_rate(curve, mix)[0] for _, _, mix in per_variant]
     survivals = [hc.survival(r, args.age) for r in rates]
     lo_pct, hi_pct = ff.EPISTEMIC_PERCENTILES[0], ff.EPISTEMIC_PERCENTILES[-1]
-    # aleatory: replicate i of the pooled fragility; a variant without vector bootstrap (a threshold or
-    # the scalar fit) is held fixed, and one whose fit does not exist in resample i (few records:
-    # the resample's outcomes are separated) sits that replicate out, the others reweighted; with
-    # many variants and few records nearly every resample loses one, and requiring all of them
-    # left a handful of replicates and a degenerate interval
-    boot = [f.vector["replicate_theta_g"].shape[0] for f, src, _ in per_variant if src == "vector fit"]
-    replicates = min(boot) if boot else 0
-    reps = []
-    for i in range(replicates):
-        members = []
-        for f, src, mix in per_variant:
-            if src == "vector fit":
-                t, b = f.vector["replicate_theta_g"][i], f.vector["replicate_beta"][i]
-                if np.all(np.isfinite(t)):
-                    members.append([(w, t[j], b[j]) for j, (w, _) in enumerate(points)])
-            else:
-                members.append(mix)
-        if members:
-            mix_i = [(w / len(members), th, be) for m in members for w, th, be in m]
-            reps.append(hc.mixture_rate(curve, mix_i)[0])
+    reps = [hc.mixture_rate(curve, m)[0] for m in rock.replicates]
     n_records = len(used)
     record_s = cube.pgv_pga[sorted(used)]
     outside = sum(w for w, s in points if not record_s.min() <= s <= record_s.max())
