@@ -92,9 +92,8 @@ void add_shaketable_calibrate(CLI::App& parent) {
   cmd->add_option("--keep", o.keep, "Stage 2: the best stage-1 variants refined")->capture_default_str();
   cmd->add_option("--refine-step", o.refine_step_deg, "Stage 2: heading step around each kept variant's best heading (deg)")
       ->capture_default_str();
-  cmd->add_option("--tilt-rule", o.tilt_deg, "Overturned = tilted beyond this angle (deg), as for rigid model import")
+  cmd->add_option("--tilt-deg", o.tilt_deg, "Overturned = tilted beyond this angle (deg), as for rigid model import")
       ->capture_default_str();
-  cmd->add_option("--tilt-deg", o.tilt_deg, "Old spelling of --tilt-rule")->group("");
   cmd->add_option("--max-vertices", o.max_vertices, "Vertex budget of the rock's hull")->capture_default_str();
   cmd->add_option("--pedestal-margin", o.pedestal_margin, "The table: overhang of the box under the rock (m)")
       ->capture_default_str();
@@ -105,8 +104,6 @@ void add_shaketable_calibrate(CLI::App& parent) {
   cmd->callback([f, cmd] {
     if (cmd->count("--flatten-mm") && cmd->count("--flatten-base"))
       throw InputError("", 0, "give --flatten-base (m) or its old spelling --flatten-mm, not both");
-    if (cmd->count("--tilt-deg") && cmd->count("--tilt-rule"))
-      throw InputError("", 0, "give --tilt-rule or its old spelling --tilt-deg, not both");
     std::unique_ptr<rigid::shaketable::Calibrator> calibrator;
     shaketable::run_designed_campaigns(
         [&](const campaign::CampaignResult* previous) -> std::optional<campaign::CampaignOptions> {

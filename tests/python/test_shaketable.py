@@ -154,7 +154,7 @@ def test_calibrate_predict_and_fragility(rigid, tmp):
     out = os.path.join(tmp, "cal", "prism")
     # relative paths, run from the lab's folder: the designed jobs in the work folder must still
     # find the scan's scenes and the recordings
-    r = run(rigid, "shaketable", "calibrate", "prism.obj", "--tests", "tests.csv", "--out", "cal/prism", "--flatten-mm", "0",
+    r = run(rigid, "shaketable", "calibrate", "prism.obj", "--tests", "tests.csv", "--out", "cal/prism", "--flatten-base", "0",
             "--contact-models", "rigid", "--restitution", "0", "--friction", "0.6", "--headings", "12",
             "--refine-step", "10", "--progress", "none", cwd=tmp)
     assert r.returncode == 0, "calibrate runs (%s)" % r.stderr.strip()[-300:]
@@ -246,7 +246,7 @@ def test_calibrate_predict_and_fragility(rigid, tmp):
     leaning = os.path.join(tmp, "leaning.obj")
     write_prism(leaning, tilt_x=0.6)
     r = run(rigid, "shaketable", "calibrate", leaning, "--tests", tests, "--out", os.path.join(tmp, "lean", "x"),
-            "--flatten-mm", "0", "--contact-models", "rigid", "--progress", "none")
+            "--flatten-base", "0", "--contact-models", "rigid", "--progress", "none")
     lines = r.stderr.strip().splitlines()
     assert r.returncode == 2 and len(lines) == 1 and "leaning.obj" in lines[0], "a scan that cannot stand: %s" % lines
 
