@@ -12,6 +12,7 @@
 
 #include "commands.hpp"
 #include "lab_input.hpp"
+#include "output_options.hpp"
 #include "rigid/core/types.hpp"
 #include "rigid/io/json.hpp"
 #include "rigid/core/error.hpp"
@@ -249,7 +250,7 @@ void register_motion_command(CLI::App& app) {
       ->delimiter(',')
       ->allow_extra_args(false);  // `--sa 1,2 SET...`: the sets stay positional
   ic->add_option("--baseline", info->baseline,
-                 "Velocity baseline correction: none (default; PEER records are processed), "
+                 "Velocity baseline correction: none (PEER records are processed), "
                  "linear or quadratic (least-squares polynomial through v(0)=0 removed)")
       ->capture_default_str();
   add_lab_options(*ic, info->lab);
@@ -265,29 +266,29 @@ void register_motion_command(CLI::App& app) {
                "(acceleration pulses), mp (Mavroeidis-Papageorgiou 2003 velocity pulse), "
                "stochastic (Rezaeian-Der Kiureghian 2008, seeded)");
   sc->add_option("kind", synth->kind, "sine, cosine, ricker, mp or stochastic")->required();
-  sc->add_option("--out", synth->out, "Output prefix DIR/NAME (DIR is created)")->required();
+  add_output_prefix(*sc, synth->out, "the AT2 set NAME-X.AT2 (+ -Y, -Z)")->required();
   sc->add_option("--dt", synth->dt, "Time step (s); default 0.005 for pulses, 0.01 stochastic");
   sc->add_option("--duration", synth->duration,
                  "Record length (s); default: pulse + quiet time, 20 s stochastic");
-  sc->add_option("--digits", synth->digits, "Significant digits written (default 7, PEER E15.7)");
-  sc->add_option("--amplitude-g", synth->amplitude_g, "Pulse acceleration amplitude (g), default 1");
+  sc->add_option("--digits", synth->digits, "Significant digits written (7: PEER's E15.7)")->capture_default_str();
+  sc->add_option("--amplitude-g", synth->amplitude_g, "Pulse acceleration amplitude (g)")->capture_default_str();
   sc->add_option("--period", synth->period, "Pulse period Tp (s); default 0.5 (mp: 1)");
-  sc->add_option("--t0", synth->t0, "Pulse start (sine/cosine/ricker) or centre (mp) (s)");
+  sc->add_option("--t0", synth->t0, "Pulse start (sine/cosine/ricker) or centre (mp) (s)")->capture_default_str();
   sc->add_option("--azimuth-deg", synth->azimuth_deg,
                  "Direction of the pulse from x toward y (deg); writes X and Y (default: X only)");
-  sc->add_option("--pgv-m-s", synth->pgv_m_s, "mp: velocity amplitude A (m/s), default 0.5");
-  sc->add_option("--gamma", synth->gamma, "mp: oscillatory character gamma (> 1), default 2");
-  sc->add_option("--nu-deg", synth->nu_deg, "mp: phase nu (deg), default 0");
-  sc->add_option("--seed", synth->seed, "stochastic: seed (default 1)");
-  sc->add_option("--pga-g", synth->pga_g, "stochastic: PGA of each horizontal (g), default 0.3");
-  sc->add_option("--t-peak", synth->t_peak, "stochastic: time of peak intensity (s), default 5");
-  sc->add_option("--shape", synth->shape, "stochastic: modulating shape alpha2 (> 1), default 3");
-  sc->add_option("--f-mid", synth->f_mid, "stochastic: filter frequency at t-peak (Hz), default 5");
-  sc->add_option("--f-slope", synth->f_slope, "stochastic: filter frequency slope (Hz/s), default -0.1");
-  sc->add_option("--zeta-f", synth->zeta_f, "stochastic: filter damping ratio, default 0.3");
-  sc->add_option("--fc", synth->fc, "stochastic: high-pass corner (Hz), default 0.2");
-  sc->add_option("--components", synth->components, "stochastic: 1 (X), 2 (X,Y) or 3 (X,Y,Z), default 3");
-  sc->add_option("--vertical-ratio", synth->vertical_ratio, "stochastic: vertical/horizontal PGA, default 0.6");
+  sc->add_option("--pgv-m-s", synth->pgv_m_s, "mp: velocity amplitude A (m/s)")->capture_default_str();
+  sc->add_option("--gamma", synth->gamma, "mp: oscillatory character gamma (> 1)")->capture_default_str();
+  sc->add_option("--nu-deg", synth->nu_deg, "mp: phase nu (deg)")->capture_default_str();
+  sc->add_option("--seed", synth->seed, "stochastic: seed")->capture_default_str();
+  sc->add_option("--pga-g", synth->pga_g, "stochastic: PGA of each horizontal (g)")->capture_default_str();
+  sc->add_option("--t-peak", synth->t_peak, "stochastic: time of peak intensity (s)")->capture_default_str();
+  sc->add_option("--shape", synth->shape, "stochastic: modulating shape alpha2 (> 1)")->capture_default_str();
+  sc->add_option("--f-mid", synth->f_mid, "stochastic: filter frequency at t-peak (Hz)")->capture_default_str();
+  sc->add_option("--f-slope", synth->f_slope, "stochastic: filter frequency slope (Hz/s)")->capture_default_str();
+  sc->add_option("--zeta-f", synth->zeta_f, "stochastic: filter damping ratio")->capture_default_str();
+  sc->add_option("--fc", synth->fc, "stochastic: high-pass corner (Hz)")->capture_default_str();
+  sc->add_option("--components", synth->components, "stochastic: 1 (X), 2 (X,Y) or 3 (X,Y,Z)")->capture_default_str();
+  sc->add_option("--vertical-ratio", synth->vertical_ratio, "stochastic: vertical/horizontal PGA")->capture_default_str();
   sc->callback([sc, synth] { run_synth(sc, *synth); });
 
   auto check = std::make_shared<CheckOptions>();
