@@ -7,12 +7,15 @@ through the real executable, each against a stated oracle:
 - old spellings (--tilt-rule, export's --out): the note written below, word for word, and outputs
   byte-identical to the new spelling's; both spellings at once: exit 2, one line;
 - `rigid export cells CUBE`, `--csv`, `--csv FILE` and the old `--csv --out FILE`: the same bytes;
+- `rigid plot table --scale` (old) and `--target-pga`: the note, byte-identical tables;
 - defaults shown in --help: the values the source sets;
 - `rigid inspect`: the law the scene runs and only its parameters; a symmetric block's centroid
   x and y printed as 0.0000; --json: one object per block with every key it had, plus `contact`.
 
 usage: cli_vocabulary_test.py RIGID SOURCE_DIR CUBE    (CUBE: io_cube_test's fixture)
 """
+import csv
+import io
 import json
 import os
 import shutil
@@ -116,6 +119,26 @@ def export_cells(tmp):
     expect("export cells: a CSV table", first.startswith(b"object,") and first.count(b"\n") > 2, first[:80])
     for name, text in texts.items():
         expect(f"export cells {name}: the same bytes", text == first)
+    return first.decode()
+
+
+def plot_table(tmp, cells):
+    """`rigid plot table --scale` (Python's old spelling) against --target-pga, at a scale of the cube."""
+    scale = next(csv.DictReader(io.StringIO(cells)))["scale_g"]
+    outs = {}
+    for spelling in ("--target-pga", "--scale"):
+        d = os.path.join(tmp, "table" + spelling)
+        os.makedirs(d)
+        p = rigid(["plot", "table", CUBE, "--out", os.path.join(d, "t.md"), spelling, scale])
+        expect(f"plot table {spelling}: exit 0", p.returncode == 0, p.stderr)
+        outs[spelling] = (p, d)
+    old, new = outs["--scale"], outs["--target-pga"]
+    expect("plot table --scale: the note", old[0].stderr == "rigid: note: --scale is now --target-pga; the old "
+           "spelling goes in the next release\n", repr(old[0].stderr))
+    expect("plot table --target-pga: no note", new[0].stderr == "", repr(new[0].stderr))
+    same = all(open(os.path.join(new[1], n), "rb").read() == open(os.path.join(old[1], n), "rb").read()
+               for n in ("t.md", "t.csv"))
+    expect("plot table --scale and --target-pga: byte-identical files", same)
 
 
 def defaults_shown():
@@ -172,7 +195,7 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         did_you_mean()
         old_spellings(tmp)
-        export_cells(tmp)
+        plot_table(tmp, export_cells(tmp))
         defaults_shown()
         inspect(tmp)
     print(f"cli_vocabulary: {len(failures)} failures")
