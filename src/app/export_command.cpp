@@ -42,9 +42,10 @@ void register_export_command(CLI::App& app) {
   cells->add_option("cube", *cube, "Fragility cube (.h5) written by rigid campaign")->required();
   // a format flag takes its file, as `rigid fragility --csv FILE` does; CSV is the one format so far,
   // so the table goes to standard output without it
-  CLI::Option* to_csv = cells->add_option("--csv", *csv,
-                                          "Write the table as CSV (RFC 4180 quoting) to FILE; without FILE, or "
-                                          "with -, or without --csv: to standard output")
+  CLI::Option* to_csv = cells
+                            ->add_option("--csv", *csv,
+                                         "Write the table as CSV (RFC 4180 quoting) to FILE; without FILE, or "
+                                         "with -, or without --csv: to standard output")
                             ->expected(0, 1)
                             ->default_str("-")
                             ->type_name("FILE");

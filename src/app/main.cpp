@@ -9,8 +9,9 @@
 #include "rigid/core/error.hpp"
 
 int main(int argc, char** argv) {
-  rigid::app::CommandLine app{"Rigid " RIGID_VERSION " (" RIGID_GIT_HASH "): 3D rigid-block DEM fragilities of "
-               "precariously balanced rocks. SI units unless an option says otherwise."};
+  rigid::app::CommandLine app{"Rigid " RIGID_VERSION " (" RIGID_GIT_HASH
+                              "): 3D rigid-block DEM fragilities of "
+                              "precariously balanced rocks. SI units unless an option says otherwise."};
   app.set_version_flag("--version", RIGID_VERSION " (" RIGID_GIT_HASH ")");
   app.require_subcommand(1);
   rigid::app::register_run_command(app);
