@@ -40,8 +40,11 @@ int main(int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     // usage errors in the one-line format of every other input error, exit 2 (CLI11's own codes
-    // are 100+ and its message two lines); once under mpirun
-    if (rigid::app::first_rank()) std::fprintf(stderr, "rigid: error: %s\n", rigid::app::usage_problem(app, e).c_str());
+    // are 100+ and its message two lines). Under mpirun every rank parses the same line: rank 0
+    // prints and fails; the others leave quietly, since a failing rank makes mpirun stop the job,
+    // which could kill rank 0 before it printed (mpirun's status is then rank 0's 2)
+    if (!rigid::app::first_rank()) return 0;
+    std::fprintf(stderr, "rigid: error: %s\n", rigid::app::usage_problem(app, e).c_str());
     return 2;
   } catch (const rigid::InputError& e) {
     std::fprintf(stderr, "rigid: error: %s\n", e.what());
