@@ -7,7 +7,6 @@
 
 #include "commands.hpp"
 #include "import_report.hpp"
-#include "old_spellings.hpp"
 #include "output_options.hpp"
 #include "rigid/core/types.hpp"
 
@@ -100,11 +99,9 @@ void add_import_subcommand(CLI::App& model_command) {
                 "Mend a scan's self-intersections, small holes (up to 64 edges) and open seams with CGAL, and "
                 "report what changed (facets removed and added, holes filled, volume)");
   cmd->add_option("--density", o->density, "Rock density written to the scene (kg/m^3)")->capture_default_str();
-  CLI::Option* tilt = cmd->add_option(
-      "--tilt-deg", o->tilt_deg,
-      "Failure rule: overturned once tilted beyond this angle (deg; for a rock on a wide table, where it "
-      "cannot fall below its pedestal); default: fallen below the pedestal");
-  add_old_spelling(*cmd, *tilt, {"--tilt-rule", "", {}});
+  cmd->add_option("--tilt-rule", o->tilt_deg,
+                  "Failure rule: overturned once tilted beyond this angle (deg; for a rock on a wide table, where it "
+                  "cannot fall below its pedestal); default: fallen below the pedestal");
   cmd->callback([o] { import_and_report(*o); });
 }
 

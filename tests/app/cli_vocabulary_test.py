@@ -4,8 +4,8 @@ through the real executable, each against a stated oracle:
 
 - a misspelt command or option: exit 2 and exactly the one line written below, naming the
   nearest known name and the --help of the subcommand concerned; under `mpirun -np 2`, one line;
-- old spellings (--tilt-rule, export's --out): the note written below, word for word, and outputs
-  byte-identical to the new spelling's; both spellings at once: exit 2, one line;
+- old spellings (export's --out, plot table's --scale): the note written below, word for word, and
+  outputs byte-identical to the new spelling's (the mechanism's own cases: command_line_test.cpp);
 - `rigid export cells CUBE`, `--csv`, `--csv FILE` and the old `--csv --out FILE`: the same bytes;
 - `rigid plot table --scale` (old) and `--target-pga`: the note, byte-identical tables;
 - defaults shown in --help: the values the source sets (io's for the lab format);
@@ -56,10 +56,11 @@ def did_you_mean():
     expect_usage_error(["frobnicate"], "rigid: error: unknown command 'frobnicate' (see rigid --help)")
     expect_usage_error(["model"],
                        "rigid: error: rigid model needs a command: library, import or block (see rigid model --help)")
-    # an old spelling is no suggestion: the current name is
-    expect_usage_error(["model", "import", "r.stl", "--out", "x/r", "--tilt-rul", "30"],
-                       "rigid: error: unknown option '--tilt-rul'; did you mean '--tilt-deg'? "
+    expect_usage_error(["model", "import", "r.stl", "--out", "x/r", "--tilt-rlue", "30"],
+                       "rigid: error: unknown option '--tilt-rlue'; did you mean '--tilt-rule'? "
                        "(see rigid model import --help)")
+    expect_usage_error(["export", "cells", "c.h5", "--csv", "--cvs", "x"],
+                       "rigid: error: unknown option '--cvs'; did you mean '--csv'? (see rigid export cells --help)")
     # under mpirun every rank parses the line; one prints
     mpirun = shutil.which("mpirun")
     if mpirun is None:
@@ -72,31 +73,6 @@ def did_you_mean():
     expect("mpirun -np 2 rigid campain: exit 2", p.returncode == 2, p.returncode)
     expect("mpirun -np 2 rigid campain: one line", lines == [
         "rigid: error: unknown command 'campain'; did you mean 'campaign'? (see rigid --help)"], repr(lines))
-
-
-def old_spellings(tmp):
-    rock = os.path.join(BLOCK, "block.stl")
-    outs = {}
-    for spelling in ("--tilt-deg", "--tilt-rule"):
-        d = os.path.join(tmp, spelling.strip("-"))
-        p = rigid(["model", "import", rock, "--out", os.path.join(d, "rock"), spelling, "30"])
-        expect(f"model import {spelling}: exit 0", p.returncode == 0, p.stderr)
-        outs[spelling] = (p, d)
-    new, old = outs["--tilt-deg"], outs["--tilt-rule"]
-    expect("--tilt-rule: the note", old[0].stderr == "rigid: note: --tilt-rule is now --tilt-deg; the old spelling "
-           "goes in the next release\n", repr(old[0].stderr))
-    expect("--tilt-deg: no note", "note" not in new[0].stderr, repr(new[0].stderr))
-    expect("--tilt-rule and --tilt-deg: same stdout",
-           new[0].stdout.replace(new[1], "D") == old[0].stdout.replace(old[1], "D"))
-    names = sorted(os.listdir(new[1]))
-    same = names == sorted(os.listdir(old[1])) and all(
-        open(os.path.join(new[1], n), "rb").read() == open(os.path.join(old[1], n), "rb").read() for n in names)
-    expect("--tilt-rule and --tilt-deg: byte-identical files", same, names)
-    expect("--tilt-deg 30 reaches the scene", "tilt_deg = 30" in open(os.path.join(new[1], "rock.toml")).read())
-    expect_usage_error(["model", "import", rock, "--out", os.path.join(tmp, "both", "rock"), "--tilt-deg", "30",
-                        "--tilt-rule", "30"],
-                       "rigid: error: --tilt-rule: is the old spelling of --tilt-deg; give only --tilt-deg "
-                       "(see rigid model import --help)")
 
 
 def export_cells(tmp):
@@ -116,6 +92,8 @@ def export_cells(tmp):
         texts[name] = open(path, "rb").read() if path else p.stdout
         note = b"rigid: note: --out is now --csv; the old spelling goes in the next release\n"
         expect(f"export cells {name}: stderr", p.stderr == (note if "old" in name else b""), p.stderr)
+    expect_usage_error(["export", "cells", CUBE, "--csv", os.path.join(tmp, "a.csv"), "--out", os.path.join(tmp, "b.csv")],
+                       "rigid: error: --out: is the old spelling of --csv; give only --csv (see rigid export cells --help)")
     first = texts["no flag"]
     expect("export cells: a CSV table", first.startswith(b"object,") and first.count(b"\n") > 2, first[:80])
     for name, text in texts.items():
@@ -198,7 +176,6 @@ def inspect(tmp):
 def main():
     with tempfile.TemporaryDirectory() as tmp:
         did_you_mean()
-        old_spellings(tmp)
         plot_table(tmp, export_cells(tmp))
         defaults_shown()
         inspect(tmp)
