@@ -35,7 +35,7 @@ packages=(build-essential cmake git pkg-config
   python3 python3-numpy python3-h5py python3-matplotlib python3-scipy
   python3-xarray python3-h5netcdf python3-netcdf4 python3-pandas python3-statsmodels python3-pytest
   slurm-wlm munge
-  clang libclang-rt-dev libcgal-dev libgmp-dev libmpfr-dev)
+  clang libclang-rt-dev clang-format libcgal-dev libgmp-dev libmpfr-dev)
 
 missing=()
 for p in "${packages[@]}"; do

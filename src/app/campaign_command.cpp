@@ -6,6 +6,7 @@
 #include "campaign_report.hpp"
 #include "commands.hpp"
 #include "number_checks.hpp"
+#include "output_options.hpp"
 #include "rigid/campaign/driver.hpp"
 #include "rigid/job/job.hpp"
 #include "rigid/job/run_overrides.hpp"
@@ -44,7 +45,7 @@ void register_campaign_command(CLI::App& app) {
       "started, or another campaign on the same output, 1 a failed checkpoint or journal write (results kept; "
       "run again to resume) or an internal error");
   cmd->add_option("job", o->job, "Job file (TOML)")->required();
-  cmd->add_option("--out", o->output, "Output HDF5 cube; overrides the job's output path");
+  add_output_file(*cmd, o->output, "the HDF5 cube (default: the job's output)");
   cmd->add_flag("--force", o->force,
                 "Start anew over an output written by a different job file, other settings or inputs (scenes, meshes, "
                 "states, records) that changed since");
@@ -100,7 +101,7 @@ void register_campaign_command(CLI::App& app) {
     if (result.cube) {
       print_summary(*result.cube, result.output);
       print_failures(*result.cube);
-      print_unconverged(*result.cube);
+      print_unconverged(*result.cube, result.solver_max_sweeps);
     }
     if (result.status != 0) std::exit(result.status);
   });

@@ -11,7 +11,6 @@
 #include <numeric>
 
 #include "rigid/campaign/log.hpp"
-#include "rigid/dynamics/world.hpp"
 #include "rigid/job/cost_estimate.hpp"
 
 namespace rigid::app {
@@ -144,7 +143,7 @@ void print_failures(const io::Cube& cube) {
   if (failed > kListed) std::printf("  ... and %d more (rigid export cells lists every cell)\n", failed - kListed);
 }
 
-void print_unconverged(const io::Cube& cube) {
+void print_unconverged(const io::Cube& cube, int solver_max_sweeps) {
   long cells = 0, simulated = 0, steps = 0;
   for (const auto& oc : cube.objects) {
     for (const std::int32_t n : oc.unconverged_steps) {
@@ -160,7 +159,7 @@ void print_unconverged(const io::Cube& cube) {
   std::printf(
       "\ncontact solver: %ld steps in %ld of %ld cells stopped at its %d-sweep cap "
       "(per cell: unconverged_steps, docs/cube.md)\n",
-      steps, cells, simulated, dynamics::StepSettings{}.solver_max_sweeps);
+      steps, cells, simulated, solver_max_sweeps);
 }
 
 int print_dry_run(const job::Job& job, const scenario::Model& model) {

@@ -19,8 +19,9 @@ void print_summary(const io::Cube& cube, const std::string& output);
 void print_failures(const io::Cube& cube);
 
 /// One line: how many simulated cells had steps whose contact solve stopped at the sweep cap, and
-/// how many such steps; nothing when there are none.
-void print_unconverged(const io::Cube& cube);
+/// how many such steps; nothing when there are none. `solver_max_sweeps`: the cap
+/// (campaign::CampaignResult).
+void print_unconverged(const io::Cube& cube, int solver_max_sweeps);
 
 /// Task count and an estimate of the work: every object's first record at its smallest scale is
 /// simulated for a few seconds to measure this machine's cost per step.

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "old_spellings.hpp"
 #include "rigid/core/error.hpp"
 #include "rigid/io/cells_csv.hpp"
 #include "rigid/io/cube.hpp"
@@ -33,17 +34,24 @@ void register_export_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("export", "Export a fragility cube's contents as tables");
   cmd->require_subcommand(1);
   auto cube = std::make_shared<std::string>();
-  auto out = std::make_shared<std::string>();
-  auto csv = std::make_shared<bool>(false);
+  auto csv = std::make_shared<std::string>();
   CLI::App* cells = cmd->add_subcommand("cells",
                                         "One CSV row per cell (object, record, scale, rotation) with "
                                         "its outcome, failure time, tilt, slip, failure reason and the contact "
                                         "solver's unconverged steps");
   cells->add_option("cube", *cube, "Fragility cube (.h5) written by rigid campaign")->required();
-  cells->add_flag("--csv", *csv, "CSV (RFC 4180 quoting), the only format so far")->required();
-  cells->add_option("--out", *out, "Output file (default: standard output)");
+  // a format flag takes its file, as `rigid fragility --csv FILE` does; CSV is the one format so far,
+  // so the table goes to standard output without it
+  CLI::Option* to_csv = cells
+                            ->add_option("--csv", *csv,
+                                         "Write the table as CSV (RFC 4180 quoting) to FILE; without FILE, or "
+                                         "with -, or without --csv: to standard output")
+                            ->expected(0, 1)
+                            ->default_str("-")
+                            ->type_name("FILE");
+  add_old_spelling(*cells, *to_csv, {"--out", "", {}});
   // the callback owns every option's storage: CLI11 keeps only references to it
-  cells->callback([cube, out, csv] { export_cells(*cube, *out); });
+  cells->callback([cube, csv] { export_cells(*cube, *csv); });
 }
 
 }  // namespace rigid::app

@@ -7,6 +7,7 @@
 
 #include "commands.hpp"
 #include "import_report.hpp"
+#include "output_options.hpp"
 #include "rigid/core/types.hpp"
 
 namespace rigid::app {
@@ -42,8 +43,13 @@ void print_summary(const scan::ImportOptions& o, const scan::ImportResult& resul
                 100 * (r.contact_volume / r.mesh_volume - 1), r.pieces.size(), r.vertices, r.reduction);
   }
   if (rock_report.pieces.size() == 1) {
-    std::printf("the hull bridges hollows up to %.4f m deep (--contact-shape decompose follows them)\n",
-                rock_report.deepest_gap);
+    // below a tenth of a millimetre a hollow is the scan's noise, not a shape the contact misses
+    if (rock_report.deepest_gap < 1e-4) {
+      std::printf("the hull bridges no hollow deeper than 0.1 mm\n");
+    } else {
+      std::printf("the hull bridges hollows up to %.2g m deep (--contact-shape decompose follows them)\n",
+                  rock_report.deepest_gap);
+    }
   }
   if (const auto& rocking = result.rocking) {
     std::printf("settled: alpha %.4f rad, static toppling %.4f g towards azimuth %.0f deg, R %.4f m, p %.3f rad/s\n",
@@ -65,7 +71,7 @@ void add_import_subcommand(CLI::App& model_command) {
   CLI::App* cmd = model_command.add_subcommand(
       "import", "A scanned rock (OBJ, PLY, STL) to a scene: checked mesh, contact shape, pedestal, settled state");
   cmd->add_option("scan", o->scan, "The rock's closed mesh: OBJ, PLY (ASCII or binary) or STL")->required();
-  cmd->add_option("--out", o->out, "Output DIR/NAME")->required();
+  add_output_prefix(*cmd, o->out, "the scene NAME.toml, NAME.state.toml, NAME.import.json and the meshes")->required();
   cmd->add_option("--scale", o->scale, "Multiplies the file's coordinates into metres (0.001 for mm)")
       ->capture_default_str();
   cmd->add_option("--up", o->up, "The file's axis that points up: x, -x, y, -y, z, -z")->capture_default_str();

@@ -17,6 +17,38 @@ io::Json vec_json(const Vec3& v) { return io::Json::array({v.x(), v.y(), v.z()})
 // + 0.0 turns -0 into 0, which prints as 0
 double degrees(double rad) { return rad * 180.0 / kPi + 0.0; }
 
+// A coordinate to the tenth of a millimetre, what a scan resolves: the 1e-17 m of a centroid that
+// is 0 up to rounding prints as 0.0000
+double to_tenth_mm(double m) { return std::round(m * 1e4) / 1e4 + 0.0; }
+
+// The contact law the scene runs, with that law's parameters only: rigid contact has no springs.
+io::Json contact_json(const scenario::Scene& scene) {
+  const auto& law = scene.law;
+  io::Json j;
+  j["method"] = contact::contact_method_name(law.method);
+  j["friction"] = law.friction;
+  if (law.method == contact::ContactMethod::rigid) {
+    j["restitution"] = law.restitution;
+  } else {
+    j["normal_stiffness_n_m1_5"] = law.normal_stiffness;
+    j["shear_stiffness_n_m"] = law.shear_stiffness;
+    j["damping_s_m"] = law.damping;
+  }
+  return j;
+}
+
+void print_contact(const scenario::Scene& scene) {
+  const auto& law = scene.law;
+  if (law.method == contact::ContactMethod::rigid) {
+    std::printf("contact: rigid (non-penetrating, Moreau-Jean): friction %.3g, restitution %.3g", law.friction,
+                law.restitution);
+  } else {
+    std::printf("contact: penalty (Hertz springs): K_N %.3g N/m^1.5, K_S %.3g N/m, friction %.3g, damping %.3g s/m",
+                law.normal_stiffness, law.shear_stiffness, law.friction, law.damping);
+  }
+  std::printf("; density %.4g kg/m^3\n", scene.density);
+}
+
 // The rocking parameters as they are printed in JSON: angles in rad, directions also in degrees.
 io::Json rocking_json(const analysis::RockingParameters& r) {
   io::Json j;
@@ -86,24 +118,26 @@ void inspect(const std::string& path, bool json) {
       }
       // a single free block resting on its pedestals: its rocking parameters (physics.md §2)
       if (!b.fixed && rocking) j["rocking"] = rocking_json(*rocking);
+      j["contact"] = contact_json(scene);
       std::printf("%s\n", io::json_line(j).c_str());
     } else {
       std::printf("%s (%s): %zu vertices, %zu faces\n", b.name.c_str(), b.fixed ? "fixed" : "free", s.vertices.size(),
                   s.faces.size());
-      std::printf("  volume %.6g m^3, mass %.6g kg\n", s.volume, s.mass);
-      std::printf("  centroid (%.6g, %.6g, %.6g) m\n", centroid.x(), centroid.y(), centroid.z());
+      std::printf("  volume %.4g m^3, mass %.4g kg\n", s.volume, s.mass);
+      std::printf("  centroid (%.4f, %.4f, %.4f) m\n", to_tenth_mm(centroid.x()), to_tenth_mm(centroid.y()),
+                  to_tenth_mm(centroid.z()));
       if (offset) {
-        std::printf("  centre of mass (%.6g, %.6g, %.6g) m ([centre_of_mass_offset])\n", b.position.x(), b.position.y(),
-                    b.position.z());
+        std::printf("  centre of mass (%.4f, %.4f, %.4f) m ([centre_of_mass_offset])\n", to_tenth_mm(b.position.x()),
+                    to_tenth_mm(b.position.y()), to_tenth_mm(b.position.z()));
       }
-      std::printf("  principal moments %.6g %.6g %.6g kg m^2\n", s.inertia.x(), s.inertia.y(), s.inertia.z());
+      std::printf("  principal moments %.4g %.4g %.4g kg m^2\n", s.inertia.x(), s.inertia.y(), s.inertia.z());
       if (b.pieces.empty()) {
         std::printf("  checks passed: closed, consistently oriented, convex, finite\n");
       } else {
         double contact_volume = 0;
         for (const auto& piece : b.pieces) contact_volume += piece.volume;
         std::printf(
-            "  compound body: contact shape of %zu convex pieces, %.6g m^3 (the mesh: %.6g m^3); the outline "
+            "  compound body: contact shape of %zu convex pieces, %.4g m^3 (the mesh: %.4g m^3); the outline "
             "above is their hull\n",
             b.pieces.size(), contact_volume, s.volume);
         std::printf("  checks passed: mesh closed, consistently oriented, manifold, finite; every piece convex\n");
@@ -112,11 +146,7 @@ void inspect(const std::string& path, bool json) {
   }
   if (!json) {
     if (rocking) print_rocking(*rocking);
-    std::printf("contact model: %s (restitution %.3g, rigid model only)\n",
-                contact::contact_method_name(scene.law.method), scene.law.restitution);
-    std::printf("contact: K_N %.3g N/m^1.5, K_S %.3g N/m, friction %.3g, damping %.3g s/m; density %.6g kg/m^3\n",
-                scene.law.normal_stiffness, scene.law.shear_stiffness, scene.law.friction, scene.law.damping,
-                scene.density);
+    print_contact(scene);
   }
 }
 
@@ -128,7 +158,9 @@ void register_inspect_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "inspect", "Check a scene's meshes and print each block's volume, mass, centroid and principal moments");
   cmd->add_option("scene", *path, "Scene: a Rigid model file or a .toml scene file")->required();
-  cmd->add_flag("--json", *json, "One JSON object per block, one per line");
+  cmd->add_flag("--json", *json,
+                "One JSON object per block, one per line, at full precision; `contact`: the law the scene runs "
+                "with that law's parameters");
   cmd->callback([path, json] { inspect(*path, *json); });
 }
 

@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "commands.hpp"
+#include "output_options.hpp"
 #include "rigid/analysis/tilt_test.hpp"
 #include "rigid/core/error.hpp"
 #include "rigid/io/scene_file.hpp"
@@ -168,7 +169,7 @@ void add_library_subcommand(CLI::App& model_command) {
       model_command.add_subcommand("library",
                                    "The rock library: rectangular blocks, geode and nine synthetic PBR analogues "
                                    "(STL, model file, TOML scene, equilibrated state per model)");
-  lib->add_option("--out", o->out, "Output directory; one subdirectory per model")->capture_default_str();
+  add_output_directory(*lib, o->out, "one subdirectory per model")->capture_default_str();
   lib->add_option("--only", o->only, "Only these models (names, comma-separated)")->delimiter(',');
   lib->add_flag("--card", o->card,
                 "After writing, measure each model's quasi-static toppling acceleration by tilt tests "

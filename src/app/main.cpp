@@ -1,15 +1,17 @@
 // The `rigid` command line: subcommands register themselves (commands.hpp); errors in user input
-// print one line `rigid: error: ...` and exit 2.
+// print one line `rigid: error: ...` and exit 2 (usage errors: command_line.hpp).
 #include <cstdio>
 #include <exception>
 #include <string>
 
+#include "command_line.hpp"
 #include "commands.hpp"
 #include "rigid/core/error.hpp"
 
 int main(int argc, char** argv) {
-  CLI::App app{"Rigid " RIGID_VERSION " (" RIGID_GIT_HASH "): 3D rigid-block DEM fragilities of "
-               "precariously balanced rocks. SI units unless an option says otherwise."};
+  rigid::app::CommandLine app{"Rigid " RIGID_VERSION " (" RIGID_GIT_HASH
+                              "): 3D rigid-block DEM fragilities of "
+                              "precariously balanced rocks. SI units unless an option says otherwise."};
   app.set_version_flag("--version", RIGID_VERSION " (" RIGID_GIT_HASH ")");
   app.require_subcommand(1);
   rigid::app::register_run_command(app);
@@ -38,12 +40,11 @@ int main(int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     // usage errors in the one-line format of every other input error, exit 2 (CLI11's own codes
-    // are 100+ and its message two lines)
-    std::string message = e.what();
-    for (char& c : message) {
-      if (c == '\n') c = ' ';
-    }
-    std::fprintf(stderr, "rigid: error: %s (see rigid --help)\n", message.c_str());
+    // are 100+ and its message two lines). Under mpirun every rank parses the same line: rank 0
+    // prints and fails; the others leave quietly, since a failing rank makes mpirun stop the job,
+    // which could kill rank 0 before it printed (mpirun's status is then rank 0's 2)
+    if (!rigid::app::first_rank()) return 0;
+    std::fprintf(stderr, "rigid: error: %s\n", rigid::app::usage_problem(app, e).c_str());
     return 2;
   } catch (const rigid::InputError& e) {
     std::fprintf(stderr, "rigid: error: %s\n", e.what());

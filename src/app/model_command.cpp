@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "commands.hpp"
+#include "output_options.hpp"
 #include "rigid/core/error.hpp"
 #include "rigid/io/scene_file.hpp"
 #include "rigid/io/scene_writer.hpp"
@@ -78,7 +79,7 @@ void register_model_command(CLI::App& app) {
   block->add_option("--pedestal-margin", o->pedestal_margin, "Pedestal overhang on each side (m)")
       ->capture_default_str();
   block->add_option("--pedestal-height", o->pedestal_height, "Pedestal height (m)")->capture_default_str();
-  block->add_option("--out", o->out, "Output DIR/NAME")->required();
+  add_output_prefix(*block, o->out, "NAME.toml, NAME.model, NAME.state.toml and the two STL meshes")->required();
   block->callback([o] { write_block_model(*o); });
 }
 

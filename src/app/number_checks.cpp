@@ -11,7 +11,8 @@ namespace rigid::app {
 namespace {
 
 // A validator that parses the whole text as a double and applies `ok` to it; `wanted` names the
-// accepted values in the message.
+// accepted values in the message. No description in --help, where it would stand between the
+// type and the default (`FLOAT:a number >= 0=5`): the option's own text says what it takes.
 CLI::Validator number_where(std::function<bool(double)> ok, const std::string& wanted) {
   return CLI::Validator(
       [ok, wanted](std::string& text) -> std::string {
@@ -19,7 +20,7 @@ CLI::Validator number_where(std::function<bool(double)> ok, const std::string& w
         if (v && std::isfinite(*v) && ok(*v)) return {};
         return "'" + text + "' is not " + wanted;
       },
-      wanted);
+      "");
 }
 
 }  // namespace
@@ -53,7 +54,7 @@ CLI::Validator number_admitted_by(std::function<std::string(double)> problem) {
         const std::string why = problem(*v);
         return why.empty() ? why : "'" + text + "' " + why;
       },
-      "NUMBER");
+      "");
 }
 
 CLI::Validator angle_deg() {

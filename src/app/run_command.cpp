@@ -10,6 +10,7 @@
 #include "commands.hpp"
 #include "motion_input.hpp"
 #include "number_checks.hpp"
+#include "output_options.hpp"
 #include "rigid/core/error.hpp"
 #include "rigid/io/json.hpp"
 #include "rigid/io/scene_file.hpp"
@@ -243,7 +244,7 @@ void register_run_command(CLI::App& app) {
   CLI::App* settle = app.add_subcommand(
       "settle", "Settle a scene with no ground motion (local damping) and save its equilibrium state");
   settle->add_option("scene", *settle_scene, "Scene: a Rigid model file or a .toml scene file")->required();
-  settle->add_option("--out", *settle_out, "State file to write (TOML)")->required();
+  add_output_file(*settle, *settle_out, "the equilibrium state (TOML)")->required();
   settle->add_option("--max-time", *settle_time, "Longest settling time (s)")
       ->capture_default_str()
       ->check(positive_number());

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "output_options.hpp"
 #include "python_script.hpp"
 #include "rigid/core/error.hpp"
 #include "rigid/io/at2.hpp"
@@ -150,7 +151,7 @@ void register_study_command(CLI::App& app) {
       "time-step safety factor, rotation integrator, at-rest tolerance, contact stiffness and accuracy preset, "
       "measured against a converged reference run and the analytic oracles. Writes DIR/accuracy.csv, "
       "DIR/accuracy_pareto.png and DIR/accuracy_table.md (docs/accuracy.md)");
-  acc->add_option("--out", o->out, "Output directory")->capture_default_str();
+  add_output_directory(*acc, o->out, "accuracy.csv, accuracy_pareto.png, accuracy_table.md")->capture_default_str();
   acc->add_flag("--quick", o->sweep.quick, "A small subset (CI smoke test, well under a minute)");
   acc->add_option("--repeat", o->sweep.repeat, "Runs per timing; the median wall time is reported (1 with --quick)")
       ->capture_default_str();

@@ -96,6 +96,7 @@ CampaignResult run_rank0(const CampaignOptions& options, const Loaded& loaded, i
   MasterResult master = run_master(context, options, plan, carried, ranks);
   result.status = master.status;
   result.cube = std::move(master.cube);
+  result.solver_max_sweeps = job.run.step.solver_max_sweeps;
   return result;
 }
 
@@ -113,7 +114,7 @@ MpiSession::~MpiSession() { MPI_Finalize(); }
 
 CampaignResult run_campaign(const MpiSession& session, const CampaignOptions& options) {
   Loaded loaded;
-  if (!load_everywhere(options, session.rank(), loaded)) return {2, std::nullopt, ""};
+  if (!load_everywhere(options, session.rank(), loaded)) return {2, std::nullopt, "", 0};
   CampaignResult result;
   if (session.rank() == 0) {
     result = run_rank0(options, loaded, session.ranks());
@@ -168,7 +169,7 @@ CampaignResult run_campaign_sequence(const MpiSession& session,
     MPI_Bcast(&go, 1, MPI_INT, 0, MPI_COMM_WORLD);
     if (go == -1) {
       if (session.rank() == 0) throw InputError("", 0, problem);
-      return {2, std::nullopt, ""};
+      return {2, std::nullopt, "", 0};
     }
     if (go == 0) return last;
     if (session.rank() != 0) options.emplace();

@@ -180,17 +180,17 @@ def concurrent_stores(c):
 
 
 def export_out_names(c):
-    """--out of 17-23 characters: the file asked for, with the table of standard output."""
+    """--csv FILE of 17-23 characters: the file asked for, with the table of standard output."""
     d = c.d
     _, reference = exported("ref.h5", d)
     wrong = []
     for n in range(17, 24):
         name = ("0123456789abcdefghijklmnopqrstuvwxyz"[: n - 4]) + ".csv"
-        p = rigid(["export", "cells", "ref.h5", "--csv", "--out", name], d)
+        p = rigid(["export", "cells", "ref.h5", "--csv", name], d)
         path = os.path.join(d, name)
         if p.returncode != 0 or not os.path.exists(path) or rt.read(path) != reference:
             wrong.append(f"{name}: exit {p.returncode}, exists {os.path.exists(path)}")
-    c.expect("export cells --out of 17-23 characters", not wrong, "; ".join(wrong))
+    c.expect("export cells --csv FILE of 17-23 characters", not wrong, "; ".join(wrong))
 
 
 def outputs_over_inputs(c):
@@ -202,7 +202,7 @@ def outputs_over_inputs(c):
     c.error("fragility --nrml CUBE", ["fragility", "self.h5", "--no-store", "--nrml", "self.h5"], ["--nrml", "self.h5"])
     c.error("fragility --csv ./CUBE", ["fragility", "self.h5", "--no-store", "--csv", "./self.h5"], ["--csv"])
     c.error("fragility --csv HARD_LINK", ["fragility", "self.h5", "--no-store", "--csv", "self_link.h5"], ["--csv"])
-    c.error("export cells --out CUBE", ["export", "cells", "self.h5", "--csv", "--out", os.path.join(d, "self.h5")],
+    c.error("export cells --csv CUBE", ["export", "cells", "self.h5", "--csv", os.path.join(d, "self.h5")],
             ["self.h5", "input"])
     os.link(os.path.join(d, "curve.csv"), os.path.join(d, "curve_link.png"))
     c.error("hazard --plot a hard link of the curve", ["hazard", "self.h5", "--curve", "curve.csv", "--age", "1000",

@@ -231,7 +231,7 @@ class TestRigidPlot:
         assert len(rows) == 3 * (R + 1)
         s = 6  # 0.7 g
         md2 = os.path.join(self.tmp, "table", "at07.md")
-        run_tool("table", self.cube, self.cube_b, "--out", md2, "--scale", "0.7", "--counts")
+        run_tool("table", self.cube, self.cube_b, "--out", md2, "--target-pga", "0.7", "--counts")
         rows = read_csv(os.path.splitext(md2)[0] + ".csv")
         row = [x for x in rows if x["cube"] == "planted" and x["object"] == "rock_plain" and x["record"] == "all"][0]
         assert int(row["known"]) == int(known[:, s].sum())
@@ -239,7 +239,7 @@ class TestRigidPlot:
         text = read(md2)
         assert "| **all** |" in text  # 80 records: records as rows
         assert "planted: rock_plain" in text
-        run_tool("table", self.cube, "--out", md2, "--scale", "0.75", expect=2)
+        run_tool("table", self.cube, "--out", md2, "--target-pga", "0.75", expect=2)
 
     def test_bad_input(self):
         p = run_tool("maps", os.path.join(self.tmp, "missing.h5"), "--out", self.tmp, expect=2)

@@ -11,9 +11,11 @@
 namespace rigid::campaign {
 
 struct CampaignResult {
-  int status = 0;                  ///< process exit status (see run_campaign)
-  std::optional<io::Cube> cube;    ///< on rank 0, the final cube of a completed campaign
-  std::string output;              ///< the cube's path
+  int status = 0;                ///< process exit status (see run_campaign)
+  std::optional<io::Cube> cube;  ///< on rank 0, the final cube of a completed campaign
+  std::string output;            ///< the cube's path
+  /// The rigid contact solve's sweep cap the runs had (a cell's unconverged_steps stopped at it).
+  int solver_max_sweeps = 0;
 };
 
 /// MPI for the life of a command (under mpirun or as one process): initialised by the

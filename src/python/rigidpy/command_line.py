@@ -10,10 +10,41 @@ from .files import OutputError
 
 
 class OneLineParser(argparse.ArgumentParser):
-    """A bad command line is bad input like any other: one line naming the problem, exit 2."""
+    """A bad command line is bad input like any other: one line naming the problem, exit 2. The
+    notes of old spellings (add_old_spelling) print once the whole line has parsed, so a line with
+    an error prints the error alone."""
 
     def error(self, message):
         self.exit(2, f"{self.prog}: error: {message} (--help for the options)\n")
+
+    def parse_args(self, args=None, namespace=None):
+        parsed = super().parse_args(args, namespace)
+        for note in vars(parsed).pop("old_spelling_notes", []):
+            sys.stderr.write(f"rigid: note: {note}\n")
+        return parsed
+
+
+class _OldSpelling(argparse.Action):
+    def __init__(self, option_strings, dest, current, **kwargs):
+        self.current = current
+        super().__init__(option_strings, dest, **kwargs)
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        if getattr(namespace, self.dest) is not None:
+            parser.error(f"{option_string} is the old spelling of {self.current}; give only {self.current}")
+        setattr(namespace, self.dest, values)
+        notes = getattr(namespace, "old_spelling_notes", [])
+        notes.append(f"{option_string} is now {self.current}; the old spelling goes in the next release")
+        setattr(namespace, "old_spelling_notes", notes)
+
+
+def add_old_spelling(parser, old, current, **kwargs):
+    """Accepts `old` for one release as the old spelling of the option `current` (added before it,
+    default None): hidden from --help, same value, one note on stderr (the C++ commands' rule,
+    src/app/old_spellings.hpp). kwargs: the current option's type."""
+    dest = next(a.dest for a in parser._actions if current in a.option_strings)
+    parser.add_argument(old, dest=dest, action=_OldSpelling, current=current, help=argparse.SUPPRESS,
+                        default=argparse.SUPPRESS, **kwargs)
 
 
 

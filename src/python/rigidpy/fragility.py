@@ -35,6 +35,7 @@ try:
     from . import nrml
     from .cube import Cube
     from .errors import InputError
+    from .fit import DEFAULT_BOOTSTRAP
     from .command_line import OneLineParser, check_completeness, exit_status, warn_incomplete
     from .fragility_report import (csv_rows, json_document, nrml_functions, nrml_range_text, pooled_csv_row,
                                    print_table, print_variant_tables, variant_nrml_functions)
@@ -154,7 +155,8 @@ def build_parser():
         sp.add_argument("cube", help="campaign cube (HDF5)")
         sp.add_argument("--pgv-pga", type=float, help="PGV/PGA (s) at which the vector fit gives a lognormal "
                                                       "(default: the median of the object's records)")
-        sp.add_argument("--bootstrap", type=int, default=200, help="bootstrap resamples of records (default 200)")
+        sp.add_argument("--bootstrap", type=int, default=DEFAULT_BOOTSTRAP,
+                        help=f"bootstrap resamples of records (default {DEFAULT_BOOTSTRAP})")
         sp.add_argument("--seed", type=int, default=1, help="seed of the bootstrap (default 1)")
         sp.add_argument("--level", type=float, default=0.9, help="interval level (default 0.9)")
         sp.add_argument("--json", action="store_true", help="JSON on standard output instead of the table")

@@ -48,7 +48,7 @@ try:
     from . import files as cube_files
     from . import fit as fragility_fit
     from .cube import Cube, ObjectData
-    from .command_line import OneLineParser
+    from .command_line import OneLineParser, add_old_spelling
     from .errors import InputError
     from .figures import INPUTS, file_stem, plot_diff, plot_map, plot_records, plot_variant_band, safe_name
     from .fit import fit_sigma
@@ -334,10 +334,10 @@ def cmd_table(args):
     long_rows = []
     for c in cubes:
         si = None
-        if args.scale is not None:
-            j = np.where(np.abs(c.scales - args.scale) <= 1e-9 * max(1.0, abs(args.scale)))[0]
+        if args.target_pga is not None:
+            j = np.where(np.abs(c.scales - args.target_pga) <= 1e-9 * max(1.0, abs(args.target_pga)))[0]
             if j.size == 0:
-                raise InputError(f"{c.path}: no scale {args.scale:g} g (scales: {', '.join(f'{v:g}' for v in c.scales)})")
+                raise InputError(f"{c.path}: no scale {args.target_pga:g} g (scales: {', '.join(f'{v:g}' for v in c.scales)})")
             si = int(j[0])
         for o in c.select(args.object, args.variant):
             per = {}
@@ -371,7 +371,7 @@ def cmd_table(args):
     layout = args.layout
     if layout == "auto":
         layout = "records" if len(records) > 10 and len(records) > len(rows) else "objects"
-    where = "all scales" if args.scale is None else f"scale {args.scale:g} g"
+    where = "all scales" if args.target_pga is None else f"scale {args.target_pga:g} g"
     lines = [f"# Scenario table: overturn fraction ({where})", "",
              "Overturn fraction = (overturned + inferred) / (overturned + inferred + survived) over the "
              f"cells (scale, rotation) at {where}; not-run and failed cells are left out "
@@ -466,7 +466,8 @@ def build_parser():
     t = sub.add_parser("table", help="scenario table: objects x records, overturn fraction (markdown + CSV)")
     t.add_argument("cubes", nargs="+", metavar="CUBE")
     t.add_argument("--out", required=True, help="markdown file; the CSV (long format, with counts) goes beside it")
-    t.add_argument("--scale", type=float, help="only this scale (g); default: all scales")
+    t.add_argument("--target-pga", type=float, metavar="G", help="only this scale: target PGA (g); default: all scales")
+    add_old_spelling(t, "--scale", "--target-pga", type=float)
     t.add_argument("--object", action="append", help="only this object (repeatable; every variant of it)")
     variant_option(t)
     t.add_argument("--layout", choices=("auto", "objects", "records"), default="auto",

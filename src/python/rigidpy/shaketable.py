@@ -29,6 +29,7 @@ try:
     from . import fit as ff
     from .cube import Cube
     from .errors import InputError
+    from .fit import DEFAULT_BOOTSTRAP
     from .outcomes import simulated_counts
 except ImportError as e:  # pragma: no cover
     sys.stderr.write(f"rigid: error: {e}; install python3-numpy python3-h5py python3-scipy python3-matplotlib "
@@ -149,7 +150,7 @@ def fragility_command(argv=None):
     ap.add_argument("--model", required=True)
     ap.add_argument("--out", required=True)
     ap.add_argument("--bins", default="")
-    ap.add_argument("--bootstrap", type=int, default=1000)
+    ap.add_argument("--bootstrap", type=int, default=DEFAULT_BOOTSTRAP)
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--level", type=float, default=0.9)
     ap.add_argument("--format", default="png", choices=["png", "pdf", "svg"])
