@@ -12,10 +12,12 @@
 
 #include "commands.hpp"
 #include "lab_input.hpp"
-#include "rigid/core/types.hpp"
-#include "rigid/io/json.hpp"
 #include "rigid/core/error.hpp"
+#include "rigid/core/types.hpp"
 #include "rigid/io/at2.hpp"
+#include "rigid/io/csv.hpp"
+#include "rigid/io/json.hpp"
+#include "rigid/io/output_file.hpp"
 #include "rigid/io/record_list.hpp"
 #include "rigid/motion/butterworth.hpp"
 #include "rigid/motion/lab_processing.hpp"
@@ -89,8 +91,8 @@ void run_lab_info(const InfoOptions& o) {
       return rows;
     };
     const motion::LabProcessing& q = format.processing;
-    j["filter_sos"] = q.band_pass ? sos_json(motion::butterworth_bandpass(q.low_hz, q.high_hz, q.order, m.dt))
-                                  : io::Json::array();
+    j["filter_sos"] =
+        q.band_pass ? sos_json(motion::butterworth_bandpass(q.low_hz, q.high_hz, q.order, m.dt)) : io::Json::array();
     if (format.channel == io::LabChannel::combined) {
       j["crossover_lowpass_sos"] = sos_json(motion::butterworth_lowpass(q.crossover_hz, q.order, m.dt));
       j["crossover_highpass_sos"] = sos_json(motion::butterworth_highpass(q.crossover_hz, q.order, m.dt));
@@ -103,11 +105,13 @@ void run_lab_info(const InfoOptions& o) {
     std::printf("  PGA %.5g g, PGV %.5g m/s, PGV/PGA %.5g s, PGD %.5g m\n", pga_g, p.pgv, pgv_pga, p.pgd);
   }
   if (!o.dump.empty()) {
-    std::FILE* f = std::fopen(o.dump.c_str(), "w");
-    if (!f) throw InputError(o.dump, 0, "--dump: cannot write file");
-    std::fprintf(f, "t_s,acceleration_m_s2\n");
-    for (std::size_t i = 0; i < m.x.size(); ++i) std::fprintf(f, "%.17g,%.17g\n", double(i) * m.dt, m.x[i]);
-    if (std::fclose(f) != 0) throw InputError(o.dump, 0, "--dump: error while writing");
+    // through the one CSV writer, never over the recording or format it came from
+    io::refuse_output_over_inputs(o.dump, {o.lab.file, o.lab.format});
+    io::write_output_file(o.dump, [&](std::ostream& out) {
+      io::CsvWriter csv(out);
+      csv.row({"t_s", "acceleration_m_s2"});
+      for (std::size_t i = 0; i < m.x.size(); ++i) csv.field(double(i) * m.dt).field(m.x[i]).end_row();
+    });
   }
 }
 
@@ -115,7 +119,8 @@ void run_info(const InfoOptions& o) {
   if (!o.lab.file.empty()) {
     if (!o.sets.empty()) throw InputError("", 0, "give AT2 sets or --lab, not both");
     if (!o.sa_periods.empty() || o.resample || o.headerless_dt != 0.0 || o.baseline != "none")
-      throw InputError("", 0, "--sa, --resample, --dt and --baseline apply to AT2 sets (a lab recording's: --lab-baseline)");
+      throw InputError("", 0,
+                       "--sa, --resample, --dt and --baseline apply to AT2 sets (a lab recording's: --lab-baseline)");
     run_lab_info(o);
     return;
   }
@@ -141,8 +146,7 @@ void check_applicable(CLI::App* cmd, const std::string& kind,
   for (const CLI::Option* opt : cmd->get_options()) {
     if (opt->count() == 0 || opt->get_lnames().empty()) continue;
     const std::string name = opt->get_lnames().front();
-    if (name == "out" || name == "dt" || name == "duration" || name == "digits" || name == "help")
-      continue;
+    if (name == "out" || name == "dt" || name == "duration" || name == "digits" || name == "help") continue;
     if (std::find(ok.begin(), ok.end(), name) == ok.end())
       throw InputError("", 0, "--" + name + " does not apply to synth kind '" + kind + "'");
   }
@@ -155,11 +159,9 @@ void run_synth(CLI::App* cmd, const SynthOptions& o) {
       {"ricker", {"amplitude-g", "period", "t0", "azimuth-deg"}},
       {"mp", {"pgv-m-s", "period", "gamma", "nu-deg", "t0", "azimuth-deg"}},
       {"stochastic",
-       {"seed", "pga-g", "t-peak", "shape", "f-mid", "f-slope", "zeta-f", "fc", "components",
-        "vertical-ratio"}}};
+       {"seed", "pga-g", "t-peak", "shape", "f-mid", "f-slope", "zeta-f", "fc", "components", "vertical-ratio"}}};
   if (!allowed.count(o.kind))
-    throw InputError("", 0, "unknown synth kind '" + o.kind +
-                                "' (sine, cosine, ricker, mp, stochastic)");
+    throw InputError("", 0, "unknown synth kind '" + o.kind + "' (sine, cosine, ricker, mp, stochastic)");
   check_applicable(cmd, o.kind, allowed);
   const std::filesystem::path out(o.out);
   const std::string name = out.filename().string();
@@ -234,9 +236,10 @@ void register_motion_command(CLI::App& app) {
   motion->require_subcommand(1);
 
   auto info = std::make_shared<InfoOptions>();
-  CLI::App* ic = motion->add_subcommand(
-      "info", "Summarise ground-motion sets: npts, dt, duration, per-component PGA (g), PGV (cm/s), "
-              "PGD (cm) and, with two horizontals, GMRotD50/GMRotI50/RotD50 (Boore 2006, 2010)");
+  CLI::App* ic =
+      motion->add_subcommand("info",
+                             "Summarise ground-motion sets: npts, dt, duration, per-component PGA (g), PGV (cm/s), "
+                             "PGD (cm) and, with two horizontals, GMRotD50/GMRotI50/RotD50 (Boore 2006, 2010)");
   ic->add_option("sets", info->sets,
                  "SET = NAME-X.AT2 (NAME-Y.AT2, NAME-Z.AT2 join when present) or H1.AT2,H2.AT2[,V.AT2] "
                  "(roles may be explicit: x=...,y=...,z=...)");
@@ -260,15 +263,14 @@ void register_motion_command(CLI::App& app) {
   });
 
   auto synth = std::make_shared<SynthOptions>();
-  CLI::App* sc = motion->add_subcommand(
-      "synth", "Write a synthetic AT2 set DIR/NAME-X.AT2 (+ -Y, -Z): sine | cosine | ricker "
-               "(acceleration pulses), mp (Mavroeidis-Papageorgiou 2003 velocity pulse), "
-               "stochastic (Rezaeian-Der Kiureghian 2008, seeded)");
+  CLI::App* sc = motion->add_subcommand("synth",
+                                        "Write a synthetic AT2 set DIR/NAME-X.AT2 (+ -Y, -Z): sine | cosine | ricker "
+                                        "(acceleration pulses), mp (Mavroeidis-Papageorgiou 2003 velocity pulse), "
+                                        "stochastic (Rezaeian-Der Kiureghian 2008, seeded)");
   sc->add_option("kind", synth->kind, "sine, cosine, ricker, mp or stochastic")->required();
   sc->add_option("--out", synth->out, "Output prefix DIR/NAME (DIR is created)")->required();
   sc->add_option("--dt", synth->dt, "Time step (s); default 0.005 for pulses, 0.01 stochastic");
-  sc->add_option("--duration", synth->duration,
-                 "Record length (s); default: pulse + quiet time, 20 s stochastic");
+  sc->add_option("--duration", synth->duration, "Record length (s); default: pulse + quiet time, 20 s stochastic");
   sc->add_option("--digits", synth->digits, "Significant digits written (default 7, PEER E15.7)");
   sc->add_option("--amplitude-g", synth->amplitude_g, "Pulse acceleration amplitude (g), default 1");
   sc->add_option("--period", synth->period, "Pulse period Tp (s); default 0.5 (mp: 1)");
@@ -291,9 +293,9 @@ void register_motion_command(CLI::App& app) {
   sc->callback([sc, synth] { run_synth(sc, *synth); });
 
   auto check = std::make_shared<CheckOptions>();
-  CLI::App* cc = motion->add_subcommand(
-      "check", "Compare a record list's GMRotI50 PGA/PGV (table TSV or .ABF) with the values "
-               "computed from the files; one JSON line per record");
+  CLI::App* cc = motion->add_subcommand("check",
+                                        "Compare a record list's GMRotI50 PGA/PGV (table TSV or .ABF) with the values "
+                                        "computed from the files; one JSON line per record");
   cc->add_option("list", check->list, "Record list: table .tsv or batch .abf")->required();
   cc->add_option("--root", check->root, "Directory of the records (default: the list's)");
   cc->add_flag("--resample", check->resample, "Resample/zero-pad unequal components");
