@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 
 #include "rigid/core/error.hpp"
@@ -309,10 +310,9 @@ At2Record parse_at2(std::string_view text, const std::string& name, const At2Rea
   for (std::size_t i = data_from; i < lines.size(); ++i) {
     const std::size_t before = rec.values.size();
     parse_values(lines[i].text, name, lines[i].number, rec.values, limit);
-    if (rec.values.size() != before) last_data_line = lines[i].number;
-    for (std::size_t k = before; k < rec.values.size(); ++k) {
-      if (const std::string problem = motion::drive_sample_problem(rec.values[k] * rec.unit_to_si); !problem.empty())
-        fail(name, lines[i].number, "acceleration " + num(rec.values[k]) + ": " + problem);
+    if (rec.values.size() != before) {
+      last_data_line = lines[i].number;
+      rec.value_lines.emplace_back(before, lines[i].number);
     }
     if (npts >= 0 && (long long)rec.values.size() > npts)
       fail(name, lines[i].number, "more values than NPTS=" + std::to_string(npts) + " in the header");
@@ -327,7 +327,18 @@ At2Record parse_at2(std::string_view text, const std::string& name, const At2Rea
 }
 
 At2Record read_at2(const std::string& path, const At2ReadOptions& options) {
-  return parse_at2(read_input_file(path, kMaxBulkFileBytes), path, options);
+  At2Record rec = parse_at2(read_input_file(path, kMaxBulkFileBytes), path, options);
+  for (std::size_t k = 0; k < rec.values.size(); ++k) {
+    if (const std::string problem = motion::drive_sample_problem(rec.values[k] * rec.unit_to_si); !problem.empty())
+      fail(path, rec.line_of_value(k), "acceleration " + num(rec.values[k]) + ": " + problem);
+  }
+  return rec;
+}
+
+long At2Record::line_of_value(std::size_t i) const {
+  const auto after = std::upper_bound(value_lines.begin(), value_lines.end(), i,
+                                      [](std::size_t v, const std::pair<std::size_t, long>& l) { return v < l.first; });
+  return after == value_lines.begin() ? 0 : std::prev(after)->second;
 }
 
 std::string format_at2(const motion::Component& c, const At2WriteOptions& options) {
