@@ -16,7 +16,9 @@
 #include "rigid/core/error.hpp"
 #include "rigid/core/types.hpp"
 #include "rigid/io/at2.hpp"
+#include "rigid/io/csv.hpp"
 #include "rigid/io/json.hpp"
+#include "rigid/io/output_file.hpp"
 #include "rigid/io/record_list.hpp"
 #include "rigid/motion/butterworth.hpp"
 #include "rigid/motion/lab_processing.hpp"
@@ -104,11 +106,13 @@ void run_lab_info(const InfoOptions& o) {
     std::printf("  PGA %.5g g, PGV %.5g m/s, PGV/PGA %.5g s, PGD %.5g m\n", pga_g, p.pgv, pgv_pga, p.pgd);
   }
   if (!o.dump.empty()) {
-    std::FILE* f = std::fopen(o.dump.c_str(), "w");
-    if (!f) throw InputError(o.dump, 0, "--dump: cannot write file");
-    std::fprintf(f, "t_s,acceleration_m_s2\n");
-    for (std::size_t i = 0; i < m.x.size(); ++i) std::fprintf(f, "%.17g,%.17g\n", double(i) * m.dt, m.x[i]);
-    if (std::fclose(f) != 0) throw InputError(o.dump, 0, "--dump: error while writing");
+    // through the one CSV writer, never over the recording or format it came from
+    io::refuse_output_over_inputs(o.dump, {o.lab.file, o.lab.format});
+    io::write_output_file(o.dump, [&](std::ostream& out) {
+      io::CsvWriter csv(out);
+      csv.row({"t_s", "acceleration_m_s2"});
+      for (std::size_t i = 0; i < m.x.size(); ++i) csv.field(double(i) * m.dt).field(m.x[i]).end_row();
+    });
   }
 }
 

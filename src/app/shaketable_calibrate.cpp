@@ -3,6 +3,8 @@
 #include <cstdio>
 #include <memory>
 
+#include "old_spellings.hpp"
+#include "output_options.hpp"
 #include "rigid/core/error.hpp"
 #include "rigid/shaketable/calibrate.hpp"
 #include "shaketable.hpp"
@@ -15,7 +17,6 @@ using rigid::shaketable::CalibrationSettings;
 struct CalibrateFlags {
   CalibrationSettings settings;
   std::vector<std::string> contact_models{"rigid", "5e5", "1e6", "2e6"};
-  std::vector<double> flatten_mm;  ///< the old spelling of --flatten-base
   std::string progress = "auto";
 };
 
@@ -32,7 +33,7 @@ void print_summary(const rigid::shaketable::CalibrationSummary& s) {
   std::printf("wrote %s, %s (%.0f s)\n", s.scene.c_str(), s.json.c_str(), s.wall_s);
 }
 
-// The flags as the workflow's settings: contact laws parsed, the old spelling in metres.
+// The flags as the workflow's settings: contact laws parsed.
 CalibrationSettings settings_of(const CalibrateFlags& f) {
   CalibrationSettings s = f.settings;
   s.contact_models.clear();
@@ -42,10 +43,6 @@ CalibrationSettings settings_of(const CalibrateFlags& f) {
       throw InputError("", 0,
                        "--contact-models: '" + text + "' is neither rigid nor a penalty stiffness K_N in [1e5, 1e13] N/m^1.5");
     s.contact_models.push_back(*choice);
-  }
-  if (!f.flatten_mm.empty()) {
-    s.flatten_base_m.clear();
-    for (double mm : f.flatten_mm) s.flatten_base_m.push_back(mm * 1e-3);
   }
   return s;
 }
@@ -64,16 +61,17 @@ void add_shaketable_calibrate(CLI::App& parent) {
   cmd->add_option("--tests", o.tests,
                   "Test list CSV: test_no,record,pgv_over_pga_s,pga_g,file,overturned (file relative to the CSV)")
       ->required();
-  cmd->add_option("--out", o.out, "Prefix DIR/NAME of the outputs: DIR/NAME.toml, DIR/NAME.calibration.json, DIR/NAME.calibration/")
+  add_output_prefix(*cmd, o.out,
+                    "NAME.toml (the calibrated scene), NAME.calibration.json, the work folder NAME.calibration/")
       ->required();
   cmd->add_option("--scale", o.scale, "Scan units to metres, as for rigid model import")->capture_default_str();
   cmd->add_option("--up", o.up, "The scan's up axis, as for rigid model import")->capture_default_str();
-  cmd->add_option("--flatten-base", o.flatten_base_m,
-                  "Base models to compare: the rough base cut flat this far above its lowest point (m), as for "
-                  "rigid model import")
-      ->delimiter(',')
-      ->capture_default_str();
-  cmd->add_option("--flatten-mm", f->flatten_mm, "Old spelling of --flatten-base, in mm")->delimiter(',')->group("");
+  CLI::Option* flatten = cmd->add_option("--flatten-base", o.flatten_base_m,
+                                         "Base models to compare: the rough base cut flat this far above its "
+                                         "lowest point (m), as for rigid model import")
+                             ->delimiter(',')
+                             ->capture_default_str();
+  add_old_spelling(*cmd, *flatten, {"--flatten-mm", "m", value_divided_by(1000)});
   cmd->add_option("--contact-models", f->contact_models,
                   "Contact laws to compare: rigid, or a penalty stiffness K_N (N/m^1.5, e.g. 1e7)")
       ->delimiter(',')
@@ -92,8 +90,10 @@ void add_shaketable_calibrate(CLI::App& parent) {
   cmd->add_option("--keep", o.keep, "Stage 2: the best stage-1 variants refined")->capture_default_str();
   cmd->add_option("--refine-step", o.refine_step_deg, "Stage 2: heading step around each kept variant's best heading (deg)")
       ->capture_default_str();
-  cmd->add_option("--tilt-deg", o.tilt_deg, "Overturned = tilted beyond this angle (deg), as for rigid model import")
-      ->capture_default_str();
+  CLI::Option* tilt = cmd->add_option("--tilt-rule", o.tilt_deg,
+                                      "Overturned = tilted beyond this angle (deg), as for rigid model import")
+                          ->capture_default_str();
+  add_old_spelling(*cmd, *tilt, {"--tilt-deg", "", {}});
   cmd->add_option("--max-vertices", o.max_vertices, "Vertex budget of the rock's hull")->capture_default_str();
   cmd->add_option("--pedestal-margin", o.pedestal_margin, "The table: overhang of the box under the rock (m)")
       ->capture_default_str();
@@ -101,9 +101,7 @@ void add_shaketable_calibrate(CLI::App& parent) {
                "Start over: remove the work folder OUT.calibration/ of an earlier calibration into the same OUT (a "
                "rerun otherwise resumes it, and is refused when its inputs, settings or outcomes changed)");
   shaketable::add_recording_options(*cmd, o.lab_format, f->progress);
-  cmd->callback([f, cmd] {
-    if (cmd->count("--flatten-mm") && cmd->count("--flatten-base"))
-      throw InputError("", 0, "give --flatten-base (m) or its old spelling --flatten-mm, not both");
+  cmd->callback([f] {
     std::unique_ptr<rigid::shaketable::Calibrator> calibrator;
     shaketable::run_designed_campaigns(
         [&](const campaign::CampaignResult* previous) -> std::optional<campaign::CampaignOptions> {

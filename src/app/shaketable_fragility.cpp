@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <memory>
 
+#include "output_options.hpp"
 #include "python_script.hpp"
 #include "rigid/core/error.hpp"
 #include "rigid/shaketable/fragility.hpp"
@@ -32,8 +33,7 @@ void add_shaketable_fragility(CLI::App& parent) {
       "(medians with intervals) and the figure OUT.fragility.png");
   cmd->add_option("scene", o.scene, "The scene, e.g. OUT.toml of rigid shaketable calibrate")->required();
   cmd->add_option("--tests", o.tests, "Test list CSV with an overturned column; file relative to the CSV")->required();
-  cmd->add_option("--out", o.out,
-                  "Prefix of the outputs: OUT.fragility.csv, OUT.fragility.FORMAT, OUT.fragility.work/")
+  add_output_prefix(*cmd, o.out, "NAME.fragility.csv, NAME.fragility.FORMAT and the work folder NAME.fragility.work/")
       ->required();
   cmd->add_option("--min-pga", o.min_pga_g, "Bottom of the PGA grid (g)")
       ->capture_default_str()

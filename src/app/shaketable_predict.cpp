@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "output_options.hpp"
 #include "rigid/shaketable/predict.hpp"
 #include "shaketable.hpp"
 
@@ -33,9 +34,9 @@ void add_shaketable_predict(CLI::App& parent) {
   cmd->add_option("scene", o.scene, "The scene, e.g. OUT.toml of rigid shaketable calibrate")->required();
   cmd->add_option("--tests", o.tests, "Test list CSV (test_no,record,...,file[,overturned]); file relative to the CSV")
       ->required();
-  cmd->add_option("--out", o.out,
-                  "The predictions CSV file (test_no,record,pga_g,pgv_over_pga_s,p_overturn,predicted); its campaign "
-                  "works in OUT.work/")
+  add_output_file(*cmd, o.out,
+                  "the predictions CSV: test_no,record,pga_g,pgv_over_pga_s,p_overturn,predicted (the campaign works "
+                  "in OUT.work/)")
       ->required();
   shaketable::add_recording_options(*cmd, o.lab_format, f->progress);
   cmd->callback([f] {

@@ -16,6 +16,8 @@
 #include "python_script.hpp"
 #include "rigid/core/error.hpp"
 #include "rigid/io/at2.hpp"
+#include "rigid/io/csv.hpp"
+#include "rigid/io/output_file.hpp"
 #include "rigid/scenario/accuracy.hpp"
 #include "rigid/study/accuracy_study.hpp"
 
@@ -35,6 +37,7 @@ struct StudyCommandOptions {
   bool plot = true;
 };
 
+// "%.6g", empty when not finite (not computed)
 std::string csv_number(double v) {
   if (!std::isfinite(v)) return "";
   char buf[48];
@@ -45,33 +48,83 @@ std::string csv_number(double v) {
 std::string csv_bool(const std::optional<bool>& b) { return b ? (*b ? "1" : "0") : ""; }
 
 void write_csv(const std::string& path, const study::StudyResult& result) {
-  std::FILE* f = std::fopen(path.c_str(), "w");
-  if (!f) throw InputError(path, 0, "cannot write");
-  std::fprintf(f,
-               "scene,motion,axis,setting,contact,preset,safety,integrator,stiffness_n_m,rest_speed,rest_time_s,"
-               "effects,dt_s,steps,"
-               "simulated_s,overturned,failure_time_s,max_tilt_deg,outcome_match,failure_time_err_s,max_tilt_err_deg,"
-               "traj_tilt_rms_deg,traj_pos_rms_mm,traj_rel_err,error,energy_err,model_quantity,model_value,"
-               "model_ref_err,oracle,oracle_value,oracle_err,wall_s,search_wall_s,repeats\n");
-  for (const study::Row& r : result.rows) {
-    const study::Case& c = result.cases[r.case_index];
-    const study::Setting& s = result.settings[r.setting_index];
-    std::fprintf(
-        f,
-        "%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%ld,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%d\n",
-        c.scene.c_str(), c.motion.c_str(), s.axis.c_str(), s.label.c_str(), contact::contact_method_name(s.contact),
-        s.preset.c_str(), csv_number(s.safety).c_str(), scenario::integrator_name(s.rotation),
-        csv_number(s.stiffness).c_str(), csv_number(s.rest_speed).c_str(), csv_number(s.rest_time).c_str(),
-        s.select_effects ? "auto" : "all", csv_number(r.dt).c_str(), r.steps, csv_number(r.simulated).c_str(),
-        csv_bool(r.overturned).c_str(), csv_number(r.failure_time).c_str(), csv_number(r.max_tilt_deg).c_str(),
-        csv_bool(r.outcome_match).c_str(), csv_number(r.failure_time_err).c_str(), csv_number(r.max_tilt_err).c_str(),
-        csv_number(r.tilt_rms).c_str(), csv_number(r.pos_rms).c_str(), csv_number(r.traj_rel).c_str(),
-        csv_number(r.error).c_str(), csv_number(r.energy_err).c_str(), c.model_quantity.c_str(),
-        csv_number(r.model_value).c_str(), csv_number(r.model_ref_err).c_str(), study::oracle_name(c.oracle),
-        csv_number(c.oracle_value).c_str(), csv_number(r.oracle_err).c_str(), csv_number(r.wall).c_str(),
-        csv_number(r.search_wall).c_str(), r.repeats);
-  }
-  std::fclose(f);
+  io::write_output_file(path, [&](std::ostream& out) {
+    io::CsvWriter csv(out);
+    csv.row({"scene",
+             "motion",
+             "axis",
+             "setting",
+             "contact",
+             "preset",
+             "safety",
+             "integrator",
+             "stiffness_n_m",
+             "rest_speed",
+             "rest_time_s",
+             "effects",
+             "dt_s",
+             "steps",
+             "simulated_s",
+             "overturned",
+             "failure_time_s",
+             "max_tilt_deg",
+             "outcome_match",
+             "failure_time_err_s",
+             "max_tilt_err_deg",
+             "traj_tilt_rms_deg",
+             "traj_pos_rms_mm",
+             "traj_rel_err",
+             "error",
+             "energy_err",
+             "model_quantity",
+             "model_value",
+             "model_ref_err",
+             "oracle",
+             "oracle_value",
+             "oracle_err",
+             "wall_s",
+             "search_wall_s",
+             "repeats"});
+    for (const study::Row& r : result.rows) {
+      const study::Case& c = result.cases[r.case_index];
+      const study::Setting& s = result.settings[r.setting_index];
+      csv.row({c.scene,
+               c.motion,
+               s.axis,
+               s.label,
+               contact::contact_method_name(s.contact),
+               s.preset,
+               csv_number(s.safety),
+               scenario::integrator_name(s.rotation),
+               csv_number(s.stiffness),
+               csv_number(s.rest_speed),
+               csv_number(s.rest_time),
+               s.select_effects ? "auto" : "all",
+               csv_number(r.dt),
+               std::to_string(r.steps),
+               csv_number(r.simulated),
+               csv_bool(r.overturned),
+               csv_number(r.failure_time),
+               csv_number(r.max_tilt_deg),
+               csv_bool(r.outcome_match),
+               csv_number(r.failure_time_err),
+               csv_number(r.max_tilt_err),
+               csv_number(r.tilt_rms),
+               csv_number(r.pos_rms),
+               csv_number(r.traj_rel),
+               csv_number(r.error),
+               csv_number(r.energy_err),
+               c.model_quantity,
+               csv_number(r.model_value),
+               csv_number(r.model_ref_err),
+               study::oracle_name(c.oracle),
+               csv_number(c.oracle_value),
+               csv_number(r.oracle_err),
+               csv_number(r.wall),
+               csv_number(r.search_wall),
+               std::to_string(r.repeats)});
+    }
+  });
 }
 
 // The real record: the Rinaldi Receiving Station fault-normal component (Northridge 1994) from

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 
 #include "rigid/core/error.hpp"
@@ -127,12 +128,11 @@ bool scan_number(std::string_view s, std::size_t& pos, double& value) {
 }
 
 // values of a data line, appended to out; throws on anything non-numeric or non-finite
-void parse_values(std::string_view line, const std::string& file, long number,
-                  std::vector<double>& out, long long limit) {
+void parse_values(std::string_view line, const std::string& file, long number, std::vector<double>& out,
+                  long long limit) {
   std::size_t pos = 0;
   while (true) {
-    while (pos < line.size() && (is_space(line[pos]) || line[pos] == ',' || line[pos] == '\0'))
-      ++pos;
+    while (pos < line.size() && (is_space(line[pos]) || line[pos] == ',' || line[pos] == '\0')) ++pos;
     if (pos >= line.size()) return;
     std::size_t tok_end = pos;
     while (tok_end < line.size() && !is_space(line[tok_end]) && line[tok_end] != ',') ++tok_end;
@@ -200,14 +200,12 @@ motion::Component At2Record::component_si() const {
   return c;
 }
 
-At2Record parse_at2(std::string_view text, const std::string& name,
-                    const At2ReadOptions& options) {
+At2Record parse_at2(std::string_view text, const std::string& name, const At2ReadOptions& options) {
   At2Record rec;
   rec.source = name;
   rec.unit_to_si = kGravity;
   const std::vector<Line> lines = split_lines(text);
-  if (options.dt < 0.0 || !std::isfinite(options.dt) || (options.dt > 0.0 && options.dt < 1e-6) ||
-      options.dt > 10.0)
+  if (options.dt < 0.0 || !std::isfinite(options.dt) || (options.dt > 0.0 && options.dt < 1e-6) || options.dt > 10.0)
     fail(name, 0, "the given time step must be in [1e-6, 10] s");
 
   // find the NPTS/DT line among the first lines (PEER files have it as line 4)
@@ -227,8 +225,8 @@ At2Record parse_at2(std::string_view text, const std::string& name,
     while (first < lines.size() && trim(lines[first].text).empty()) ++first;
     if (first == lines.size()) fail(name, 0, "empty file: no header and no values");
     if (!numeric_line(lines[first].text))
-      fail(name, 0, "missing AT2 header: no NPTS/DT line in the first " +
-                        std::to_string(kHeaderSearchLines) + " lines");
+      fail(name, 0,
+           "missing AT2 header: no NPTS/DT line in the first " + std::to_string(kHeaderSearchLines) + " lines");
     if (!(options.dt > 0.0))
       fail(name, lines[first].number,
            "no header (data from line " + std::to_string(lines[first].number) +
@@ -270,18 +268,15 @@ At2Record parse_at2(std::string_view text, const std::string& name,
       if (nums.size() < 2) fail(name, L.number, "header line lacks NPTS and DT values");
       n = nums[0];
       dt = nums[1];
-      if (n != std::floor(n) || n < 0)
-        fail(name, L.number, "NPTS must be a non-negative integer, got " + num(n));
+      if (n != std::floor(n) || n < 0) fail(name, L.number, "NPTS must be a non-negative integer, got " + num(n));
       npts = (long long)std::min(n, 1e18);
     }
-    if (!(dt > 0.0) || !std::isfinite(dt))
-      fail(name, L.number, "DT must be positive, got " + num(dt));
+    if (!(dt > 0.0) || !std::isfinite(dt)) fail(name, L.number, "DT must be positive, got " + num(dt));
     // a time step outside [1 us, 10 s] is a corrupt header, not a record
     if (dt < 1e-6 || dt > 10.0)
       fail(name, L.number, "DT=" + num(dt) + " s is outside the plausible range [1e-6, 10] s");
     if (options.dt > 0.0 && std::abs(options.dt - dt) > 1e-6 * dt)
-      fail(name, L.number, "header DT=" + num(dt) + " s disagrees with the given dt " +
-                               num(options.dt) + " s");
+      fail(name, L.number, "header DT=" + num(dt) + " s disagrees with the given dt " + num(options.dt) + " s");
     if (npts > kMaxNpts) fail(name, L.number, "NPTS=" + std::to_string(npts) + " is too large");
     rec.dt = dt;
     // what the header says about the quantity and its units
@@ -290,8 +285,7 @@ At2Record parse_at2(std::string_view text, const std::string& name,
       const std::size_t at = h.find("UNITS");
       if (at == std::string::npos) continue;
       if (h.find("VELOCITY") != std::string::npos || h.find("DISPLACEMENT") != std::string::npos)
-        fail(name, lines[i].number, "not an acceleration record (header: " +
-                                        printable(trim(lines[i].text)) + ")");
+        fail(name, lines[i].number, "not an acceleration record (header: " + printable(trim(lines[i].text)) + ")");
       const std::string unit = h.substr(at);
       if (unit.find("CM/S") != std::string::npos || unit.find("GAL") != std::string::npos)
         rec.unit_to_si = 0.01;
@@ -311,28 +305,40 @@ At2Record parse_at2(std::string_view text, const std::string& name,
 
   // values: everything after the header, free format
   const long long limit = npts >= 0 ? npts + 1 : kMaxNpts;
-  rec.values.reserve(std::size_t(std::min<long long>(npts >= 0 ? npts : 0,
-                                                     (long long)text.size() / 2 + 1)));
+  rec.values.reserve(std::size_t(std::min<long long>(npts >= 0 ? npts : 0, (long long)text.size() / 2 + 1)));
   long last_data_line = data_from < lines.size() ? lines[data_from].number : 0;
   for (std::size_t i = data_from; i < lines.size(); ++i) {
     const std::size_t before = rec.values.size();
     parse_values(lines[i].text, name, lines[i].number, rec.values, limit);
-    if (rec.values.size() != before) last_data_line = lines[i].number;
+    if (rec.values.size() != before) {
+      last_data_line = lines[i].number;
+      rec.value_lines.emplace_back(before, lines[i].number);
+    }
     if (npts >= 0 && (long long)rec.values.size() > npts)
-      fail(name, lines[i].number, "more values than NPTS=" + std::to_string(npts) +
-                                      " in the header");
+      fail(name, lines[i].number, "more values than NPTS=" + std::to_string(npts) + " in the header");
     if (npts < 0 && (long long)rec.values.size() >= kMaxNpts)
       fail(name, lines[i].number, "more than " + std::to_string(kMaxNpts) + " values");
   }
   if (npts >= 0 && (long long)rec.values.size() != npts)
-    fail(name, last_data_line, "NPTS=" + std::to_string(npts) + " in the header but " +
-                                   std::to_string(rec.values.size()) + " values follow");
+    fail(name, last_data_line,
+         "NPTS=" + std::to_string(npts) + " in the header but " + std::to_string(rec.values.size()) + " values follow");
   if (rec.values.empty()) fail(name, last_data_line, "no acceleration values");
   return rec;
 }
 
 At2Record read_at2(const std::string& path, const At2ReadOptions& options) {
-  return parse_at2(read_input_file(path, kMaxBulkFileBytes), path, options);
+  At2Record rec = parse_at2(read_input_file(path, kMaxBulkFileBytes), path, options);
+  for (std::size_t k = 0; k < rec.values.size(); ++k) {
+    if (const std::string problem = motion::drive_sample_problem(rec.values[k] * rec.unit_to_si); !problem.empty())
+      fail(path, rec.line_of_value(k), "acceleration " + num(rec.values[k]) + ": " + problem);
+  }
+  return rec;
+}
+
+long At2Record::line_of_value(std::size_t i) const {
+  const auto after = std::upper_bound(value_lines.begin(), value_lines.end(), i,
+                                      [](std::size_t v, const std::pair<std::size_t, long>& l) { return v < l.first; });
+  return after == value_lines.begin() ? 0 : std::prev(after)->second;
 }
 
 std::string format_at2(const motion::Component& c, const At2WriteOptions& options) {
@@ -343,8 +349,8 @@ std::string format_at2(const motion::Component& c, const At2WriteOptions& option
   std::replace(desc.begin(), desc.end(), '\n', ' ');
   std::string label = c.label.empty() ? "X" : c.label;
   std::replace(label.begin(), label.end(), ',', ' ');
-  std::string o = options.title + "\n" + (desc.empty() ? std::string("Rigid") : desc) + ", " +
-                  label + "\nACCELERATION TIME SERIES IN UNITS OF G\n";
+  std::string o = options.title + "\n" + (desc.empty() ? std::string("Rigid") : desc) + ", " + label +
+                  "\nACCELERATION TIME SERIES IN UNITS OF G\n";
   char buf[128];
   std::snprintf(buf, sizeof buf, "NPTS= %7zu, DT= %.10g SEC\n", c.acc.size(), c.dt);
   o += buf;
@@ -357,8 +363,7 @@ std::string format_at2(const motion::Component& c, const At2WriteOptions& option
   return o;
 }
 
-void write_at2(const std::string& path, const motion::Component& c,
-               const At2WriteOptions& options) {
+void write_at2(const std::string& path, const motion::Component& c, const At2WriteOptions& options) {
   const std::string text = format_at2(c, options);
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   if (!out) fail(path, 0, "cannot write file");
@@ -391,8 +396,8 @@ SetFiles resolve_set(const std::string& spec_in, const std::string& base_dir) {
     std::size_t start = 0;
     while (true) {
       const std::size_t comma = spec.find(',', start);
-      parts.emplace_back(trim(std::string_view(spec).substr(
-          start, comma == std::string::npos ? std::string::npos : comma - start)));
+      parts.emplace_back(
+          trim(std::string_view(spec).substr(start, comma == std::string::npos ? std::string::npos : comma - start)));
       if (comma == std::string::npos) break;
       start = comma + 1;
     }
@@ -406,10 +411,14 @@ SetFiles resolve_set(const std::string& spec_in, const std::string& base_dir) {
       std::string* slot = nullptr;
       if (eq != std::string::npos) {
         const std::string key = upper(trim(std::string_view(p).substr(0, eq)));
-        if (key == "X" || key == "H1") slot = &s.x;
-        else if (key == "Y" || key == "H2") slot = &s.y;
-        else if (key == "Z" || key == "V") slot = &s.z;
-        else fail(spec, 0, "unknown component role '" + key + "' (use x=, y=, z=)");
+        if (key == "X" || key == "H1")
+          slot = &s.x;
+        else if (key == "Y" || key == "H2")
+          slot = &s.y;
+        else if (key == "Z" || key == "V")
+          slot = &s.z;
+        else
+          fail(spec, 0, "unknown component role '" + key + "' (use x=, y=, z=)");
         p = std::string(trim(std::string_view(p).substr(eq + 1)));
         if (p.empty()) fail(spec, 0, "empty file name after '" + key + "='");
         keyed = true;
@@ -427,8 +436,7 @@ SetFiles resolve_set(const std::string& spec_in, const std::string& base_dir) {
     std::size_t k = 0;
     while (k < a.size() && k < b.size() && a[k] == b[k]) ++k;
     std::string name = a.substr(0, k);
-    while (!name.empty() && (name.back() == '-' || name.back() == '_' || name.back() == '.'))
-      name.pop_back();
+    while (!name.empty() && (name.back() == '-' || name.back() == '_' || name.back() == '.')) name.pop_back();
     s.name = name.empty() ? a : name;
     return s;
   }
@@ -436,8 +444,7 @@ SetFiles resolve_set(const std::string& spec_in, const std::string& base_dir) {
   const std::string stem = stem_of(s.x);
   s.name = stem;
   // Rigid naming NAME-X.AT2: the -Y and -Z siblings join when present
-  if (stem.size() > 2 && stem[stem.size() - 2] == '-' &&
-      (stem.back() == 'X' || stem.back() == 'x')) {
+  if (stem.size() > 2 && stem[stem.size() - 2] == '-' && (stem.back() == 'X' || stem.back() == 'x')) {
     const bool lower = stem.back() == 'x';
     const fs::path px(s.x);
     const std::string base = stem.substr(0, stem.size() - 1);
@@ -483,8 +490,7 @@ motion::GroundMotion read_motion_set(const std::string& spec, const SetReadOptio
   return m;
 }
 
-std::vector<std::string> write_motion_set(const motion::GroundMotion& m,
-                                          const std::string& out_prefix,
+std::vector<std::string> write_motion_set(const motion::GroundMotion& m, const std::string& out_prefix,
                                           const At2WriteOptions& options) {
   std::vector<std::string> written;
   struct Part {
@@ -514,8 +520,8 @@ std::vector<std::string> write_motion_set(const motion::GroundMotion& m,
 }
 
 std::string motion_info_report(const std::string& spec, const SetReadOptions& read,
-                               const motion::MeasureOptions& measures,
-                               const std::vector<double>& sa_periods, bool json) {
+                               const motion::MeasureOptions& measures, const std::vector<double>& sa_periods,
+                               bool json) {
   const motion::GroundMotion m = read_motion_set(spec, read);
   const motion::MotionInfo info = motion::motion_info(m, measures, sa_periods);
   return json ? motion_info_json(info) : motion::to_text(info);

@@ -1,45 +1,19 @@
 // The cube's cells as CSV (include/rigid/io/cells_csv.hpp).
 #include "rigid/io/cells_csv.hpp"
 
-#include <charconv>
-#include <cmath>
+#include "rigid/io/csv.hpp"
+
 #include <string>
 #include <vector>
 
 namespace rigid::io {
 namespace {
 
-/// RFC 4180: a field holding a comma, a quote or a line break goes in quotes, its quotes doubled.
-std::string csv_field(const std::string& s) {
-  if (s.find_first_of(",\"\r\n") == std::string::npos) return s;
-  std::string q = "\"";
-  for (const char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return q + "\"";
-}
-
-/// The shortest text that reads back as the same double; NaN (nothing known) as an empty field.
-std::string csv_number(double x) {
-  if (std::isnan(x)) return {};
-  char buf[32];
-  const auto end = std::to_chars(buf, buf + sizeof buf, x).ptr;
-  return std::string(buf, end);
-}
-
 /// A cell's count of unconverged contact solves; empty when not recorded (-1, or a cube written
 /// before the count existed), as a NaN is.
 std::string csv_unconverged(const ObjectCube& o, std::size_t i) {
   if (o.unconverged_steps.empty() || o.unconverged_steps[i] < 0) return {};
   return std::to_string(o.unconverged_steps[i]);
-}
-
-void write_row(std::ostream& out, const std::vector<std::string>& fields) {
-  bool first = true;
-  for (const std::string& f : fields) {
-    if (!first) out << ',';
-    out << csv_field(f);
-    first = false;
-  }
-  out << "\r\n";
 }
 
 }  // namespace
@@ -51,7 +25,8 @@ void write_cells_csv(std::ostream& out, const Cube& cube) {
                                   "rotation_deg", "outcome",        "failure_time_s",  "max_tilt_deg",
                                   "max_slip_m",   "failure_reason", "failure_message", "unconverged_steps"};
   if (variants) header.insert(header.begin() + 1, "variant");
-  write_row(out, header);
+  CsvWriter csv(out, "\r\n");
+  csv.row(header);
   const std::size_t S = cube.scales_g.size(), A = static_cast<std::size_t>(cube.rotations);
   for (const ObjectCube& o : cube.objects) {
     for (std::size_t r = 0; r < cube.records.size(); ++r) {
@@ -71,7 +46,7 @@ void write_cells_csv(std::ostream& out, const Cube& cube) {
                                        o.failure_message.empty() ? std::string() : o.failure_message[i],
                                        csv_unconverged(o, i)};
           if (variants) row.insert(row.begin() + 1, std::to_string(o.variant));
-          write_row(out, row);
+          csv.row(row);
         }
       }
     }

@@ -313,16 +313,16 @@ void read_record_tables(const toml::table& root, const fs::path& base, JobFile& 
 void check_records(JobFile& job) {
   std::set<std::string> record_names;
   for (auto& r : job.records) {
-    if (r.lab && !fs::exists(r.spec)) {
-      throw InputError(r.origin_file, r.origin_line, "record " + r.name + ": lab recording not found: " + r.spec);
+    if (const std::string problem = r.lab ? input_file_problem(r.spec) : ""; !problem.empty()) {
+      throw InputError(r.origin_file, r.origin_line, "record " + r.name + ": lab recording " + problem + ": " + r.spec);
     }
     std::stringstream parts(r.lab ? std::string() : r.spec);
     std::string part;
     while (std::getline(parts, part, ',')) {
       const auto eq = part.find('=');
       const std::string file = eq == std::string::npos ? part : part.substr(eq + 1);
-      if (!fs::exists(file)) {
-        throw InputError(r.origin_file, r.origin_line, "record " + r.name + ": motion file not found: " + file);
+      if (const std::string problem = input_file_problem(file); !problem.empty()) {
+        throw InputError(r.origin_file, r.origin_line, "record " + r.name + ": motion file " + problem + ": " + file);
       }
     }
     if (!(r.start >= 0) || !(r.end > r.start)) {

@@ -49,40 +49,54 @@ std::string lower(std::string_view s) {
   return o;
 }
 
-// The file's text: gzip streams (magic 1f 8b, concatenated members allowed) are inflated, with the
-// number of complete lines reached named when the stream is corrupt or ends early.
-std::string file_text(const std::string& path) {
-  std::string raw = read_input_file(path, kMaxBulkFileBytes);
-  if (raw.size() < 2 || static_cast<unsigned char>(raw[0]) != 0x1f || static_cast<unsigned char>(raw[1]) != 0x8b)
-    return raw;
-  std::string out;
+// Inflates a gzip stream (concatenated members allowed) chunk by chunk, handing each chunk to
+// `take`; refuses a corrupt or truncated stream, and more than kMaxDecompressedBytes, naming the
+// number of complete lines reached.
+template <typename Take>
+void inflate_gzip(std::string& raw, const std::string& path, Take take) {
   z_stream z{};
   if (inflateInit2(&z, 15 + 16) != Z_OK) throw InputError(path, 0, "cannot start gzip decompression");
   z.next_in = reinterpret_cast<Bytef*>(raw.data());
   z.avail_in = uInt(raw.size());
-  char buf[1 << 16];
-  int rc = Z_OK;
+  std::vector<char> buf(std::size_t(1) << 16);
+  std::size_t total = 0;
+  long lines = 0;
   const auto fail = [&](const std::string& what) {
     inflateEnd(&z);
-    const long lines = long(std::count(out.begin(), out.end(), '\n'));
     throw InputError(path, lines + 1, what + " (after " + std::to_string(lines) + " complete lines)");
   };
   while (true) {
-    z.next_out = reinterpret_cast<Bytef*>(buf);
-    z.avail_out = sizeof buf;
-    rc = inflate(&z, Z_NO_FLUSH);
-    out.append(buf, sizeof buf - z.avail_out);
-    if (out.size() > kMaxDecompressedBytes) fail("decompresses to more than 1 GB");
+    z.next_out = reinterpret_cast<Bytef*>(buf.data());
+    z.avail_out = uInt(buf.size());
+    const int rc = inflate(&z, Z_NO_FLUSH);
+    const std::size_t got = buf.size() - z.avail_out;
+    total += got;
+    if (total > kMaxDecompressedBytes) fail("decompresses to more than 1 GB");
+    lines += long(std::count(buf.data(), buf.data() + got, '\n'));
+    take(buf.data(), got);
     if (rc == Z_STREAM_END) {
       if (z.avail_in == 0) break;
       if (inflateReset(&z) != Z_OK) fail("corrupt gzip stream");  // another member follows
       continue;
     }
-    if (rc == Z_BUF_ERROR || (rc == Z_OK && z.avail_in == 0 && z.avail_out != 0))
-      fail("gzip stream truncated");
+    if (rc == Z_BUF_ERROR || (rc == Z_OK && z.avail_in == 0 && z.avail_out != 0)) fail("gzip stream truncated");
     if (rc != Z_OK) fail(std::string("corrupt gzip stream: ") + (z.msg ? z.msg : "inflate failed"));
   }
   inflateEnd(&z);
+}
+
+// The file's text, gzip streams (magic 1f 8b) inflated. The limit costs what it says: a first pass
+// measures the inflated size (and refuses a bomb) without keeping it, so the text is allocated
+// once at its exact size, never by doubling a growing buffer past the limit.
+std::string file_text(const std::string& path) {
+  std::string raw = read_input_file(path, kMaxBulkFileBytes);
+  if (raw.size() < 2 || static_cast<unsigned char>(raw[0]) != 0x1f || static_cast<unsigned char>(raw[1]) != 0x8b)
+    return raw;
+  std::size_t size = 0;
+  inflate_gzip(raw, path, [&](const char*, std::size_t n) { size += n; });
+  std::string out;
+  out.reserve(size);
+  inflate_gzip(raw, path, [&](const char* data, std::size_t n) { out.append(data, n); });
   return out;
 }
 
@@ -158,8 +172,9 @@ std::size_t column_position(const LabColumn& c, const std::vector<std::string_vi
                             const std::string& path, long header_line, const char* what) {
   if (c.index > 0) return std::size_t(c.index - 1);
   if (!have_header)
-    throw InputError(path, 0, std::string("the ") + what + " column is named '" + c.name +
-                                  "' but the format has no header line (header_lines = 0)");
+    throw InputError(path, 0,
+                     std::string("the ") + what + " column is named '" + c.name +
+                         "' but the format has no header line (header_lines = 0)");
   for (std::size_t i = 0; i < header.size(); ++i)
     if (header[i] == c.name) return i;
   throw InputError(path, header_line, std::string("the header has no ") + what + " column '" + c.name + "'");
@@ -189,10 +204,14 @@ const char* lab_delimiter_name(LabDelimiter d) {
 }
 
 bool parse_lab_delimiter(std::string_view text, LabDelimiter& out) {
-  if (text == "tab") out = LabDelimiter::tab;
-  else if (text == "comma") out = LabDelimiter::comma;
-  else if (text == "whitespace") out = LabDelimiter::whitespace;
-  else return false;
+  if (text == "tab")
+    out = LabDelimiter::tab;
+  else if (text == "comma")
+    out = LabDelimiter::comma;
+  else if (text == "whitespace")
+    out = LabDelimiter::whitespace;
+  else
+    return false;
   return true;
 }
 
@@ -201,25 +220,35 @@ const char* lab_channel_name(LabChannel c) {
 }
 
 bool parse_lab_channel(std::string_view text, LabChannel& out) {
-  if (text == "acceleration") out = LabChannel::acceleration;
-  else if (text == "displacement") out = LabChannel::displacement;
-  else if (text == "combined") out = LabChannel::combined;
-  else return false;
+  if (text == "acceleration")
+    out = LabChannel::acceleration;
+  else if (text == "displacement")
+    out = LabChannel::displacement;
+  else if (text == "combined")
+    out = LabChannel::combined;
+  else
+    return false;
   return true;
 }
 
 bool parse_lab_baseline(std::string_view text, motion::LabBaseline& out) {
-  if (text == "none") out = motion::LabBaseline::none;
-  else if (text == "mean") out = motion::LabBaseline::mean;
-  else if (text == "linear") out = motion::LabBaseline::linear;
-  else if (text == "polynomial") out = motion::LabBaseline::polynomial;
-  else return false;
+  if (text == "none")
+    out = motion::LabBaseline::none;
+  else if (text == "mean")
+    out = motion::LabBaseline::mean;
+  else if (text == "linear")
+    out = motion::LabBaseline::linear;
+  else if (text == "polynomial")
+    out = motion::LabBaseline::polynomial;
+  else
+    return false;
   return true;
 }
 
 LabColumn parse_lab_column(std::string_view text) {
   const std::string_view t = trim(text);
-  const bool digits = !t.empty() && t.size() <= 6 && std::all_of(t.begin(), t.end(), [](char c) { return c >= '0' && c <= '9'; });
+  const bool digits =
+      !t.empty() && t.size() <= 6 && std::all_of(t.begin(), t.end(), [](char c) { return c >= '0' && c <= '9'; });
   if (digits) return {std::stoi(std::string(t)), ""};
   return {0, std::string(t)};
 }
@@ -281,27 +310,29 @@ LabFormat lab_format_from_table(const toml::table& root, const std::string& file
     const toml::node* n = t->get(key);
     if (!n) return fallback;
     const auto v = n->value_exact<std::int64_t>();
-    if (!v || *v < -1000000 || *v > 1000000) throw InputError(file, line_of(*n), std::string("[lab] ") + key + " must be an integer");
+    if (!v || *v < -1000000 || *v > 1000000)
+      throw InputError(file, line_of(*n), std::string("[lab] ") + key + " must be an integer");
     return int(*v);
   };
   const auto column = [&](const char* key, LabColumn fallback) {
     const toml::node* n = t->get(key);
     if (!n) return fallback;
     if (const auto v = n->value_exact<std::int64_t>()) {
-      if (*v < 1 || *v > 1000) throw InputError(file, line_of(*n), std::string("[lab] ") + key + " must be from 1 to 1000");
+      if (*v < 1 || *v > 1000)
+        throw InputError(file, line_of(*n), std::string("[lab] ") + key + " must be from 1 to 1000");
       return LabColumn{int(*v), ""};
     }
     const auto s = n->value_exact<std::string>();
     if (!s || trim(*s).empty())
-      throw InputError(file, line_of(*n), std::string("[lab] ") + key + " must be a column number (1-based) or a header name");
+      throw InputError(file, line_of(*n),
+                       std::string("[lab] ") + key + " must be a column number (1-based) or a header name");
     return LabColumn{0, std::string(trim(*s))};
   };
   const auto keyword = [&](const char* key, auto parse, auto& out, const char* choices) {
     const toml::node* n = t->get(key);
     if (!n) return;
     const auto s = n->value_exact<std::string>();
-    if (!s || !parse(*s, out))
-      throw InputError(file, line_of(*n), std::string("[lab] ") + key + " must be " + choices);
+    if (!s || !parse(*s, out)) throw InputError(file, line_of(*n), std::string("[lab] ") + key + " must be " + choices);
   };
   keyword("delimiter", parse_lab_delimiter, f.delimiter, "\"tab\", \"comma\" or \"whitespace\"");
   f.header_lines = integer("header_lines", f.header_lines);
@@ -404,30 +435,34 @@ LabTable read_lab_table(const std::filesystem::path& path_in, const LabFormat& f
     header_cells = split_cells(table.header.back(), f.delimiter);
     // a header made of numbers is a data line: the file has fewer header lines than the format says
     double v;
-    const bool numeric = std::all_of(header_cells.begin(), header_cells.end(),
-                                     [&](std::string_view c) { return parse_number(c, v); });
+    const bool numeric =
+        std::all_of(header_cells.begin(), header_cells.end(), [&](std::string_view c) { return parse_number(c, v); });
     if (numeric && !header_cells.empty())
       throw InputError(path, header_line, "expected a header line, found numbers (set header_lines)");
   }
   const std::size_t time_at = column_position(f.time, header_cells, f.header_lines > 0, path, header_line, "time");
   const std::size_t none = std::size_t(-1);
   const std::size_t acc_at =
-      want_acc ? column_position(f.acceleration, header_cells, f.header_lines > 0, path, header_line, "acceleration") : none;
+      want_acc ? column_position(f.acceleration, header_cells, f.header_lines > 0, path, header_line, "acceleration")
+               : none;
   const std::size_t disp_at =
-      want_disp ? column_position(f.displacement, header_cells, f.header_lines > 0, path, header_line, "displacement") : none;
+      want_disp ? column_position(f.displacement, header_cells, f.header_lines > 0, path, header_line, "displacement")
+                : none;
   std::size_t need = time_at + 1;
   if (want_acc) need = std::max(need, acc_at + 1);
   if (want_disp) need = std::max(need, disp_at + 1);
   if (f.header_lines > 0) {
     if (header_cells.size() < need)
-      throw InputError(path, header_line, "the header has " + std::to_string(header_cells.size()) +
-                                              " columns, the format reads column " + std::to_string(need));
+      throw InputError(path, header_line,
+                       "the header has " + std::to_string(header_cells.size()) + " columns, the format reads column " +
+                           std::to_string(need));
     // a unit in the header must be the one the format converts from
     const auto check_unit = [&](std::size_t at, const std::string& unit, const char* what) {
       const std::string said = header_unit(header_cells[at]);
       if (!said.empty() && canonical_unit(said) != canonical_unit(unit))
-        throw InputError(path, header_line, std::string("the ") + what + " column's header '" +
-                                                printable(header_cells[at]) + "' says " + said + ", the format says " + unit);
+        throw InputError(path, header_line,
+                         std::string("the ") + what + " column's header '" + printable(header_cells[at]) + "' says " +
+                             said + ", the format says " + unit);
     };
     if (want_acc) check_unit(acc_at, f.acceleration_unit, "acceleration");
     if (want_disp) check_unit(disp_at, f.displacement_unit, "displacement");
@@ -441,7 +476,10 @@ LabTable read_lab_table(const std::filesystem::path& path_in, const LabFormat& f
       std::string_view rest;
       bool more = false;
       while (next_line(rest))
-        if (!trim(rest).empty()) { more = true; break; }
+        if (!trim(rest).empty()) {
+          more = true;
+          break;
+        }
       if (more) throw InputError(path, mark_line, "blank line inside the data");
       pos = mark;
       break;
@@ -449,31 +487,36 @@ LabTable read_lab_table(const std::filesystem::path& path_in, const LabFormat& f
     if (table.first_data_line == 0) table.first_data_line = line_no;
     const std::vector<std::string_view> cells = split_cells(line, f.delimiter);
     if (cells.size() < need)
-      throw InputError(path, line_no, "short row: " + std::to_string(cells.size()) + " cells, column " +
-                                          std::to_string(need) + " is read (truncated file?)");
+      throw InputError(path, line_no,
+                       "short row: " + std::to_string(cells.size()) + " cells, column " + std::to_string(need) +
+                           " is read (truncated file?)");
     const auto cell = [&](std::size_t at, const char* what) {
       double v = 0.0;
       const std::string_view c = cells[at];
-      if (c.empty()) throw InputError(path, line_no, std::string("empty ") + what + " cell (column " + std::to_string(at + 1) + ")");
+      if (c.empty())
+        throw InputError(path, line_no, std::string("empty ") + what + " cell (column " + std::to_string(at + 1) + ")");
       if (!parse_number(c, v)) {
         const std::string l = lower(c);
         if (l.find("nan") != std::string::npos || l.find("inf") != std::string::npos)
           throw InputError(path, line_no, std::string("NaN or infinite ") + what + " '" + printable(c) + "'");
         throw InputError(path, line_no, std::string("non-numeric ") + what + " '" + printable(c) + "'");
       }
-      if (!std::isfinite(v)) throw InputError(path, line_no, std::string("NaN or infinite ") + what + " '" + printable(c) + "'");
+      if (!std::isfinite(v))
+        throw InputError(path, line_no, std::string("NaN or infinite ") + what + " '" + printable(c) + "'");
       return v;
     };
     const double t = cell(time_at, "time");
     if (!table.time.empty() && !(t > table.time.back()))
-      throw InputError(path, line_no, "time " + num(t) + " s does not increase (previous " + num(table.time.back()) + " s)");
+      throw InputError(path, line_no,
+                       "time " + num(t) + " s does not increase (previous " + num(table.time.back()) + " s)");
     table.time.push_back(t);
     if (want_acc) table.acceleration.push_back(cell(acc_at, "acceleration"));
     if (want_disp) table.displacement.push_back(cell(disp_at, "displacement"));
   }
   if (table.time.size() < kMinSamples)
-    throw InputError(path, line_no, "only " + std::to_string(table.time.size()) + " samples, at least " +
-                                        std::to_string(kMinSamples) + " needed");
+    throw InputError(
+        path, line_no,
+        "only " + std::to_string(table.time.size()) + " samples, at least " + std::to_string(kMinSamples) + " needed");
   const std::size_t n = table.time.size();
   table.dt = (table.time.back() - table.time.front()) / double(n - 1);
   // printed times carry round-off (6 digits: 1e-4 s at 30 s, 8 % of 1/800 s); a dropped or
@@ -495,22 +538,66 @@ motion::GroundMotion read_lab_motion(const std::filesystem::path& path, const La
   const double acc_to_si = acceleration_unit_to_si(f.acceleration_unit) * f.scale;
   const bool volts = canonical_unit(f.displacement_unit) == "v";
   const double disp_to_si =
-      (volts ? f.volts_to_length * length_unit_to_si(f.volts_length_unit) : length_unit_to_si(f.displacement_unit)) * f.scale;
-  for (double& x : acc) x *= acc_to_si;
-  for (double& x : disp) x *= disp_to_si;
+      (volts ? f.volts_to_length * length_unit_to_si(f.volts_length_unit) : length_unit_to_si(f.displacement_unit)) *
+      f.scale;
+  // each sample in SI checked where its line is known: a 1e308 cell or a 1e308 V-to-length
+  // factor would otherwise turn the whole filtered motion into NaN
+  const std::string scaled = f.scale != 1.0 ? " scaled by " + num(f.scale) : "";
+  for (std::size_t i = 0; i < acc.size(); ++i) {
+    const double raw = acc[i];
+    acc[i] *= acc_to_si;
+    if (const std::string problem = motion::drive_sample_problem(acc[i]); !problem.empty())
+      throw InputError(path.string(), table.first_data_line + long(i),
+                       "acceleration " + num(raw) + " " + f.acceleration_unit + scaled + ": " + problem);
+  }
+  for (std::size_t i = 0; i < disp.size(); ++i) {
+    const double raw = disp[i];
+    disp[i] *= disp_to_si;
+    if (!std::isfinite(disp[i]))
+      throw InputError(path.string(), table.first_data_line + long(i),
+                       "displacement " + num(raw) + " " + f.displacement_unit + scaled +
+                           " is not a finite number of metres (volts_to_length?)");
+  }
   motion::GroundMotion m;
   const motion::LabProcessing& p = f.processing;
   try {
     switch (f.channel) {
-      case LabChannel::acceleration: m.x = motion::process_acceleration(acc, table.dt, p); break;
-      case LabChannel::displacement: m.x = motion::acceleration_from_displacement(disp, table.dt, p); break;
+      case LabChannel::acceleration:
+        m.x = motion::process_acceleration(acc, table.dt, p);
+        break;
+      case LabChannel::displacement:
+        m.x = motion::acceleration_from_displacement(disp, table.dt, p);
+        break;
       case LabChannel::combined:
         m.x = motion::merge_complementary(motion::acceleration_from_displacement(disp, table.dt, p),
-                                          motion::process_acceleration(acc, table.dt, p), p.crossover_hz, p.order, table.dt);
+                                          motion::process_acceleration(acc, table.dt, p), p.crossover_hz, p.order,
+                                          table.dt);
         break;
     }
   } catch (const std::invalid_argument& e) {
     throw InputError(table.source, 0, e.what());
+  }
+  // the processed drive under the same rule (a displacement differentiated twice can break it): a
+  // filter spreads one bad sample over the record, so the line named is the raw channel's peak,
+  // the sample that made it (a displacement weighed as the acceleration at the crossover)
+  if (const auto bad = motion::first_bad_drive_sample(m)) {
+    const auto peak = [](const std::vector<double>& v) {
+      const auto larger = [](double a, double b) { return std::abs(a) < std::abs(b); };
+      return std::size_t(std::max_element(v.begin(), v.end(), larger) - v.begin());
+    };
+    const double omega = 2.0 * kPi * p.crossover_hz;
+    const bool from_disp =
+        f.channel == LabChannel::displacement ||
+        (f.channel == LabChannel::combined && std::abs(disp[peak(disp)]) * omega * omega > std::abs(acc[peak(acc)]));
+    const std::size_t at = from_disp ? peak(disp) : peak(acc);
+    const double value = from_disp ? table.displacement[at] : table.acceleration[at];
+    const double processed = m.x[bad->index];
+    throw InputError(table.source, table.first_data_line + long(at),
+                     "the processed acceleration (" + std::string(lab_channel_name(f.channel)) +
+                         " channel) at t = " + num(double(bad->index) * table.dt) + " s is " +
+                         (std::isfinite(processed) ? num(processed / kGravity) + " g: " : "") + bad->problem +
+                         "; the largest " + (from_disp ? "displacement" : "acceleration") + " sample, " + num(value) +
+                         " " + (from_disp ? f.displacement_unit : f.acceleration_unit) + ", is on this line");
   }
   std::string name = path.filename().string();
   for (const char* ext : {".gz", ".txt", ".csv", ".tsv", ".dat"}) {
@@ -526,14 +613,15 @@ motion::GroundMotion read_lab_motion(const std::filesystem::path& path, const La
 
 std::string describe_lab_processing(const LabFormat& f) {
   const std::string acc = "acceleration column " + f.acceleration.describe() + " in " + f.acceleration_unit;
-  const std::string disp = "displacement column " + f.displacement.describe() + " in " +
-                           (canonical_unit(f.displacement_unit) == "v"
-                                ? "V x " + num(f.volts_to_length) + " " + f.volts_length_unit
-                                : f.displacement_unit);
-  std::string s = f.channel == LabChannel::acceleration   ? acc
-                  : f.channel == LabChannel::displacement ? disp + " (differentiated twice)"
-                                                          : disp + " (differentiated twice) below " +
-                                                                num(f.processing.crossover_hz) + " Hz, " + acc + " above";
+  const std::string disp =
+      "displacement column " + f.displacement.describe() + " in " +
+      (canonical_unit(f.displacement_unit) == "v" ? "V x " + num(f.volts_to_length) + " " + f.volts_length_unit
+                                                  : f.displacement_unit);
+  std::string s =
+      f.channel == LabChannel::acceleration ? acc
+      : f.channel == LabChannel::displacement
+          ? disp + " (differentiated twice)"
+          : disp + " (differentiated twice) below " + num(f.processing.crossover_hz) + " Hz, " + acc + " above";
   if (f.scale != 1.0) s += ", scaled by " + num(f.scale);
   const motion::LabProcessing& p = f.processing;
   if (p.baseline == motion::LabBaseline::polynomial)

@@ -1,5 +1,6 @@
 #include "rigid/io/lab_tests.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <filesystem>
@@ -8,34 +9,12 @@
 
 #include "input_file.hpp"
 #include "rigid/core/error.hpp"
+#include "rigid/io/csv.hpp"
 
 namespace rigid::io {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string trim(std::string_view s) {
-  std::size_t a = 0, b = s.size();
-  while (a < b && (s[a] == ' ' || s[a] == '\t' || s[a] == '\r')) ++a;
-  while (b > a && (s[b - 1] == ' ' || s[b - 1] == '\t' || s[b - 1] == '\r')) --b;
-  std::string out(s.substr(a, b - a));
-  if (out.size() >= 2 && out.front() == '"' && out.back() == '"') out = out.substr(1, out.size() - 2);
-  return out;
-}
-
-std::vector<std::string> split_csv(std::string_view line) {
-  std::vector<std::string> fields;
-  std::size_t start = 0;
-  bool quoted = false;
-  for (std::size_t i = 0; i <= line.size(); ++i) {
-    if (i < line.size() && line[i] == '"') quoted = !quoted;
-    if (i == line.size() || (line[i] == ',' && !quoted)) {
-      fields.push_back(trim(line.substr(start, i - start)));
-      start = i + 1;
-    }
-  }
-  return fields;
-}
 
 double number(const std::string& text, const std::string& column, const std::string& name, long line) {
   double v = 0;
@@ -45,28 +24,26 @@ double number(const std::string& text, const std::string& column, const std::str
   return v;
 }
 
+// An outcome cell: 1 overturned, 0 stood, blank or '?' not known (a hold-out list may leave it out)
+std::optional<int> outcome(const std::string& text, const std::string& name, long line) {
+  if (text == "1") return 1;
+  if (text == "0") return 0;
+  if (text.empty() || text == "?") return std::nullopt;
+  throw InputError(name, line, "column overturned: '" + text + "' is not 0, 1, blank or ? (not known)");
+}
+
 }  // namespace
 
 LabTestList parse_lab_tests(std::string_view text, const std::string& name, const std::string& base_dir) {
   LabTestList list;
   list.source = name;
   std::map<std::string, std::size_t> column;
-  long line_no = 0;
   std::set<long> seen;
-  std::size_t pos = 0;
-  while (pos <= text.size()) {
-    std::size_t end = text.find('\n', pos);
-    if (end == std::string_view::npos) end = text.size();
-    const std::string_view raw = text.substr(pos, end - pos);
-    pos = end + 1;
-    ++line_no;
-    const std::string line = trim(raw);
-    if (line.empty() || line[0] == '#') {
-      if (pos > text.size()) break;
-      continue;
-    }
-    const std::vector<std::string> fields = split_csv(raw);
+  for (const CsvRow& row : parse_csv(text, name, {.hash_comments = true})) {
+    const std::vector<std::string>& fields = row.fields;
+    const long line_no = row.line;
     if (column.empty()) {
+      list.header_line = line_no;
       for (std::size_t k = 0; k < fields.size(); ++k) {
         if (fields[k].empty()) continue;
         if (!column.emplace(fields[k], k).second)
@@ -74,17 +51,18 @@ LabTestList parse_lab_tests(std::string_view text, const std::string& name, cons
       }
       for (const char* required : {"test_no", "file"}) {
         if (!column.count(required))
-          throw InputError(name, line_no, std::string("header has no '") + required +
-                                              "' column (expected test_no,record,pgv_over_pga_s,pga_g,file[,overturned])");
+          throw InputError(name, line_no,
+                           std::string("header has no '") + required +
+                               "' column (expected test_no,record,pgv_over_pga_s,pga_g,file[,overturned])");
       }
-      list.has_outcomes = column.count("overturned") > 0;
+      list.outcome_column = column.count("overturned") > 0;
       continue;
     }
     std::size_t needed = 0;
     for (const auto& [_, k] : column) needed = std::max(needed, k + 1);
     if (fields.size() < needed)
-      throw InputError(name, line_no, std::to_string(fields.size()) + " fields where the header has " +
-                                          std::to_string(needed));
+      throw InputError(name, line_no,
+                       std::to_string(fields.size()) + " fields where the header has " + std::to_string(needed));
     auto field = [&](const char* c) -> const std::string* {
       const auto it = column.find(c);
       return it == column.end() ? nullptr : &fields[it->second];
@@ -105,26 +83,33 @@ LabTestList parse_lab_tests(std::string_view text, const std::string& name, cons
     if (const std::string* s = field("pga_g"); s && !s->empty()) t.sheet_pga_g = number(*s, "pga_g", name, line_no);
     if (const std::string* s = field("pgv_over_pga_s"); s && !s->empty())
       t.sheet_pgv_pga_s = number(*s, "pgv_over_pga_s", name, line_no);
-    if (const std::string* s = field("overturned")) {
-      if (*s != "0" && *s != "1")
-        throw InputError(name, line_no, "column overturned: '" + *s + "' is not 0 or 1");
-      t.overturned = *s == "1" ? 1 : 0;
-    }
+    if (const std::string* s = field("overturned")) t.overturned = outcome(*s, name, line_no);
     list.tests.push_back(std::move(t));
-    if (pos > text.size()) break;
   }
   if (column.empty()) throw InputError(name, 0, "empty test list (no header, no test)");
   if (list.tests.empty()) throw InputError(name, 0, "no test listed below the header");
+  list.has_outcomes = list.outcome_column &&
+                      std::all_of(list.tests.begin(), list.tests.end(), [](const LabTest& t) { return t.overturned; });
   return list;
+}
+
+void require_outcomes(const LabTestList& list, std::string_view why) {
+  if (!list.outcome_column)
+    throw InputError(list.source, list.header_line, "the header has no 'overturned' column: " + std::string(why));
+  for (const LabTest& t : list.tests) {
+    if (!t.overturned)
+      throw InputError(
+          list.source, t.line,
+          "test " + std::to_string(t.test_no) + ": the outcome (column overturned) is not known: " + std::string(why));
+  }
 }
 
 LabTestList read_lab_tests(const std::string& path) {
   const std::string text = read_input_file(path, kMaxTextFileBytes);
   LabTestList list = parse_lab_tests(text, path, fs::path(path).parent_path().string());
   for (const LabTest& t : list.tests) {
-    std::error_code ec;
-    if (!fs::is_regular_file(t.file, ec))
-      throw InputError(path, t.line, "test " + std::to_string(t.test_no) + ": motion file " + t.file + " not found");
+    if (const std::string problem = input_file_problem(t.file); !problem.empty())
+      throw InputError(path, t.line, "test " + std::to_string(t.test_no) + ": motion file " + problem + ": " + t.file);
   }
   return list;
 }

@@ -3,10 +3,13 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
-#include <assimp/Importer.hpp>
 #include <algorithm>
+#include <assimp/Importer.hpp>
 #include <cctype>
+#include <cmath>
+#include <cstdlib>
 #include <filesystem>
+#include <sstream>
 #include <string>
 
 #include "input_file.hpp"
@@ -33,8 +36,9 @@ void append_node(const aiScene& scene, const aiNode& node, const aiMatrix4x4& pa
     for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
       const aiFace& face = mesh.mFaces[f];
       if (face.mNumIndices != 3) {
-        throw InputError(path, 0, "facet " + std::to_string(soup.size()) + " has " + std::to_string(face.mNumIndices) +
-                                      " vertices: points and lines are no surface");
+        throw InputError(path, 0,
+                         "facet " + std::to_string(soup.size()) + " has " + std::to_string(face.mNumIndices) +
+                             " vertices: points and lines are no surface");
       }
       geometry::Triangle t;
       Vec3* corners[3] = {&t.a, &t.b, &t.c};
@@ -58,6 +62,51 @@ std::string format_hint(std::string_view bytes, const std::string& name) {
   return ext;
 }
 
+// The line of the first vertex coordinate that is not a finite number in a text mesh (OBJ `v`
+// lines, ASCII STL `vertex` lines, ASCII PLY lines after end_header); 0 when none is found (a
+// binary file has no lines)
+long first_non_finite_vertex_line(std::string_view bytes, const std::string& hint) {
+  bool in_data = hint != "ply";
+  long line = 0;
+  std::size_t pos = 0;
+  while (pos < bytes.size()) {
+    std::size_t end = bytes.find('\n', pos);
+    if (end == std::string_view::npos) end = bytes.size();
+    std::istringstream words{std::string(bytes.substr(pos, end - pos))};
+    pos = end + 1;
+    ++line;
+    std::string word;
+    if (!(words >> word)) continue;
+    if (!in_data) {
+      in_data = word == "end_header";
+      continue;
+    }
+    if (hint == "obj" && word != "v") continue;
+    if (hint == "stl" && word != "vertex") continue;
+    for (int k = 0; k < 3; ++k) {
+      if (hint == "ply" && k > 0 && !(words >> word)) break;
+      if (hint != "ply" && !(words >> word)) break;
+      if (!std::isfinite(std::strtod(word.c_str(), nullptr))) return line;
+    }
+  }
+  return 0;
+}
+
+// Every corner a finite point, checked as read: mending (--repair) or welding a NaN corner would
+// answer with the wrong defect
+void check_finite_vertices(const geometry::TriangleSoup& soup, std::string_view bytes, const std::string& name,
+                           const std::string& hint) {
+  for (std::size_t f = 0; f < soup.size(); ++f) {
+    const geometry::Triangle& t = soup[f];
+    if (t.a.allFinite() && t.b.allFinite() && t.c.allFinite()) continue;
+    const long line = first_non_finite_vertex_line(bytes, hint);
+    throw InputError(
+        name, line,
+        line > 0 ? "vertex coordinate is not a finite number (NaN or infinite)"
+                 : "facet " + std::to_string(f) + ": a vertex coordinate is not a finite number (NaN or infinite)");
+  }
+}
+
 }  // namespace
 
 geometry::TriangleSoup read_mesh_from_memory(std::string_view bytes, const std::string& name) {
@@ -77,6 +126,7 @@ geometry::TriangleSoup read_mesh_from_memory(std::string_view bytes, const std::
   geometry::TriangleSoup soup;
   append_node(*scene, *scene->mRootNode, aiMatrix4x4(), name, soup);
   if (soup.empty()) throw InputError(name, 0, "the file holds no triangles");
+  check_finite_vertices(soup, bytes, name, hint);
   return soup;
 }
 
@@ -86,7 +136,7 @@ geometry::TriangleSoup read_mesh(const std::string& path) {
 }
 
 Mat3 up_rotation(const std::string& up) {
-  const std::pair<const char*, Vec3> axes[] = {{"z", Vec3::UnitZ()},  {"-z", -Vec3::UnitZ()}, {"y", Vec3::UnitY()},
+  const std::pair<const char*, Vec3> axes[] = {{"z", Vec3::UnitZ()},   {"-z", -Vec3::UnitZ()}, {"y", Vec3::UnitY()},
                                                {"-y", -Vec3::UnitY()}, {"x", Vec3::UnitX()},   {"-x", -Vec3::UnitX()}};
   for (const auto& [name, axis] : axes) {
     if (up != name) continue;

@@ -1,5 +1,6 @@
 #include "rigid/job/model.hpp"
 
+#include <sstream>
 #include <stdexcept>
 
 #include "rigid/analysis/rocking_parameters.hpp"
@@ -12,6 +13,13 @@
 
 namespace rigid::job {
 namespace {
+
+// a scale in six digits, as a message shows it
+std::string shortest(double x) {
+  std::ostringstream text;
+  text << x;
+  return text.str();
+}
 
 // The record's window, a window error naming where the record is given (job file or list, line).
 motion::GroundMotion windowed_record(const JobRecord& r, const motion::GroundMotion& m) {
@@ -78,6 +86,15 @@ scenario::Model load_model(const Job& job) {
         windowed_record(r, r.lab ? io::read_lab_motion(r.spec, job.lab_format) : io::read_motion_set(r.spec, read)));
     // once per record: every case scales this record, and the GMRotI50 measure is costly
     per_g.push_back(motion::target_pga_factor(records.back(), 1.0));
+    // the largest scale refused now, not as a failed cell: scales rise, so it is the last
+    if (!job.as_recorded() && !job.scales_g.empty()) {
+      const double top_g = job.drive_scale_g(job.scales_g.size() - 1);
+      if (const auto bad = motion::first_bad_drive_sample(records.back(), per_g.back() * top_g)) {
+        throw InputError(r.origin_file, r.origin_line,
+                         "record " + r.name + " scaled to its largest scale, " + shortest(top_g) +
+                             " g (GMRotI50 PGA): its " + bad->axis + " component is " + bad->problem);
+      }
+    }
   }
   return assemble_model(job, std::move(scenes), std::move(records), std::move(per_g));
 }

@@ -30,16 +30,13 @@ void for_each_component(GroundMotion& m, F f) {
 
 }  // namespace
 
-GroundMotion make_ground_motion(std::string name, std::vector<Component> components,
-                                const AlignOptions& options) {
+GroundMotion make_ground_motion(std::string name, std::vector<Component> components, const AlignOptions& options) {
   if (components.empty() || components.size() > 3)
-    throw InputError(name, 0, "a motion needs 1 to 3 components (H1, H2, V), got " +
-                                  std::to_string(components.size()));
+    throw InputError(name, 0, "a motion needs 1 to 3 components (H1, H2, V), got " + std::to_string(components.size()));
   for (const auto& c : components) {
     if (!(c.dt > 0.0) || !std::isfinite(c.dt))
       throw InputError(name, 0, "component " + c.label + ": time step must be positive");
-    if (c.acc.size() < 2)
-      throw InputError(name, 0, "component " + c.label + ": needs at least 2 samples");
+    if (c.acc.size() < 2) throw InputError(name, 0, "component " + c.label + ": needs at least 2 samples");
   }
   const double dt0 = components[0].dt;
   const std::size_t n0 = components[0].acc.size();
@@ -79,11 +76,11 @@ GroundMotion make_ground_motion(std::string name, std::vector<Component> compone
       } else {
         what += components[i].label;
       }
-      what += ": npts " + std::to_string(components[i].acc.size()) + " dt " +
-              num(components[i].dt);
+      what += ": npts " + std::to_string(components[i].acc.size()) + " dt " + num(components[i].dt);
     }
-    what += "); lengths within 1 % at equal dt are padded automatically; otherwise ask for resampling to "
-            "a common dt, zero-padded to the longest (--resample, or align = \"resample\" in a job's [[record]])";
+    what +=
+        "); lengths within 1 % at equal dt are padded automatically; otherwise ask for resampling to "
+        "a common dt, zero-padded to the longest (--resample, or align = \"resample\" in a job's [[record]])";
     throw InputError(name, 0, what);
   }
   double dt = dt0;
@@ -102,8 +99,10 @@ GroundMotion make_ground_motion(std::string name, std::vector<Component> compone
     }
     // zero-pad at the end: records end in quiet, so this keeps all data of the longest one
     for (auto& c : components) c.acc.resize(n, 0.0);
-    if (!same_dt) alignment = "resampled to dt " + num(dt) + " s, zero-padded to " + std::to_string(n) + " samples";
-    else if (!same_n) alignment = "zero-padded to " + std::to_string(n) + " samples (resampling asked for)";
+    if (!same_dt)
+      alignment = "resampled to dt " + num(dt) + " s, zero-padded to " + std::to_string(n) + " samples";
+    else if (!same_n)
+      alignment = "zero-padded to " + std::to_string(n) + " samples (resampling asked for)";
   }
   GroundMotion m;
   m.name = std::move(name);
@@ -160,13 +159,12 @@ GroundMotion windowed(const GroundMotion& m, double start, double end) {
   const double last_t = std::floor(end / m.dt + tol);
   const double n = double(m.npts());
   if (first >= n - 1)
-    throw InputError(m.name, 0, "time window starts at " + num(start) + " s, after the record (" +
-                                    num(m.duration()) + " s)");
+    throw InputError(m.name, 0,
+                     "time window starts at " + num(start) + " s, after the record (" + num(m.duration()) + " s)");
   const std::size_t i0 = std::size_t(first);
   const std::size_t i1 = last_t >= n - 1 ? m.npts() - 1 : std::size_t(last_t);
   if (i1 < i0 + 1)
-    throw InputError(m.name, 0, "time window [" + num(start) + ", " + num(end) +
-                                    "] s holds fewer than 2 samples");
+    throw InputError(m.name, 0, "time window [" + num(start) + ", " + num(end) + "] s holds fewer than 2 samples");
   GroundMotion r = m;
   for_each_component(r, [&](std::vector<double>& a) {
     a = std::vector<double>(a.begin() + std::ptrdiff_t(i0), a.begin() + std::ptrdiff_t(i1) + 1);
@@ -269,8 +267,7 @@ double target_pga_factor(const GroundMotion& m, double target_pga_g) {
   } else {
     measure = peak_abs(m.x);
   }
-  if (!(measure > 0.0))
-    throw InputError(m.name, 0, "cannot scale to a target PGA: horizontal acceleration is zero");
+  if (!(measure > 0.0)) throw InputError(m.name, 0, "cannot scale to a target PGA: horizontal acceleration is zero");
   return target_pga_g * kGravity / measure;
 }
 
@@ -288,7 +285,36 @@ GroundMotion transformed(const GroundMotion& m, const MotionTransform& t) {
   }
   if (f != 1.0) r = scaled(r, f);
   if (t.rotation != 0.0) r = rotated(r, t.rotation);
+  if (const auto bad = first_bad_drive_sample(r)) {
+    std::ostringstream what;
+    const std::vector<double>& c = bad->axis == 'x' ? r.x : bad->axis == 'y' ? r.y : r.z;
+    what.precision(3);
+    what << "the motion " << r.name << " scaled by " << f << ": " << bad->axis
+         << " at t = " << double(bad->index) * r.dt << " s is " << c[bad->index] / kGravity << " g: " << bad->problem;
+    throw InputError("", 0, what.str());
+  }
   return r;
+}
+
+std::string drive_sample_problem(double a) {
+  if (!std::isfinite(a)) return "not a finite number";
+  if (std::abs(a) <= kMaxDriveAccelerationG * kGravity) return "";
+  std::ostringstream what;
+  what << "beyond " << kMaxDriveAccelerationG << " g, more than any ground motion (a unit or scale mistake?)";
+  return what.str();
+}
+
+std::optional<BadDriveSample> first_bad_drive_sample(const GroundMotion& m, double factor) {
+  const std::pair<char, const std::vector<double>*> components[] = {{'x', &m.x}, {'y', &m.y}, {'z', &m.z}};
+  const std::size_t n = std::max({m.x.size(), m.y.size(), m.z.size()});
+  for (std::size_t i = 0; i < n; ++i) {
+    for (const auto& [axis, samples] : components) {
+      if (i >= samples->size()) continue;
+      if (std::string problem = drive_sample_problem((*samples)[i] * factor); !problem.empty())
+        return BadDriveSample{axis, i, std::move(problem)};
+    }
+  }
+  return std::nullopt;
 }
 
 }  // namespace rigid::motion

@@ -106,7 +106,7 @@ void check_settings(const CalibrationSettings& o) {
   if (o.keep < 1 || o.keep > 10) throw InputError("", 0, "--keep must be 1 to 10");
   if (!(o.refine_step_deg > 0 && o.refine_step_deg < 360.0 / o.headings))
     throw InputError("", 0, "--refine-step must be positive and below the coarse heading step");
-  if (!(o.tilt_deg > 0 && o.tilt_deg < 90)) throw InputError("", 0, "--tilt-deg must be in (0, 90)");
+  if (!(o.tilt_deg > 0 && o.tilt_deg < 90)) throw InputError("", 0, "--tilt-rule must be in (0, 90) deg");
   if (fs::path(o.out).filename().empty()) throw InputError("", 0, "--out needs DIR/NAME");
 }
 

@@ -9,6 +9,7 @@ fail a case; a hang is still killed after WALL_LIMIT_S. The inputs are made in a
 usage: robustness_test.py RIGID SOURCE_DIR
 """
 import os
+import re
 import resource
 import shutil
 import struct
@@ -50,6 +51,20 @@ def run(args, cwd):
     except subprocess.TimeoutExpired:
         status, err = 124, ""
     return status, err, child_cpu_s() - cpu, time.monotonic() - start
+
+
+def refusal_problems(status, err, cpu, wall):
+    """What keeps a run from being a clean refusal: over the limits, an exit other than 2, stderr
+    other than one `rigid: error:` line (`rigid fragility: error:` from the Python commands)."""
+    lines = err.splitlines()
+    problems = []
+    if cpu > TIME_LIMIT_S or wall > WALL_LIMIT_S:
+        problems.append("took %.1f s CPU, %.1f s wall" % (cpu, wall))
+    if status != 2:
+        problems.append("exit %d, not 2" % status)
+    if len(lines) != 1 or not re.match(r"rigid( [a-z]+)?: error: ", lines[0]):
+        problems.append("stderr is not one 'rigid: error:' line: " + " | ".join(lines[:4])[:400])
+    return problems
 
 
 # --- inputs -------------------------------------------------------------------------------------

@@ -209,7 +209,7 @@ TEST(ShaketableDesign, SettingsOutsideTheirRangesNameTheirFlag) {
   EXPECT_NE(message(bad).find("--flatten-base"), std::string::npos);
   bad = s;
   bad.tilt_deg = 90;
-  EXPECT_NE(message(bad).find("--tilt-deg"), std::string::npos);
+  EXPECT_NE(message(bad).find("--tilt-rule"), std::string::npos);
   bad = s;
   bad.headings = 3;
   EXPECT_NE(message(bad).find("--headings"), std::string::npos);

@@ -5,6 +5,7 @@
 /// No file I/O here (rigid::io reads and writes AT2 files).
 #include <cstddef>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,11 +22,11 @@ struct Component {
 /// one time step and one length. x is the first horizontal (H1), y the second (H2), z vertical
 /// (positive up). Absent components are empty vectors with has_y/has_z false.
 struct GroundMotion {
-  std::string name;          ///< set name (e.g. "CHY028" or the first file's stem)
-  double dt = 0.0;           ///< time step (unit: s)
-  std::vector<double> x;     ///< H1 acceleration (unit: m/s^2)
-  std::vector<double> y;     ///< H2 acceleration (unit: m/s^2), empty unless has_y
-  std::vector<double> z;     ///< vertical acceleration (unit: m/s^2), empty unless has_z
+  std::string name;       ///< set name (e.g. "CHY028" or the first file's stem)
+  double dt = 0.0;        ///< time step (unit: s)
+  std::vector<double> x;  ///< H1 acceleration (unit: m/s^2)
+  std::vector<double> y;  ///< H2 acceleration (unit: m/s^2), empty unless has_y
+  std::vector<double> z;  ///< vertical acceleration (unit: m/s^2), empty unless has_z
   bool has_y = false;
   bool has_z = false;
   std::string label_x, label_y, label_z;  ///< component labels from the sources
@@ -53,14 +54,35 @@ struct AlignOptions {
   double dt = 0.0;
 };
 
+/// The largest ground acceleration a drive may reach (unit: g). The strongest recorded peaks are
+/// near 4 g; beyond 50 g a record, a lab recording or a scale is a unit or scale mistake, and a
+/// simulation of it would answer "survived" or "overturned" about nothing physical.
+inline constexpr double kMaxDriveAccelerationG = 50.0;
+
+/// The one rule for a sample of a ground drive (a read record, a processed lab recording, a
+/// scaled motion): "" when the acceleration a (unit: m/s^2) may be one; otherwise why not: "not
+/// a finite number" or "beyond 50 g, more than any ground motion (a unit or scale mistake?)" (the
+/// caller names the value, in the units its user knows).
+std::string drive_sample_problem(double a);
+
+/// A sample that drive_sample_problem refuses: its component ('x', 'y', 'z'), index and problem.
+struct BadDriveSample {
+  char axis = 'x';
+  std::size_t index = 0;
+  std::string problem;
+};
+
+/// The first sample (lowest index; x, y, z at one index) of the motion times `factor` that
+/// drive_sample_problem refuses; nothing when every sample may drive a pedestal.
+std::optional<BadDriveSample> first_bad_drive_sample(const GroundMotion& m, double factor = 1.0);
+
 /// Builds a GroundMotion from 1, 2 or 3 components in the order H1, H2, V.
 /// Throws rigid::InputError (naming `name`) for 0 or more than 3 components, empty components,
 /// non-positive dt, or (unless options.resample) unequal dt (relative difference > 1e-9) or npts
 /// differing by more than kAutoPadFraction of the longest. Components of equal dt whose lengths
 /// differ by less (real NGA pairs often differ by a few samples) are zero-padded at the end to the
 /// longest, and `alignment` says so.
-GroundMotion make_ground_motion(std::string name, std::vector<Component> components,
-                                const AlignOptions& options = {});
+GroundMotion make_ground_motion(std::string name, std::vector<Component> components, const AlignOptions& options = {});
 
 /// Linear interpolation of a series sampled at dt_in onto dt_out; the result covers
 /// [0, (n-1)*dt_in] (last sample at or before the end). Exact for piecewise-linear input.
@@ -133,17 +155,18 @@ GroundVelocity ground_velocity(const GroundMotion& m, Baseline baseline = Baseli
 /// The transformation a campaign case applies to its record, in this order: window, scale
 /// (by factor, times target_pga_factor when target_pga_g > 0), rotate.
 struct MotionTransform {
-  double start = 0.0;  ///< window start (unit: s)
+  double start = 0.0;                                    ///< window start (unit: s)
   double end = std::numeric_limits<double>::infinity();  ///< window end (unit: s), inf = to end
-  double factor = 1.0;  ///< scale factor (unit: 1), applied on top of the target scaling
+  double factor = 1.0;        ///< scale factor (unit: 1), applied on top of the target scaling
   double target_pga_g = 0.0;  ///< if > 0: scale so the GMRotI50 PGA is this (unit: g)
   /// target_pga_factor(windowed motion, 1.0) if the caller has it (campaigns scale one record many
   /// times); 0 = computed here. The scale is this factor times target_pga_g either way.
   double pga_factor_per_g = 0.0;
-  double rotation = 0.0;      ///< rotation about z (unit: rad), convention of rotated()
+  double rotation = 0.0;  ///< rotation about z (unit: rad), convention of rotated()
 };
 
-/// Applies a MotionTransform (window, then scaling, then rotation).
+/// Applies a MotionTransform (window, then scaling, then rotation). Throws InputError (no file:
+/// the caller names the scale) when a sample of the result breaks drive_sample_problem.
 GroundMotion transformed(const GroundMotion& m, const MotionTransform& t);
 
 /// Factor that makes the motion's GMRotI50 PGA (its PGA with one horizontal component) equal to

@@ -15,6 +15,9 @@ from .outcomes import NOT_RUN, bins_of_records, fragility_from_probability, prob
 
 
 NOT_RECORDED = -1  # unconverged_steps of a cell not simulated, or of a cube written before the count
+# /axes/scale_g of a campaign run `scales = "as recorded"` (docs/cube.md): one scale, 0.0, each
+# record simulated at its own amplitude
+AS_RECORDED_SCALE = 0.0
 
 
 def _strings(ds):
@@ -36,6 +39,9 @@ class ObjectData:
         # [R, S, A] int32: steps of each cell's run whose contact solve stopped at its sweep cap;
         # NOT_RECORDED (-1) where not simulated, or for every cell of a cube written before the count
         self.unconverged_steps = unconverged_steps
+        # [R, S, A] bool or None: cells the reader added to lay an as-recorded cube on a PGA axis
+        # (Cube.as_recorded); they are not run and no campaign will run them
+        self.padding = None
 
     @property
     def label(self):
@@ -123,6 +129,9 @@ class Cube:
             try:
                 self.records = _strings(f["axes/record"])
                 self.scales = f["axes/scale_g"][()].astype(float)
+                self.as_recorded = len(self.scales) == 1 and self.scales[0] == AS_RECORDED_SCALE
+                if self.as_recorded:
+                    self.record_pga_g = f["records/gmroti_pga_g"][()].astype(float)
                 self.edges = f["axes/pgv_pga_edges_s"][()].astype(float)
                 self.pgv_pga = f["records/pgv_pga_s"][()].astype(float)
                 rec = f["records"]
@@ -150,6 +159,8 @@ class Cube:
                 raise InputError(f"{path}: not a Rigid fragility cube (missing {e})")
         items.sort(key=lambda t: t[0])
         self.objects = [o for _, o in items]
+        if self.as_recorded:
+            self._lay_on_record_pgas()
         R, S, B = len(self.records), len(self.scales), len(self.edges) - 1
         for o in self.objects:
             if o.outcome.shape[:2] != (R, S) or o.fragility.shape != (S, B):
@@ -181,6 +192,40 @@ class Cube:
         if self._wall_times:
             data.wall_s = np.asarray(read("wall_s"), float)
         return data
+
+    def _lay_on_record_pgas(self):
+        """An as-recorded cube has no scale axis: its one scale, 0.0, means "each record at its own
+        amplitude". Every reader of the cube asks for P(overturn) against PGA, so the reader gives
+        it one: the scale axis becomes the records' measured GMRotI50 PGAs (sorted, distinct) and
+        record r's cells sit at its own PGA; the other cells of its row are padding (not run, never
+        counted as incomplete)."""
+        pga = self.record_pga_g
+        if len(pga) != len(self.records) or not np.all(np.isfinite(pga) & (pga > 0)):
+            raise InputError(f"{self.path}: an as-recorded cube (scale 0.0) needs each record's measured "
+                             f"PGA (/records/gmroti_pga_g, positive)")
+        axis = np.unique(pga)
+        rows, cols = np.arange(len(pga)), np.searchsorted(axis, pga)
+
+        def spread(cells, fill):
+            out = np.full((cells.shape[0], len(axis)) + cells.shape[2:], fill, cells.dtype)
+            out[rows, cols] = cells[:, 0]
+            return out
+
+        for o in self.objects:
+            o.outcome = spread(o.outcome, NOT_RUN)
+            o.unconverged_steps = spread(o.unconverged_steps, NOT_RECORDED)
+            if hasattr(o, "wall_s"):
+                o.wall_s = spread(o.wall_s, np.nan)
+            o.padding = spread(np.zeros(o.outcome[:, :1].shape, bool), True)
+            o.probability = np.asarray(probability_from_outcome(o.outcome), float)
+            frag, cnt = fragility_from_probability(o.probability, self.pgv_pga, self.edges)
+            o.fragility, o.count = np.asarray(frag, float), np.asarray(cnt, int)
+        self.scales = axis
+
+    def counted_outcome(self, o):
+        """o.outcome with the padding of an as-recorded cube set to -1 (no outcome code): for counts
+        of cells."""
+        return o.outcome if o.padding is None else np.where(o.padding, np.int8(-1), o.outcome)
 
     def base_names(self):
         names = []
@@ -219,8 +264,8 @@ class Cube:
     def incomplete(self, state):
         """Why fits of this cube are provisional (cells not run; `state` of
         cube_files.campaign_state, taken before any lock of ours), or None when it is complete."""
-        total = sum(o.outcome.size for o in self.objects)
-        not_run = sum(int((o.outcome == NOT_RUN).sum()) for o in self.objects)
+        total = sum(int((self.counted_outcome(o) >= 0).sum()) for o in self.objects)
+        not_run = sum(int((self.counted_outcome(o) == NOT_RUN).sum()) for o in self.objects)
         parts = []
         if not_run:
             parts.append(f"{not_run} of {total} cells ({100 * not_run / total:.0f} %) not run")

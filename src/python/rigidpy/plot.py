@@ -342,13 +342,13 @@ def cmd_table(args):
         for o in c.select(args.object, args.variant):
             per = {}
             for r, name in enumerate(c.records):
-                cnt = outcome_counts(o.outcome[r:r + 1], si)
+                cnt = outcome_counts(c.counted_outcome(o)[r:r + 1], si)
                 per[name] = cnt
                 frac, known = overturn_fraction(cnt)
                 long_rows.append([c.label, o.label, name, "all" if si is None else f"{c.scales[si]:g}",
                                   cnt["survived"], cnt["overturned"], cnt["inferred"], cnt["not_run"],
                                   cnt["failed"], known, _fmt(frac, 6)])
-            allc = outcome_counts(o.outcome, si)
+            allc = outcome_counts(c.counted_outcome(o), si)
             frac, known = overturn_fraction(allc)
             long_rows.append([c.label, o.label, "all", "all" if si is None else f"{c.scales[si]:g}",
                               allc["survived"], allc["overturned"], allc["inferred"], allc["not_run"],
