@@ -53,8 +53,8 @@ void print_summary(const scan::ImportOptions& o, const scan::ImportResult& resul
   }
   if (const auto& rocking = result.rocking) {
     std::printf("settled: alpha %.4f rad, static toppling %.4f g towards azimuth %.0f deg, R %.4f m, p %.3f rad/s\n",
-                rocking->alpha, analysis::static_toppling_g(*rocking), rocking->azimuth * 180 / kPi + 0.0, rocking->radius,
-                rocking->p);
+                rocking->alpha, analysis::static_toppling_g(*rocking), rocking->azimuth * 180 / kPi + 0.0,
+                rocking->radius, rocking->p);
   }
 }
 

@@ -20,7 +20,9 @@ void add_motion_options(CLI::App& cmd, MotionOptions& o) {
   cmd.add_option("--target-pga", o.target_pga_g,
                  "Scale so the GMRotI50 PGA equals this (unit: g; with one horizontal, its PGA)")
       ->check(positive_number());
-  cmd.add_option("--start", o.start, "Start of the time window (s)")->capture_default_str()->check(non_negative_number());
+  cmd.add_option("--start", o.start, "Start of the time window (s)")
+      ->capture_default_str()
+      ->check(non_negative_number());
   cmd.add_option("--end", o.end, "End of the time window (s); default: end of the record")->check(positive_number());
   cmd.add_option("--rotation", o.rotation_deg,
                  "Rotate the horizontal components about z, counter-clockwise from above (deg; |angle| <= 1e6)")
@@ -47,8 +49,8 @@ motion::GroundMotion load_motion(const MotionOptions& o) {
   // the options' validators have refused non-finite and out-of-range values
   reject_lab_flags_without_file(o.lab);
   if (!o.path.empty() && !o.lab.file.empty()) throw InputError("", 0, "give --motion or --lab, not both");
-  const motion::GroundMotion read = o.lab.file.empty() ? io::read_motion_set(o.path)
-                                                       : io::read_lab_motion(o.lab.file, lab_format_from_flags(o.lab));
+  const motion::GroundMotion read =
+      o.lab.file.empty() ? io::read_motion_set(o.path) : io::read_lab_motion(o.lab.file, lab_format_from_flags(o.lab));
   const motion::GroundMotion record = windowed_record(read, o.start, o.end);
   motion::MotionTransform t;
   t.factor = o.factor;

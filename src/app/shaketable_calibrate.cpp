@@ -40,8 +40,9 @@ CalibrationSettings settings_of(const CalibrateFlags& f) {
   for (const std::string& text : f.contact_models) {
     const auto choice = rigid::shaketable::parse_contact_choice(text);
     if (!choice)
-      throw InputError("", 0,
-                       "--contact-models: '" + text + "' is neither rigid nor a penalty stiffness K_N in [1e5, 1e13] N/m^1.5");
+      throw InputError(
+          "", 0,
+          "--contact-models: '" + text + "' is neither rigid nor a penalty stiffness K_N in [1e5, 1e13] N/m^1.5");
     s.contact_models.push_back(*choice);
   }
   return s;
@@ -80,7 +81,8 @@ void add_shaketable_calibrate(CLI::App& parent) {
                   "Restitution values of the rigid contact (the first in stage 1, all in stage 2)")
       ->delimiter(',')
       ->capture_default_str();
-  cmd->add_option("--damping", o.damping, "Damping D of the penalty contact (s/m; the first in stage 1, all in stage 2)")
+  cmd->add_option("--damping", o.damping,
+                  "Damping D of the penalty contact (s/m; the first in stage 1, all in stage 2)")
       ->delimiter(',')
       ->capture_default_str();
   cmd->add_option("--friction", o.friction, "Friction coefficients (the first in stage 1, all in stage 2)")
@@ -88,7 +90,8 @@ void add_shaketable_calibrate(CLI::App& parent) {
       ->capture_default_str();
   cmd->add_option("--headings", o.headings, "Stage 1: headings on a full ring")->capture_default_str();
   cmd->add_option("--keep", o.keep, "Stage 2: the best stage-1 variants refined")->capture_default_str();
-  cmd->add_option("--refine-step", o.refine_step_deg, "Stage 2: heading step around each kept variant's best heading (deg)")
+  cmd->add_option("--refine-step", o.refine_step_deg,
+                  "Stage 2: heading step around each kept variant's best heading (deg)")
       ->capture_default_str();
   CLI::Option* tilt = cmd->add_option("--tilt-rule", o.tilt_deg,
                                       "Overturned = tilted beyond this angle (deg), as for rigid model import")
@@ -98,8 +101,8 @@ void add_shaketable_calibrate(CLI::App& parent) {
   cmd->add_option("--pedestal-margin", o.pedestal_margin, "The table: overhang of the box under the rock (m)")
       ->capture_default_str();
   cmd->add_flag("--restart", o.restart,
-               "Start over: remove the work folder OUT.calibration/ of an earlier calibration into the same OUT (a "
-               "rerun otherwise resumes it, and is refused when its inputs, settings or outcomes changed)");
+                "Start over: remove the work folder OUT.calibration/ of an earlier calibration into the same OUT (a "
+                "rerun otherwise resumes it, and is refused when its inputs, settings or outcomes changed)");
   shaketable::add_recording_options(*cmd, o.lab_format, f->progress);
   cmd->callback([f] {
     std::unique_ptr<rigid::shaketable::Calibrator> calibrator;

@@ -62,7 +62,8 @@ void add_shaketable_fragility(CLI::App& parent) {
     shaketable::run_designed_campaigns(
         [&](const campaign::CampaignResult* previous) -> std::optional<campaign::CampaignOptions> {
           if (!design)
-            design = std::make_unique<rigid::shaketable::FragilityDesign>(o, shaketable::command_callbacks(f->progress));
+            design =
+                std::make_unique<rigid::shaketable::FragilityDesign>(o, shaketable::command_callbacks(f->progress));
           return design->next(previous);
         },
         [&](const campaign::CampaignResult& result) { work = design->write_fit_inputs(*result.cube); });

@@ -44,8 +44,8 @@ void add_shaketable_predict(CLI::App& parent) {
     shaketable::run_designed_campaigns(
         [&](const campaign::CampaignResult* previous) -> std::optional<campaign::CampaignOptions> {
           if (!predictor)
-            predictor = std::make_unique<rigid::shaketable::Predictor>(f->settings,
-                                                                       shaketable::command_callbacks(f->progress));
+            predictor =
+                std::make_unique<rigid::shaketable::Predictor>(f->settings, shaketable::command_callbacks(f->progress));
           return predictor->next(previous);
         },
         [&](const campaign::CampaignResult& result) {
@@ -58,8 +58,9 @@ void add_shaketable_calibrate(CLI::App& parent);
 void add_shaketable_fragility(CLI::App& parent);
 
 void register_shaketable_command(CLI::App& app) {
-  CLI::App* cmd = app.add_subcommand("shaketable", "A scanned rock against shake-table tests: calibrate its physics on "
-                                                   "observed outcomes, predict others (docs/validation-shaketable.md)");
+  CLI::App* cmd = app.add_subcommand("shaketable",
+                                     "A scanned rock against shake-table tests: calibrate its physics on "
+                                     "observed outcomes, predict others (docs/validation-shaketable.md)");
   cmd->require_subcommand(1);
   add_shaketable_calibrate(*cmd);
   add_shaketable_predict(*cmd);

@@ -187,7 +187,8 @@ Scores score(const std::vector<double>& probability, const std::vector<int>& obs
   s.recall = positives ? double(s.true_positive) / positives : 0.0;
   const double specificity = negatives ? double(s.true_negative) / negatives : 0.0;
   s.balanced_accuracy = 0.5 * (s.recall + specificity);
-  s.precision = s.true_positive + s.false_positive ? double(s.true_positive) / (s.true_positive + s.false_positive) : 0.0;
+  s.precision =
+      s.true_positive + s.false_positive ? double(s.true_positive) / (s.true_positive + s.false_positive) : 0.0;
   s.brier = brier / s.tests;
   return s;
 }

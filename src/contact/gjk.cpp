@@ -151,8 +151,7 @@ int support_vertex(const PlacedHull& hull, const Vec3& dir, int& hint) {
   return current;
 }
 
-LinkResult shortest_link(const PlacedHull& a, const PlacedHull& b, const Vec3& guess,
-                         SupportHints& hints) {
+LinkResult shortest_link(const PlacedHull& a, const PlacedHull& b, const Vec3& guess, SupportHints& hints) {
   const double scale = a.shape->bounding_radius + b.shape->bounding_radius;
   const double tiny = 1e-24 * scale * scale;
 
@@ -184,15 +183,20 @@ LinkResult shortest_link(const PlacedHull& a, const PlacedHull& b, const Vec3& g
     const Simplex before = s;
     s.p[s.n++] = w;
     switch (s.n) {
-      case 2: closest_on_segment(s); break;
-      case 3: closest_on_triangle(s, 0, 1, 2); break;
+      case 2:
+        closest_on_segment(s);
+        break;
+      case 3:
+        closest_on_triangle(s, 0, 1, 2);
+        break;
       case 4:
         if (!closest_on_tetrahedron(s)) {
           out.overlapping = true;
           return out;
         }
         break;
-      default: break;
+      default:
+        break;
     }
     const Vec3 next = s.point();
     // guard against cycling from round-off: the distance must strictly decrease

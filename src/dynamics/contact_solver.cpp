@@ -62,9 +62,9 @@ double largest_motion_change(const std::vector<SolverBody>& bodies, const std::v
   double change = 0;
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     if (bodies[i].inverse_mass == 0) continue;
-    change = std::max({change, (bodies[i].velocity - before[i].velocity).cwiseAbs().maxCoeff() / settings.velocity_tolerance,
-                       (bodies[i].angular_velocity - before[i].angular_velocity).cwiseAbs().maxCoeff() /
-                           settings.angular_tolerance});
+    change = std::max(
+        {change, (bodies[i].velocity - before[i].velocity).cwiseAbs().maxCoeff() / settings.velocity_tolerance,
+         (bodies[i].angular_velocity - before[i].angular_velocity).cwiseAbs().maxCoeff() / settings.angular_tolerance});
   }
   return change;
 }
@@ -74,12 +74,14 @@ double largest_motion_change(const std::vector<SolverBody>& bodies, const std::v
 void set_tangents(FrictionPatch& p) {
   // any orthonormal pair completing n: the limit is isotropic, so which one is immaterial
   const Vec3& n = p.normal;
-  const Vec3 helper = std::abs(n.x()) < 0.57735 ? Vec3::UnitX() : (std::abs(n.y()) < 0.57735 ? Vec3::UnitY() : Vec3::UnitZ());
+  const Vec3 helper =
+      std::abs(n.x()) < 0.57735 ? Vec3::UnitX() : (std::abs(n.y()) < 0.57735 ? Vec3::UnitY() : Vec3::UnitZ());
   p.tangent1 = n.cross(helper).normalized();
   p.tangent2 = n.cross(p.tangent1);
 }
 
-void prepare(const std::vector<SolverBody>& bodies, std::vector<ContactRow>& rows, std::vector<FrictionPatch>& patches) {
+void prepare(const std::vector<SolverBody>& bodies, std::vector<ContactRow>& rows,
+             std::vector<FrictionPatch>& patches) {
   for (auto& r : rows) {
     const SolverBody& a = bodies[r.a];
     const SolverBody& b = bodies[r.b];
@@ -105,7 +107,8 @@ void prepare(const std::vector<SolverBody>& bodies, std::vector<ContactRow>& row
     for (int i = 0; i < 3; ++i) {
       for (int j = 0; j < 3; ++j) {
         const double linear = (i < 2 && j < 2 && i == j) ? a.inverse_mass + b.inverse_mass : 0.0;
-        k(i, j) = linear + angular_a[i].dot(a.inverse_inertia * angular_a[j]) + angular_b[i].dot(b.inverse_inertia * angular_b[j]);
+        k(i, j) = linear + angular_a[i].dot(a.inverse_inertia * angular_a[j]) +
+                  angular_b[i].dot(b.inverse_inertia * angular_b[j]);
       }
     }
     p.mass.setZero();
@@ -169,8 +172,7 @@ SolverResult solve_velocities(std::vector<SolverBody>& bodies, std::vector<Conta
 }
 
 void solve_correction(const std::vector<SolverBody>& bodies, std::vector<SolverBody>& pseudo,
-                      std::vector<ContactRow>& rows, const SolverSettings& settings,
-                      std::vector<SolverBody>& scratch) {
+                      std::vector<ContactRow>& rows, const SolverSettings& settings, std::vector<SolverBody>& scratch) {
   pseudo.resize(bodies.size());
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     pseudo[i] = bodies[i];

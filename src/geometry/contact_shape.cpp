@@ -5,8 +5,8 @@
 
 #include <algorithm>
 #include <array>
-#include <cstdint>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <queue>
 #include <stdexcept>
@@ -266,7 +266,8 @@ ConvexPiece reduced_hull(std::span<const Vec3> points, int max_vertices, double 
 
 Decomposition convex_decomposition(const ClosedMesh& mesh, const DecompositionOptions& options) {
   if (!(options.concavity >= 0) || options.max_pieces < 1 || options.max_vertices < 4 || options.positions < 1) {
-    throw std::invalid_argument("convex_decomposition: concavity >= 0, max_pieces >= 1, max_vertices >= 4, positions >= 1");
+    throw std::invalid_argument(
+        "convex_decomposition: concavity >= 0, max_pieces >= 1, max_vertices >= 4, positions >= 1");
   }
   // the principal frame: cells are boxes along the rock's own axes
   const MassProperties props = mass_properties(mesh, 1.0);
@@ -397,7 +398,9 @@ std::array<int, 2> find_self_intersection(const ClosedMesh& mesh) {
   }
   std::sort(entries.begin(), entries.end());
   const double eps = 1e-12 * extent.norm() * extent.norm() * extent.norm();
-  auto orient = [](const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) { return orient_cross(a, b, c).dot(d - a); };
+  auto orient = [](const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+    return orient_cross(a, b, c).dot(d - a);
+  };
   // segment p-q crosses triangle abc properly (no touching)
   auto crosses = [&](const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c) {
     const double sp = orient(a, b, c, p), sq = orient(a, b, c, q);
@@ -411,8 +414,8 @@ std::array<int, 2> find_self_intersection(const ClosedMesh& mesh) {
         if (i == j) return false;  // neighbours meet by construction
       }
     }
-    const Vec3 *p[3] = {&v[tris[s][0]], &v[tris[s][1]], &v[tris[s][2]]};
-    const Vec3 *q[3] = {&v[tris[t][0]], &v[tris[t][1]], &v[tris[t][2]]};
+    const Vec3* p[3] = {&v[tris[s][0]], &v[tris[s][1]], &v[tris[s][2]]};
+    const Vec3* q[3] = {&v[tris[t][0]], &v[tris[t][1]], &v[tris[t][2]]};
     for (int e = 0; e < 3; ++e) {
       if (crosses(*p[e], *p[(e + 1) % 3], *q[0], *q[1], *q[2])) return true;
       if (crosses(*q[e], *q[(e + 1) % 3], *p[0], *p[1], *p[2])) return true;

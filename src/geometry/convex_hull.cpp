@@ -132,8 +132,7 @@ class Hull {
   }
 
   bool set_plane(HullFace& face) const {
-    const Vec3 a = p_[face.v[0]] - center_, b = p_[face.v[1]] - center_,
-               c = p_[face.v[2]] - center_;
+    const Vec3 a = p_[face.v[0]] - center_, b = p_[face.v[1]] - center_, c = p_[face.v[2]] - center_;
     const Vec3 n = area_vector(a, b, c);
     const double len = n.norm();
     if (!(len > 0)) return false;
@@ -329,23 +328,20 @@ class Hull {
         }
       }
       // then bends (a sliver's plane is unreliable, so slivers are resolved first)
-      for (std::size_t h = 0;
-           ok && checks != Checks::none && grow_face < 0 && hide_vertex < 0 && h < horizon.size();
+      for (std::size_t h = 0; ok && checks != Checks::none && grow_face < 0 && hide_vertex < 0 && h < horizon.size();
            ++h) {
         const auto& e = horizon[h];
         // the edge with the old face across: bent the wrong way either side means that face
         // should have been visible
         const int far_old = faces_[e.face].v[(e.slot + 2) % 3];
-        if (bent(created[h], e.a, e.b, far_old, checks) ||
-            bent(faces_[e.face], e.a, e.b, apex, checks)) {
+        if (bent(created[h], e.a, e.b, far_old, checks) || bent(faces_[e.face], e.a, e.b, apex, checks)) {
           grow_face = e.face;
           break;
         }
         // the edge b -> apex with the next new face: bent the wrong way means b is reflex, so
         // the apex hides it (if that cuts off too much, b comes back as an outside point)
         const std::size_t next = static_cast<std::size_t>(start_[e.b]);
-        if (bent(created[h], e.b, apex, horizon[next].b, checks) ||
-            bent(created[next], e.b, apex, e.a, checks)) {
+        if (bent(created[h], e.b, apex, horizon[next].b, checks) || bent(created[next], e.b, apex, e.a, checks)) {
           hide_vertex = e.b;
           break;
         }
@@ -422,9 +418,7 @@ class Hull {
   }
 
   // signed distance of point i above the plane of a face (unit: m)
-  double height(const HullFace& face, int i) const {
-    return face.normal.dot(p_[i] - center_) - face.offset;
-  }
+  double height(const HullFace& face, int i) const { return face.normal.dot(p_[i] - center_) - face.offset; }
 
   const std::vector<Vec3>& p_;
   std::vector<HullFace> faces_;

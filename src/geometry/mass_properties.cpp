@@ -26,8 +26,7 @@ Moments integrate(const ClosedMesh& mesh, const Vec3& origin) {
     const Vec3 s = a + b + c;
     m.volume += det / 6.0;
     m.first += (det / 24.0) * s;
-    m.second += (det / 120.0) *
-                (a * a.transpose() + b * b.transpose() + c * c.transpose() + s * s.transpose());
+    m.second += (det / 120.0) * (a * a.transpose() + b * b.transpose() + c * c.transpose() + s * s.transpose());
   }
   return m;
 }
@@ -41,8 +40,7 @@ MassProperties mass_properties(const ClosedMesh& mesh, double density) {
   const auto nv = static_cast<long long>(mesh.vertices.size());
   for (const auto& t : mesh.triangles) {
     for (int v : t) {
-      if (v < 0 || v >= nv)
-        throw std::invalid_argument("mass_properties: vertex index out of range");
+      if (v < 0 || v >= nv) throw std::invalid_argument("mass_properties: vertex index out of range");
     }
   }
   if (mesh.triangles.empty()) throw std::invalid_argument("mass_properties: mesh has no triangles");

@@ -55,7 +55,8 @@ bool inside(const std::vector<Point2>& polygon, const Point2& p) {
   bool in = false;
   for (std::size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++) {
     const Point2 &a = polygon[i], &b = polygon[j];
-    if ((a.y() > p.y()) != (b.y() > p.y()) && p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x()) in = !in;
+    if ((a.y() > p.y()) != (b.y() > p.y()) && p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x())
+      in = !in;
   }
   return in;
 }
@@ -111,8 +112,10 @@ SplitMesh split_by_plane(const ClosedMesh& mesh, double level) {
         below.push_back(x);
         // walking the facet counter-clockwise (outward), the surface goes from below to above
         // at `leave` and back at `enter`
-        if (!a_up) leave = x;
-        else enter = x;
+        if (!a_up)
+          leave = x;
+        else
+          enter = x;
         ++crossings;
       }
     }

@@ -6,7 +6,7 @@
 namespace rigid::geometry {
 
 void convex_hull_2d(std::span<const Point2> points, std::vector<int>& hull, std::vector<int>& order,
-                 double collinear_tolerance) {
+                    double collinear_tolerance) {
   order.resize(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) order[i] = static_cast<int>(i);
   std::sort(order.begin(), order.end(), [&](int a, int b) {

@@ -20,16 +20,12 @@ Vec3 area_vector(const Vec3& a, const Vec3& b, const Vec3& c) {
 }
 
 // Angle between unit vectors; atan2 keeps it accurate near zero, where acos loses digits.
-double angle_between(const Vec3& u, const Vec3& v) {
-  return std::atan2(u.cross(v).norm(), u.dot(v));
-}
+double angle_between(const Vec3& u, const Vec3& v) { return std::atan2(u.cross(v).norm(), u.dot(v)); }
 
 // Boundary loop of a set of triangles (directed edges whose twin lies outside the set), starting
 // at its smallest vertex. Empty when the boundary is not one simple loop (a pinch or a hole).
-std::vector<int> boundary_loop(const std::vector<std::array<int, 3>>& tris,
-                               const std::vector<std::array<int, 3>>& nb,
-                               const std::vector<int>& face_of, const std::vector<int>& members,
-                               int face) {
+std::vector<int> boundary_loop(const std::vector<std::array<int, 3>>& tris, const std::vector<std::array<int, 3>>& nb,
+                               const std::vector<int>& face_of, const std::vector<int>& members, int face) {
   std::map<int, int> next;  // ordered: the result does not depend on hashing
   std::size_t edges = 0;
   for (int t : members) {
@@ -55,8 +51,7 @@ std::vector<int> boundary_loop(const std::vector<std::array<int, 3>>& tris,
 
 }  // namespace
 
-ConvexPolyhedron make_polyhedron(const ClosedMesh& mesh, const MassProperties& props,
-                                 const MeshOptions& options) {
+ConvexPolyhedron make_polyhedron(const ClosedMesh& mesh, const MassProperties& props, const MeshOptions& options) {
   if (mesh.triangles.empty()) throw std::invalid_argument("make_polyhedron: mesh has no triangles");
   const std::vector<std::array<int, 3>> nb = triangle_neighbors(mesh);  // checks indices
   for (const auto& n : nb) {
@@ -196,7 +191,8 @@ ConvexPolyhedron make_piece(const ClosedMesh& convex_mesh, const ConvexPolyhedro
   }
   piece.bounding_centre = 0.5 * (lo + hi);
   piece.bounding_radius = 0;
-  for (const Vec3& x : piece.vertices) piece.bounding_radius = std::max(piece.bounding_radius, (x - piece.bounding_centre).norm());
+  for (const Vec3& x : piece.vertices)
+    piece.bounding_radius = std::max(piece.bounding_radius, (x - piece.bounding_centre).norm());
   return piece;
 }
 
@@ -227,7 +223,8 @@ CompoundBody build_compound(const ClosedMesh& mesh, const std::vector<ClosedMesh
   if (convex_pieces.empty()) throw std::invalid_argument("build_compound: no contact pieces");
   const MassProperties props = mass_properties(mesh, density);
   std::vector<Vec3> corners;
-  for (const ClosedMesh& piece : convex_pieces) corners.insert(corners.end(), piece.vertices.begin(), piece.vertices.end());
+  for (const ClosedMesh& piece : convex_pieces)
+    corners.insert(corners.end(), piece.vertices.begin(), piece.vertices.end());
   MeshOptions hull_options = options;
   hull_options.require_convex = true;
   const ClosedMesh outline = make_closed_mesh(convex_hull(corners), hull_options, "outline of the contact pieces");

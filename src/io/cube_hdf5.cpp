@@ -6,8 +6,7 @@ namespace rigid::io {
 namespace {
 
 herr_t collect_error(unsigned, const H5E_error2_t* e, void* out) {
-  if (e->desc != nullptr && e->desc[0] != '\0')
-    static_cast<std::vector<std::string>*>(out)->push_back(e->desc);
+  if (e->desc != nullptr && e->desc[0] != '\0') static_cast<std::vector<std::string>*>(out)->push_back(e->desc);
   return 0;
 }
 
@@ -34,8 +33,7 @@ Hid string_type(const H5& h) {
 
 Hid dataspace(const H5& h, const std::vector<hsize_t>& dims) {
   if (dims.empty()) return h.own(H5Screate(H5S_SCALAR), H5Sclose, "creating a scalar dataspace");
-  return h.own(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), H5Sclose,
-               "creating a dataspace");
+  return h.own(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), H5Sclose, "creating a dataspace");
 }
 
 /// File access: the file is only ever written under a private PATH.tmp name and renamed into

@@ -18,7 +18,8 @@ namespace rigid::io {
 /// does not admit (negative friction, restitution above 1), an empty range or list, both tables.
 /// Scene files of a `scene` parameter are resolved against `base` and must exist; `objects` is
 /// the number of [[object]]s (alternative scenes need exactly one).
-scenario::VariantSpace read_variants(const toml::table& root, const std::string& path, const std::filesystem::path& base,
-                                     std::uint64_t campaign_seed, std::size_t objects, std::vector<long>& lines);
+scenario::VariantSpace read_variants(const toml::table& root, const std::string& path,
+                                     const std::filesystem::path& base, std::uint64_t campaign_seed,
+                                     std::size_t objects, std::vector<long>& lines);
 
 }  // namespace rigid::io

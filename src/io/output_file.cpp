@@ -43,7 +43,8 @@ void InputFiles::refuse_as_output(const std::string& output) const {
   if (::stat(output.c_str(), &out) != 0) return;
   if (S_ISDIR(out.st_mode)) throw InputError(output, 0, "is a directory; an output file cannot replace it");
   for (const Identity& f : files_) {
-    if (f.device == static_cast<unsigned long long>(out.st_dev) && f.inode == static_cast<unsigned long long>(out.st_ino))
+    if (f.device == static_cast<unsigned long long>(out.st_dev) &&
+        f.inode == static_cast<unsigned long long>(out.st_ino))
       throw InputError(output, 0, "is the input " + f.path + "; choose another output file");
   }
 }
@@ -57,7 +58,8 @@ void InputFiles::refuse_folder(const std::string& folder) const {
     if (ec) continue;
     const auto [d, i] = std::mismatch(dir.begin(), dir.end(), in.begin(), in.end());
     if (d == dir.end())
-      throw InputError(folder, 0, "holds the input " + f.path + ", and the command writes into it; choose another --out");
+      throw InputError(folder, 0,
+                       "holds the input " + f.path + ", and the command writes into it; choose another --out");
   }
 }
 

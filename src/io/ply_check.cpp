@@ -20,7 +20,7 @@ struct Property {
   bool integer = false;  // the value (or each item) is an integer type
   bool is_signed = false;
   bool list = false;
-  int count_size = 0;    // list: bytes of the item count
+  int count_size = 0;  // list: bytes of the item count
   bool count_signed = false;
   bool count_integer = false;
 };
@@ -42,11 +42,11 @@ struct ScalarType {
 
 ScalarType scalar_type(const std::string& name) {
   static const std::pair<const char*, ScalarType> types[] = {
-      {"char", {1, true, true}},     {"int8", {1, true, true}},     {"uchar", {1, true, false}},
-      {"uint8", {1, true, false}},   {"short", {2, true, true}},    {"int16", {2, true, true}},
-      {"ushort", {2, true, false}},  {"uint16", {2, true, false}},  {"int", {4, true, true}},
-      {"int32", {4, true, true}},    {"uint", {4, true, false}},    {"uint32", {4, true, false}},
-      {"float", {4, false, true}},   {"float32", {4, false, true}}, {"double", {8, false, true}},
+      {"char", {1, true, true}},    {"int8", {1, true, true}},     {"uchar", {1, true, false}},
+      {"uint8", {1, true, false}},  {"short", {2, true, true}},    {"int16", {2, true, true}},
+      {"ushort", {2, true, false}}, {"uint16", {2, true, false}},  {"int", {4, true, true}},
+      {"int32", {4, true, true}},   {"uint", {4, true, false}},    {"uint32", {4, true, false}},
+      {"float", {4, false, true}},  {"float32", {4, false, true}}, {"double", {8, false, true}},
       {"float64", {8, false, true}}};
   for (const auto& [type_name, type] : types) {
     if (name == type_name) return type;
@@ -111,10 +111,14 @@ Header read_header(std::string_view bytes, const std::string& name) {
       if (has_format) throw InputError(name, line_no, "a second format line in the PLY header");
       if (!h.elements.empty()) throw InputError(name, line_no, "the format line must come before the elements");
       if (w.size() != 3 || w[2] != "1.0") throw InputError(name, line_no, "format line must be 'format TYPE 1.0'");
-      if (w[1] == "ascii") h.format = Format::ascii;
-      else if (w[1] == "binary_little_endian") h.format = Format::little_endian;
-      else if (w[1] == "binary_big_endian") h.format = Format::big_endian;
-      else throw InputError(name, line_no, "unknown PLY format '" + w[1] + "'");
+      if (w[1] == "ascii")
+        h.format = Format::ascii;
+      else if (w[1] == "binary_little_endian")
+        h.format = Format::little_endian;
+      else if (w[1] == "binary_big_endian")
+        h.format = Format::big_endian;
+      else
+        throw InputError(name, line_no, "unknown PLY format '" + w[1] + "'");
       has_format = true;
     } else if (w[0] == "element") {
       if (w.size() != 3) throw InputError(name, line_no, "element line must be 'element NAME COUNT'");
@@ -122,18 +126,21 @@ Header read_header(std::string_view bytes, const std::string& name) {
       e.name = w[1];
       e.line = line_no;
       const auto [end, ec] = std::from_chars(w[2].data(), w[2].data() + w[2].size(), e.count);
-      if (ec != std::errc() || end != w[2].data() + w[2].size() || e.count > std::numeric_limits<std::uint32_t>::max()) {
+      if (ec != std::errc() || end != w[2].data() + w[2].size() ||
+          e.count > std::numeric_limits<std::uint32_t>::max()) {
         throw InputError(name, line_no, "element '" + e.name + "': count '" + w[2] + "' is not a number below 2^32");
       }
       for (const auto& other : h.elements) {
         if (other.name == e.name) throw InputError(name, line_no, "element '" + e.name + "' declared twice");
       }
-      if (e.name == "tristrips") throw InputError(name, line_no, "triangle strips are not read: save the mesh with faces");
+      if (e.name == "tristrips")
+        throw InputError(name, line_no, "triangle strips are not read: save the mesh with faces");
       h.elements.push_back(e);
     } else if (w[0] == "property") {
       if (h.elements.empty()) throw InputError(name, line_no, "property before any element");
       Element& e = h.elements.back();
-      if (e.properties.size() >= kMaxProperties) throw InputError(name, line_no, "more than 256 properties in one element");
+      if (e.properties.size() >= kMaxProperties)
+        throw InputError(name, line_no, "more than 256 properties in one element");
       Property p;
       if (w.size() == 5 && w[1] == "list") {
         const ScalarType count = scalar_type(w[2]), item = scalar_type(w[3]);
@@ -177,7 +184,8 @@ void check_elements(Header& h, const std::string& name, std::uint64_t& vertices)
       for (const char* axis : {"x", "y", "z"}) {
         bool found = false;
         for (const auto& p : e.properties) found = found || (p.name == axis && !p.list);
-        if (!found) throw InputError(name, e.line, std::string("element 'vertex' has no scalar property '") + axis + "'");
+        if (!found)
+          throw InputError(name, e.line, std::string("element 'vertex' has no scalar property '") + axis + "'");
       }
     } else if (e.name == "face") {
       has_face = true;
@@ -205,8 +213,10 @@ void check_counts_fit(const Header& h, std::size_t body_bytes, const std::string
     for (std::size_t k = 0; k < e.properties.size(); ++k) {
       const Property& p = e.properties[k];
       const int least_items = int(k) == e.corners ? 3 : 0;
-      if (h.format == Format::ascii) record += 2.0L * (1 + (p.list ? least_items : 0));
-      else record += p.list ? p.count_size + least_items * p.size : p.size;
+      if (h.format == Format::ascii)
+        record += 2.0L * (1 + (p.list ? least_items : 0));
+      else
+        record += p.list ? p.count_size + least_items * p.size : p.size;
     }
     needed += record * static_cast<long double>(e.count);
     if (needed > static_cast<long double>(body_bytes) + 1) {
@@ -253,14 +263,13 @@ struct BinaryReader {
   }
 };
 
-std::string record_name(const Element& e, std::uint64_t r) {
-  return e.name + " " + std::to_string(r);
-}
+std::string record_name(const Element& e, std::uint64_t r) { return e.name + " " + std::to_string(r); }
 
 void check_corner_count(double n, const Element& e, std::uint64_t r, const std::string& name, long line) {
   if (n < 3) {
-    throw InputError(name, line, record_name(e, r) + " has " + std::to_string(static_cast<long long>(n)) +
-                                     " corners: points and lines are no surface");
+    throw InputError(name, line,
+                     record_name(e, r) + " has " + std::to_string(static_cast<long long>(n)) +
+                         " corners: points and lines are no surface");
   }
 }
 
@@ -297,7 +306,8 @@ void check_binary_body(const Header& h, std::string_view bytes, std::uint64_t ve
           in.pos += std::size_t(n) * p.size;
           continue;
         }
-        for (std::size_t c = 0; c < std::size_t(n); ++c) check_corner(in.value(p.size, true, p.is_signed), vertices, e, r, name, 0);
+        for (std::size_t c = 0; c < std::size_t(n); ++c)
+          check_corner(in.value(p.size, true, p.is_signed), vertices, e, r, name, 0);
       }
     }
   }
@@ -330,7 +340,8 @@ struct AsciiReader {
   std::string_view word() {
     while (pos < bytes.size() && (bytes[pos] == ' ' || bytes[pos] == '\t' || bytes[pos] == '\r')) ++pos;
     const std::size_t start = pos;
-    while (pos < bytes.size() && bytes[pos] != ' ' && bytes[pos] != '\t' && bytes[pos] != '\r' && bytes[pos] != '\n') ++pos;
+    while (pos < bytes.size() && bytes[pos] != ' ' && bytes[pos] != '\t' && bytes[pos] != '\r' && bytes[pos] != '\n')
+      ++pos;
     return bytes.substr(start, pos - start);
   }
 };
@@ -348,15 +359,17 @@ double ascii_number(std::string_view word, bool integer, const Element& e, std::
     if (ec == std::errc() && stop == end) return v;
   }
   if (word.empty()) throw InputError(name, line, record_name(e, r) + ": the line ends before the record does");
-  throw InputError(name, line, record_name(e, r) + ": '" + std::string(word.substr(0, 32)) + "' is not " +
-                                   (integer ? "an integer" : "a number"));
+  throw InputError(name, line,
+                   record_name(e, r) + ": '" + std::string(word.substr(0, 32)) + "' is not " +
+                       (integer ? "an integer" : "a number"));
 }
 
 void check_ascii_body(const Header& h, std::string_view bytes, std::uint64_t vertices, const std::string& name) {
   AsciiReader in{bytes, h.body, h.body_line};
   for (const Element& e : h.elements) {
     for (std::uint64_t r = 0; r < e.count; ++r) {
-      if (!in.next_line()) throw InputError(name, in.line, "the file ends before " + record_name(e, r) + " (truncated)");
+      if (!in.next_line())
+        throw InputError(name, in.line, "the file ends before " + record_name(e, r) + " (truncated)");
       const long line = in.line;
       for (std::size_t k = 0; k < e.properties.size(); ++k) {
         const Property& p = e.properties[k];
@@ -369,14 +382,17 @@ void check_ascii_body(const Header& h, std::string_view bytes, std::uint64_t ver
         if (n < 0) throw InputError(name, line, record_name(e, r) + ": negative list length");
         // each item needs at least two bytes: more than the rest of the file holds is a wrong count
         if (n > double(bytes.size() - in.pos)) {
-          throw InputError(name, line, record_name(e, r) + ": the list is longer than the rest of the file (truncated, or a wrong count)");
+          throw InputError(
+              name, line,
+              record_name(e, r) + ": the list is longer than the rest of the file (truncated, or a wrong count)");
         }
         for (std::size_t c = 0; c < std::size_t(n); ++c) {
           const double v = ascii_number(in.word(), p.integer, e, r, name, line);
           if (int(k) == e.corners) check_corner(v, vertices, e, r, name, line);
         }
       }
-      if (!in.word().empty()) throw InputError(name, line, record_name(e, r) + ": more values than the header declares");
+      if (!in.word().empty())
+        throw InputError(name, line, record_name(e, r) + ": more values than the header declares");
     }
   }
 }
@@ -388,8 +404,10 @@ void check_ply(std::string_view bytes, const std::string& name) {
   std::uint64_t vertices = 0;
   check_elements(h, name, vertices);
   check_counts_fit(h, bytes.size() - h.body, name);
-  if (h.format == Format::ascii) check_ascii_body(h, bytes, vertices, name);
-  else check_binary_body(h, bytes, vertices, name);
+  if (h.format == Format::ascii)
+    check_ascii_body(h, bytes, vertices, name);
+  else
+    check_binary_body(h, bytes, vertices, name);
 }
 
 }  // namespace rigid::io

@@ -72,7 +72,8 @@ Digests parse_digests(std::string_view text) {
     const std::size_t nl = text.find('\n');
     const std::string_view line = text.substr(0, nl);
     text = nl == std::string_view::npos ? std::string_view() : text.substr(nl + 1);
-    if (line.size() > 66 && line.substr(64, 2) == "  ") d.push_back({std::string(line.substr(66)), std::string(line.substr(0, 64))});
+    if (line.size() > 66 && line.substr(64, 2) == "  ")
+      d.push_back({std::string(line.substr(66)), std::string(line.substr(0, 64))});
   }
   return d;
 }

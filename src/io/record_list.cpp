@@ -75,13 +75,11 @@ bool to_double(std::string_view s, double& v) {
   return r.ec == std::errc() && r.ptr == s.data() + s.size() && std::isfinite(v);
 }
 
-double field(std::string_view s, const std::string& file, long line, const char* what,
-             bool optional) {
+double field(std::string_view s, const std::string& file, long line, const char* what, bool optional) {
   double v = 0.0;
   if (trim(s).empty() && optional) return std::numeric_limits<double>::quiet_NaN();
   if (!to_double(s, v))
-    throw InputError(file, line, std::string(what) + " is not a number: '" +
-                                     std::string(trim(s).substr(0, 40)) + "'");
+    throw InputError(file, line, std::string(what) + " is not a number: '" + std::string(trim(s).substr(0, 40)) + "'");
   return v;
 }
 
@@ -90,9 +88,7 @@ void check_window(const RecordEntry& e, const std::string& file) {
     throw InputError(file, e.line, "bad time window: start must be >= 0 and end > start");
 }
 
-std::string dir_of(const std::string& path) {
-  return std::filesystem::path(path).parent_path().string();
-}
+std::string dir_of(const std::string& path) { return std::filesystem::path(path).parent_path().string(); }
 
 // A record listed twice would be simulated twice and counted twice in every fit: refused at the
 // second row, naming the first.
@@ -101,8 +97,9 @@ void reject_duplicate_rows(const RecordList& list, const std::string& name) {
   for (const RecordEntry& e : list.records) {
     const auto [at, inserted] = first_line.emplace(std::tuple{e.file, e.start, e.end}, e.line);
     if (!inserted)
-      throw InputError(name, e.line, "duplicate record: " + e.file + " with the same time window as line " +
-                                         std::to_string(at->second));
+      throw InputError(
+          name, e.line,
+          "duplicate record: " + e.file + " with the same time window as line " + std::to_string(at->second));
   }
 }
 
@@ -123,11 +120,11 @@ RecordList parse_record_table(std::string_view text, const std::string& name) {
     }
     first = false;
     if (f.size() < 6)
-      throw InputError(name, number, "expected 9 tab-separated columns (earthquake, year, "
-                                     "magnitude, file, start, end, PGA, PGV, PGV/PGA), got " +
-                                         std::to_string(f.size()));
-    if (f.size() > 10)
-      throw InputError(name, number, "more than 10 tab-separated columns (the 10th, optional: align)");
+      throw InputError(name, number,
+                       "expected 9 tab-separated columns (earthquake, year, "
+                       "magnitude, file, start, end, PGA, PGV, PGV/PGA), got " +
+                           std::to_string(f.size()));
+    if (f.size() > 10) throw InputError(name, number, "more than 10 tab-separated columns (the 10th, optional: align)");
     RecordEntry e;
     e.line = number;
     e.earthquake = std::string(trim(f[0]));
@@ -145,8 +142,9 @@ RecordList parse_record_table(std::string_view text, const std::string& name) {
     if (f.size() > 9) {
       const std::string_view align = trim(f[9]);
       if (!align.empty() && align != "auto" && align != "resample")
-        throw InputError(name, number, "align must be empty, auto (pad lengths within 1 %) or resample, not \"" +
-                                           std::string(align) + "\"");
+        throw InputError(
+            name, number,
+            "align must be empty, auto (pad lengths within 1 %) or resample, not \"" + std::string(align) + "\"");
       e.resample = align == "resample";
     }
     list.records.push_back(std::move(e));
@@ -173,14 +171,16 @@ RecordList parse_abf(std::string_view text, const std::string& name) {
     } else if (stage == 1) {
       double v = 0.0;
       if (!to_double(l, v) || v != 0.0)
-        throw InputError(name, number, "line 2 of a batch file is a deprecated field that must "
-                                       "be 0, got '" + std::string(l.substr(0, 40)) + "'");
+        throw InputError(name, number,
+                         "line 2 of a batch file is a deprecated field that must "
+                         "be 0, got '" +
+                             std::string(l.substr(0, 40)) + "'");
       stage = 2;
     } else {
       const auto f = split_blank(l, " \t");
       if (f.size() != 1 && f.size() != 3)
-        throw InputError(name, number, "expected 'FILE' or 'FILE START END', got " +
-                                           std::to_string(f.size()) + " fields");
+        throw InputError(name, number,
+                         "expected 'FILE' or 'FILE START END', got " + std::to_string(f.size()) + " fields");
       RecordEntry e;
       e.line = number;
       e.file = std::string(f[0]);
@@ -208,8 +208,7 @@ RecordList read_record_list(const std::string& path) {
   return list;
 }
 
-RecordCheck check_record(const RecordEntry& entry, const SetReadOptions& options,
-                         const std::string& spec_override) {
+RecordCheck check_record(const RecordEntry& entry, const SetReadOptions& options, const std::string& spec_override) {
   RecordCheck c;
   c.entry = entry;
   c.spec = spec_override.empty() ? entry.file : spec_override;
@@ -230,17 +229,15 @@ RecordCheck check_record(const RecordEntry& entry, const SetReadOptions& options
   c.rotd0_pga_g = motion::rotd(full.x, full.y, 0.0) / g;
   c.rotd100_pga_g = hf.rotd100_pga / g;
   c.window_clamped = entry.end > full.duration() + 0.5 * full.dt;
-  const motion::GroundMotion w = (entry.start > 0.0 || std::isfinite(entry.end))
-                                     ? motion::windowed(full, entry.start, entry.end)
-                                     : full;
+  const motion::GroundMotion w =
+      (entry.start > 0.0 || std::isfinite(entry.end)) ? motion::windowed(full, entry.start, entry.end) : full;
   const auto hw = motion::horizontal_measures(w);
   c.window_gmroti_pga_g = hw.gmroti50_pga / g;
   c.window_gmroti_pgv_cm_s = hw.gmroti50_pgv * 100.0;
   c.window_gmrotd_pga_g = hw.gmrotd50_pga / g;
   c.window_gmrotd_pgv_cm_s = hw.gmrotd50_pgv * 100.0;
   if (entry.gmroti_pga_g > 0.0) c.pga_rel_diff = c.gmroti_pga_g / entry.gmroti_pga_g - 1.0;
-  if (entry.gmroti_pgv_cm_s > 0.0)
-    c.pgv_rel_diff = c.gmroti_pgv_cm_s / entry.gmroti_pgv_cm_s - 1.0;
+  if (entry.gmroti_pgv_cm_s > 0.0) c.pgv_rel_diff = c.gmroti_pgv_cm_s / entry.gmroti_pgv_cm_s - 1.0;
   return c;
 }
 

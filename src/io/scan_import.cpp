@@ -17,8 +17,9 @@ geometry::ClosedMesh checked_scan(const geometry::TriangleSoup& soup, const std:
   for (const auto& w : mesh.warnings) warnings.push_back(path + ": " + w);
   const auto crossing = geometry::find_self_intersection(mesh);
   if (crossing[0] >= 0) {
-    throw InputError(path, 0, "facet " + std::to_string(crossing[1]) + ": crosses facet " + std::to_string(crossing[0]) +
-                                  " (the surface intersects itself; --repair mends it)");
+    throw InputError(path, 0,
+                     "facet " + std::to_string(crossing[1]) + ": crosses facet " + std::to_string(crossing[0]) +
+                         " (the surface intersects itself; --repair mends it)");
   }
   return mesh;
 }
@@ -33,7 +34,8 @@ geometry::ClosedMesh read_scan(const std::string& path, double scale, const Mat3
     std::string list;
     for (std::size_t k = 0; k < collapsed.size() && k < 8; ++k) list += (k ? ", " : "") + std::to_string(collapsed[k]);
     warnings.push_back(path + ": dropped " + std::to_string(collapsed.size()) +
-                       " facets with two corners at one point (no area): " + list + (collapsed.size() > 8 ? ", ..." : ""));
+                       " facets with two corners at one point (no area): " + list +
+                       (collapsed.size() > 8 ? ", ..." : ""));
   }
   if (soup.empty()) throw InputError(path, 0, "the file holds no facet with an area");
   for (auto& t : soup) {
@@ -44,7 +46,8 @@ geometry::ClosedMesh read_scan(const std::string& path, double scale, const Mat3
   try {
     return checked_scan(soup, path, warnings);
   } catch (const InputError& e) {
-    throw InputError(e.file(), e.line(), e.problem() + " (left after --repair; facets numbered in the repaired surface)");
+    throw InputError(e.file(), e.line(),
+                     e.problem() + " (left after --repair; facets numbered in the repaired surface)");
   }
 }
 

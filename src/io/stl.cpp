@@ -33,9 +33,7 @@ constexpr std::size_t kFacetBytes = 50;
   throw InputError(name, line, what);
 }
 
-bool is_space(char c) {
-  return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f';
-}
+bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f'; }
 
 // bytes that never occur in ASCII STL text (but do in the binary count and floats)
 bool is_control(char c) {
@@ -46,9 +44,7 @@ bool is_control(char c) {
 bool iequals(std::string_view a, std::string_view b) {
   if (a.size() != b.size()) return false;
   for (std::size_t i = 0; i < a.size(); ++i) {
-    const auto lower = [](char c) {
-      return c >= 'A' && c <= 'Z' ? static_cast<char>(c - 'A' + 'a') : c;
-    };
+    const auto lower = [](char c) { return c >= 'A' && c <= 'Z' ? static_cast<char>(c - 'A' + 'a') : c; };
     if (lower(a[i]) != lower(b[i])) return false;
   }
   return true;
@@ -99,8 +95,7 @@ class Lexer {
  private:
   void skip_space() {
     while (pos_ < s_.size() && is_space(s_[pos_])) {
-      if (s_[pos_] == '\n' ||
-          (s_[pos_] == '\r' && (pos_ + 1 == s_.size() || s_[pos_ + 1] != '\n'))) {
+      if (s_[pos_] == '\n' || (s_[pos_] == '\r' && (pos_ + 1 == s_.size() || s_[pos_ + 1] != '\n'))) {
         ++line_;
       }
       ++pos_;
@@ -117,8 +112,7 @@ enum class NumberError { none, malformed, out_of_range };
 
 NumberError parse_double(std::string_view token, double& value) {
   // from_chars rejects a leading '+', which some writers emit
-  if (token.size() > 1 && token[0] == '+' && token[1] != '-' && token[1] != '+')
-    token.remove_prefix(1);
+  if (token.size() > 1 && token[0] == '+' && token[1] != '-' && token[1] != '+') token.remove_prefix(1);
   const char* end = token.data() + token.size();
   const auto [ptr, ec] = std::from_chars(token.data(), end, value, std::chars_format::general);
   if (ec == std::errc::result_out_of_range) return NumberError::out_of_range;
@@ -138,8 +132,7 @@ class AsciiParser {
       // the solid's name: the rest of its line, unless the facets start on that line too
       while (true) {
         const Token n = lx_.peek();
-        if (n.text.empty() || n.line != t.line || iequals(n.text, "facet") ||
-            iequals(n.text, "endsolid")) {
+        if (n.text.empty() || n.line != t.line || iequals(n.text, "facet") || iequals(n.text, "endsolid")) {
           break;
         }
         lx_.next();
@@ -162,8 +155,7 @@ class AsciiParser {
       t = lx_.next();
       if (t.text.empty()) break;
       if (!iequals(t.text, "solid")) {
-        fail(name_, t.line,
-             "expected 'solid' or end of file after 'endsolid', found " + quote(t.text));
+        fail(name_, t.line, "expected 'solid' or end of file after 'endsolid', found " + quote(t.text));
       }
     }
     if (soup.empty()) fail(name_, 0, "no facets");
@@ -192,8 +184,7 @@ class AsciiParser {
     switch (parse_double(t.text, x)) {
       case NumberError::malformed:
         fail(name_, t.line,
-             std::string("malformed number ") + quote(t.text) +
-                 (vertex ? " in vertex" : " in facet normal"));
+             std::string("malformed number ") + quote(t.text) + (vertex ? " in vertex" : " in facet normal"));
       case NumberError::out_of_range:
         fail(name_, t.line, "number " + quote(t.text) + " is out of range");
       case NumberError::none:
@@ -216,8 +207,7 @@ class AsciiParser {
     }
     if (!iequals(t.text, "outer")) {
       fail(name_, t.line,
-           std::string(has_normal ? "expected 'outer'" : "expected 'normal' or 'outer'") +
-               ", found " + quote(t.text));
+           std::string(has_normal ? "expected 'outer'" : "expected 'normal' or 'outer'") + ", found " + quote(t.text));
     }
     expect("loop");
     Triangle tri;
@@ -227,16 +217,14 @@ class AsciiParser {
       if (iequals(v.text, "endloop")) {
         fail(name_, v.line, "facet has " + std::to_string(i) + " vertices; a facet needs 3");
       }
-      if (!iequals(v.text, "vertex"))
-        fail(name_, v.line, "expected 'vertex', found " + quote(v.text));
+      if (!iequals(v.text, "vertex")) fail(name_, v.line, "expected 'vertex', found " + quote(v.text));
       for (int k = 0; k < 3; ++k) (*corner[i])[k] = number(true);
     }
     const Token e = expect_token("'endloop'");
     if (iequals(e.text, "vertex")) {
       fail(name_, e.line, "facet has more than 3 vertices; only triangles are supported");
     }
-    if (!iequals(e.text, "endloop"))
-      fail(name_, e.line, "expected 'endloop', found " + quote(e.text));
+    if (!iequals(e.text, "endloop")) fail(name_, e.line, "expected 'endloop', found " + quote(e.text));
     expect("endfacet");
     return tri;
   }
@@ -318,9 +306,9 @@ geometry::TriangleSoup read_stl_from_memory(std::string_view bytes, const std::s
     if (expected == size) return parse_binary(bytes, name);
     if (!text) {
       fail(name, 0,
-           "binary STL is truncated or corrupt: " + std::to_string(size) +
-               " bytes, but its header declares " + std::to_string(n) + " facets (84 + 50 * " +
-               std::to_string(n) + " = " + std::to_string(expected) + " bytes)");
+           "binary STL is truncated or corrupt: " + std::to_string(size) + " bytes, but its header declares " +
+               std::to_string(n) + " facets (84 + 50 * " + std::to_string(n) + " = " + std::to_string(expected) +
+               " bytes)");
     }
   }
   if (text) {
@@ -366,8 +354,7 @@ void write_stl_binary(const std::string& path, const geometry::TriangleSoup& sou
   write_file(path, bytes);
 }
 
-void write_stl_ascii(const std::string& path, const geometry::TriangleSoup& soup,
-                     const std::string& solid_name) {
+void write_stl_ascii(const std::string& path, const geometry::TriangleSoup& soup, const std::string& solid_name) {
   std::string name;
   for (char c : solid_name) name += is_space(c) || is_control(c) ? '_' : c;
   std::string out = "solid " + name + "\n";
@@ -388,8 +375,7 @@ void write_stl_ascii(const std::string& path, const geometry::TriangleSoup& soup
   for (std::size_t f = 0; f < soup.size(); ++f) {
     const Triangle& t = soup[f];
     if (!t.a.allFinite() || !t.b.allFinite() || !t.c.allFinite()) {
-      throw std::invalid_argument("write_stl_ascii: facet " + std::to_string(f) +
-                                  ": coordinate is NaN or infinite");
+      throw std::invalid_argument("write_stl_ascii: facet " + std::to_string(f) + ": coordinate is NaN or infinite");
     }
     append3("  facet normal", unit_normal(t));
     out += "    outer loop\n";

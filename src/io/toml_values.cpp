@@ -33,7 +33,8 @@ namespace {
 
 }  // namespace
 
-std::string optional_string(const toml::table& t, const char* key, const std::string& fallback, const std::string& path) {
+std::string optional_string(const toml::table& t, const char* key, const std::string& fallback,
+                            const std::string& path) {
   const toml::node* n = t.get(key);
   if (!n) return fallback;
   if (const auto v = n->value_exact<std::string>()) return *v;

@@ -20,7 +20,8 @@ void reject_unknown(const toml::table& t, const std::set<std::string>& allowed, 
 
 /// The value of `key` in t, or `fallback` when absent; rigid::InputError when of another type
 /// (numbers: also when not finite; integers are accepted as numbers).
-std::string optional_string(const toml::table& t, const char* key, const std::string& fallback, const std::string& path);
+std::string optional_string(const toml::table& t, const char* key, const std::string& fallback,
+                            const std::string& path);
 bool optional_bool(const toml::table& t, const char* key, bool fallback, const std::string& path);
 double optional_number(const toml::table& t, const char* key, double fallback, const std::string& path);
 

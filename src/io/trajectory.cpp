@@ -65,8 +65,8 @@ void TrajectoryRecorder::write(const std::string& xdmf_path) const {
     write_dataset(file, "time", H5T_NATIVE_DOUBLE, times_.data(), {times_.size()}, h5_path.string());
     for (std::size_t b = 0; b < names_.size(); ++b) {
       const std::string g = "block" + std::to_string(b);
-      write_dataset(file, g + "/triangles", H5T_NATIVE_INT, triangles_[b].data(),
-                    {triangles_[b].size() / 3, 3}, h5_path.string());
+      write_dataset(file, g + "/triangles", H5T_NATIVE_INT, triangles_[b].data(), {triangles_[b].size() / 3, 3},
+                    h5_path.string());
       for (std::size_t f = 0; f < times_.size(); ++f) {
         write_dataset(file, g + "/xyz/" + std::to_string(f), H5T_NATIVE_DOUBLE, xyz_[f][b].data(),
                       {xyz_[f][b].size() / 3, 3}, h5_path.string());
@@ -90,8 +90,8 @@ void TrajectoryRecorder::write(const std::string& xdmf_path) const {
         << "      <DataItem Dimensions=\"" << nt << " 3\" NumberType=\"Int\" Format=\"HDF\">" << h5_name << ":" << g
         << "/triangles</DataItem>\n     </Topology>\n"
         << "     <Geometry GeometryType=\"XYZ\">\n"
-        << "      <DataItem Dimensions=\"" << nv << " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << h5_name
-        << ":" << g << "/xyz/" << f << "</DataItem>\n     </Geometry>\n    </Grid>\n";
+        << "      <DataItem Dimensions=\"" << nv << " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">"
+        << h5_name << ":" << g << "/xyz/" << f << "</DataItem>\n     </Geometry>\n    </Grid>\n";
     }
     x << "   </Grid>\n";
   }

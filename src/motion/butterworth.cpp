@@ -113,13 +113,14 @@ std::vector<Complex> one_root_per_pair(const std::vector<Complex>& roots) {
   std::vector<Complex> upper, lower;
   std::vector<double> real;
   for (Complex r : roots) {
-    if (std::abs(r.imag()) <= tol * std::abs(r)) real.push_back(r.real());
-    else (r.imag() > 0 ? upper : lower).push_back(r);
+    if (std::abs(r.imag()) <= tol * std::abs(r))
+      real.push_back(r.real());
+    else
+      (r.imag() > 0 ? upper : lower).push_back(r);
   }
   if (upper.size() != lower.size()) throw std::logic_error("Butterworth design: a complex root without its conjugate");
-  std::sort(upper.begin(), upper.end(), [](Complex a, Complex b) {
-    return a.real() != b.real() ? a.real() < b.real() : a.imag() < b.imag();
-  });
+  std::sort(upper.begin(), upper.end(),
+            [](Complex a, Complex b) { return a.real() != b.real() ? a.real() < b.real() : a.imag() < b.imag(); });
   std::sort(real.begin(), real.end());
   std::vector<Complex> out;
   for (Complex u : upper) {

@@ -17,7 +17,6 @@ namespace rigid::motion {
 
 namespace {
 
-
 // scipy.signal.lfilter_zi of one section: the state a unit step leaves it in at steady state
 std::array<double, 2> steady_state(const Biquad& s) {
   const double r0 = s.b1 - s.a1 * s.b0, r1 = s.b2 - s.a2 * s.b0;
@@ -56,8 +55,7 @@ std::vector<double> merge_complementary(const std::vector<double>& low, const st
 double gain_at(const std::vector<Biquad>& sections, double f_hz, double dt) {
   const std::complex<double> z1 = std::polar(1.0, -2.0 * kPi * f_hz * dt);  // z^-1
   std::complex<double> h = 1.0;
-  for (const Biquad& s : sections)
-    h *= (s.b0 + s.b1 * z1 + s.b2 * z1 * z1) / (1.0 + s.a1 * z1 + s.a2 * z1 * z1);
+  for (const Biquad& s : sections) h *= (s.b0 + s.b1 * z1 + s.b2 * z1 * z1) / (1.0 + s.a1 * z1 + s.a2 * z1 * z1);
   return std::abs(h);
 }
 
@@ -142,24 +140,26 @@ std::vector<double> second_derivative(const std::vector<double>& x, double dt) {
   return d;
 }
 
-std::vector<double> process_acceleration(const std::vector<double>& acc, double dt,
-                                         const LabProcessing& p) {
+std::vector<double> process_acceleration(const std::vector<double>& acc, double dt, const LabProcessing& p) {
   std::vector<double> a = remove_baseline(acc, p.baseline, p.baseline_degree);
   if (p.band_pass) a = filtfilt(butterworth_bandpass(p.low_hz, p.high_hz, p.order, dt), a);
   return a;
 }
 
-std::vector<double> acceleration_from_displacement(const std::vector<double>& disp, double dt,
-                                                   const LabProcessing& p) {
+std::vector<double> acceleration_from_displacement(const std::vector<double>& disp, double dt, const LabProcessing& p) {
   return second_derivative(process_acceleration(disp, dt, p), dt);
 }
 
 const char* lab_baseline_name(LabBaseline b) {
   switch (b) {
-    case LabBaseline::none: return "none";
-    case LabBaseline::mean: return "mean";
-    case LabBaseline::linear: return "linear";
-    case LabBaseline::polynomial: return "polynomial";
+    case LabBaseline::none:
+      return "none";
+    case LabBaseline::mean:
+      return "mean";
+    case LabBaseline::linear:
+      return "linear";
+    case LabBaseline::polynomial:
+      return "polynomial";
   }
   return "?";
 }

@@ -21,8 +21,7 @@ double percentile(std::vector<double> values, double pp) {
   return values[lo] + w * (values[hi] - values[lo]);
 }
 
-std::vector<double> rotated_peaks(const std::vector<double>& a1, const std::vector<double>& a2,
-                                  int n_angles) {
+std::vector<double> rotated_peaks(const std::vector<double>& a1, const std::vector<double>& a2, int n_angles) {
   const std::size_t n = std::min(a1.size(), a2.size());
   std::vector<double> out(std::size_t(std::max(n_angles, 0)), 0.0);
   for (int k = 0; k < n_angles; ++k) {
@@ -59,8 +58,7 @@ double rotd(const std::vector<double>& a1, const std::vector<double>& a2, double
   return percentile(rotated_peaks(a1, a2, 180), pp);
 }
 
-GmRotI gmroti(const std::vector<std::pair<const std::vector<double>*, const std::vector<double>*>>&
-                  measures,
+GmRotI gmroti(const std::vector<std::pair<const std::vector<double>*, const std::vector<double>*>>& measures,
               double pp) {
   GmRotI r;
   if (measures.empty()) return r;
@@ -94,15 +92,13 @@ GmRotI gmroti(const std::vector<std::pair<const std::vector<double>*, const std:
   return r;
 }
 
-SdofResponse sdof_response(const std::vector<double>& acc, double dt, double period,
-                           double zeta) {
+SdofResponse sdof_response(const std::vector<double>& acc, double dt, double period, double zeta) {
   SdofResponse r;
   const std::size_t n = acc.size();
   r.u.assign(n, 0.0);
   r.v.assign(n, 0.0);
   if (n == 0 || !(period > 0.0) || !(dt > 0.0)) return r;
-  if (!(zeta >= 0.0 && zeta < 1.0))
-    throw InputError("", 0, "oscillator damping ratio must be in [0, 1)");
+  if (!(zeta >= 0.0 && zeta < 1.0)) throw InputError("", 0, "oscillator damping ratio must be in [0, 1)");
   // exact recurrence for piecewise-linear excitation p = -acc (unit mass), Nigam & Jennings
   // (1969) in the form of Chopra, Dynamics of Structures, Table 5.2.1
   const double w = 2.0 * kPi / period;
@@ -113,13 +109,11 @@ SdofResponse sdof_response(const std::vector<double>& acc, double dt, double per
   const double sn = std::sin(wd * dt), cs = std::cos(wd * dt);
   const double A = e * (zeta / sq * sn + cs);
   const double B = e * (sn / wd);
-  const double C = (2.0 * zeta / (w * dt) +
-                    e * (((1.0 - 2.0 * zeta * zeta) / (wd * dt) - zeta / sq) * sn -
-                         (1.0 + 2.0 * zeta / (w * dt)) * cs)) /
+  const double C = (2.0 * zeta / (w * dt) + e * (((1.0 - 2.0 * zeta * zeta) / (wd * dt) - zeta / sq) * sn -
+                                                 (1.0 + 2.0 * zeta / (w * dt)) * cs)) /
                    k;
-  const double D = (1.0 - 2.0 * zeta / (w * dt) +
-                    e * ((2.0 * zeta * zeta - 1.0) / (wd * dt) * sn + 2.0 * zeta / (w * dt) * cs)) /
-                   k;
+  const double D =
+      (1.0 - 2.0 * zeta / (w * dt) + e * ((2.0 * zeta * zeta - 1.0) / (wd * dt) * sn + 2.0 * zeta / (w * dt) * cs)) / k;
   const double A1 = -e * (w / sq * sn);
   const double B1 = e * (cs - zeta / sq * sn);
   const double C1 = (-1.0 / dt + e * ((w / sq + zeta / (dt * sq)) * sn + cs / dt)) / k;
@@ -132,8 +126,8 @@ SdofResponse sdof_response(const std::vector<double>& acc, double dt, double per
   return r;
 }
 
-std::vector<double> response_spectrum(const std::vector<double>& acc, double dt,
-                                      const std::vector<double>& periods, double zeta) {
+std::vector<double> response_spectrum(const std::vector<double>& acc, double dt, const std::vector<double>& periods,
+                                      double zeta) {
   std::vector<double> sa;
   sa.reserve(periods.size());
   for (double T : periods) {
@@ -148,8 +142,7 @@ std::vector<double> response_spectrum(const std::vector<double>& acc, double dt,
 }
 
 HorizontalMeasures horizontal_measures(const GroundMotion& m, const MeasureOptions& options) {
-  if (!m.has_y)
-    throw InputError(m.name, 0, "orientation-independent measures need two horizontal components");
+  if (!m.has_y) throw InputError(m.name, 0, "orientation-independent measures need two horizontal components");
   HorizontalMeasures h;
   const std::vector<double> v1 = integrate(m.x, m.dt, options.baseline).vel;
   const std::vector<double> v2 = integrate(m.y, m.dt, options.baseline).vel;
@@ -187,8 +180,7 @@ HorizontalMeasures horizontal_measures(const GroundMotion& m, const MeasureOptio
   return h;
 }
 
-MotionInfo motion_info(const GroundMotion& m, const MeasureOptions& options,
-                       const std::vector<double>& sa_periods) {
+MotionInfo motion_info(const GroundMotion& m, const MeasureOptions& options, const std::vector<double>& sa_periods) {
   MotionInfo info;
   info.name = m.name;
   info.sources = m.sources;
@@ -212,12 +204,10 @@ MotionInfo motion_info(const GroundMotion& m, const MeasureOptions& options,
   info.two_horizontals = m.has_y;
   if (m.has_y) {
     info.horizontal = horizontal_measures(m, options);
-    info.pgv_pga = info.horizontal.gmroti50_pga > 0.0
-                       ? info.horizontal.gmroti50_pgv / info.horizontal.gmroti50_pga
-                       : 0.0;
+    info.pgv_pga =
+        info.horizontal.gmroti50_pga > 0.0 ? info.horizontal.gmroti50_pgv / info.horizontal.gmroti50_pga : 0.0;
   } else {
-    info.pgv_pga = info.axes[0].peaks.pga > 0.0 ? info.axes[0].peaks.pgv / info.axes[0].peaks.pga
-                                                : 0.0;
+    info.pgv_pga = info.axes[0].peaks.pga > 0.0 ? info.axes[0].peaks.pgv / info.axes[0].peaks.pga : 0.0;
   }
   for (double T : sa_periods) {
     MotionInfo::SpectralValue sv;
@@ -257,24 +247,21 @@ std::string to_text(const MotionInfo& info) {
   std::string o = info.name + "\n";
   for (const auto& s : info.sources) o += "  source " + s + "\n";
   if (!info.alignment.empty()) o += "  aligned: " + info.alignment + "\n";
-  std::snprintf(buf, sizeof buf, "  npts %zu  dt %.6g s  duration %.6g s\n", info.npts, info.dt,
-                info.duration);
+  std::snprintf(buf, sizeof buf, "  npts %zu  dt %.6g s  duration %.6g s\n", info.npts, info.dt, info.duration);
   o += buf;
   for (const auto& a : info.axes) {
-    std::snprintf(buf, sizeof buf, "  %c %-12s PGA %.5g g  PGV %.5g cm/s  PGD %.5g cm\n", a.axis,
-                  a.label.c_str(), a.peaks.pga / g, a.peaks.pgv * kCm, a.peaks.pgd * kCm);
+    std::snprintf(buf, sizeof buf, "  %c %-12s PGA %.5g g  PGV %.5g cm/s  PGD %.5g cm\n", a.axis, a.label.c_str(),
+                  a.peaks.pga / g, a.peaks.pgv * kCm, a.peaks.pgd * kCm);
     o += buf;
   }
   if (info.two_horizontals) {
     const auto& h = info.horizontal;
-    std::snprintf(buf, sizeof buf, "  GMRotD50  PGA %.5g g  PGV %.5g cm/s\n", h.gmrotd50_pga / g,
-                  h.gmrotd50_pgv * kCm);
+    std::snprintf(buf, sizeof buf, "  GMRotD50  PGA %.5g g  PGV %.5g cm/s\n", h.gmrotd50_pga / g, h.gmrotd50_pgv * kCm);
     o += buf;
-    std::snprintf(buf, sizeof buf, "  GMRotI50  PGA %.5g g  PGV %.5g cm/s  (angle %.0f deg)\n",
-                  h.gmroti50_pga / g, h.gmroti50_pgv * kCm, h.gmroti50_angle_deg);
+    std::snprintf(buf, sizeof buf, "  GMRotI50  PGA %.5g g  PGV %.5g cm/s  (angle %.0f deg)\n", h.gmroti50_pga / g,
+                  h.gmroti50_pgv * kCm, h.gmroti50_angle_deg);
     o += buf;
-    std::snprintf(buf, sizeof buf, "  RotD50 PGA %.5g g  RotD100 PGA %.5g g\n", h.rotd50_pga / g,
-                  h.rotd100_pga / g);
+    std::snprintf(buf, sizeof buf, "  RotD50 PGA %.5g g  RotD100 PGA %.5g g\n", h.rotd50_pga / g, h.rotd100_pga / g);
     o += buf;
   }
   std::snprintf(buf, sizeof buf, "  PGV/PGA %.5g s\n", info.pgv_pga);
@@ -287,8 +274,7 @@ std::string to_text(const MotionInfo& info) {
       o += buf;
     }
     if (info.two_horizontals) {
-      std::snprintf(buf, sizeof buf, "  GMRotD50 %.5g g  RotD50 %.5g g", s.gmrotd50 / g,
-                    s.rotd50 / g);
+      std::snprintf(buf, sizeof buf, "  GMRotD50 %.5g g  RotD50 %.5g g", s.gmrotd50 / g, s.rotd50 / g);
       o += buf;
     }
     o += "\n";

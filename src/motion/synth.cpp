@@ -29,17 +29,15 @@ void require(bool ok, const std::string& name, const std::string& what) {
 
 std::size_t sample_count(const std::string& name, double duration, double dt) {
   require(dt > 0.0 && std::isfinite(dt), name, "dt must be positive, got " + num(dt));
-  require(duration > 0.0 && std::isfinite(duration), name,
-          "duration must be positive, got " + num(duration));
+  require(duration > 0.0 && std::isfinite(duration), name, "duration must be positive, got " + num(duration));
   const double n = std::floor(duration / dt + 1e-9) + 1.0;
-  require(n <= double(kMaxSamples), name,
-          "too many samples (" + num(n) + " > " + std::to_string(kMaxSamples) + ")");
+  require(n <= double(kMaxSamples), name, "too many samples (" + num(n) + " > " + std::to_string(kMaxSamples) + ")");
   return std::size_t(n);
 }
 
 // puts one horizontal series on x, or along an azimuth on x and y
-GroundMotion directional(const std::string& name, std::vector<double> a, double dt, bool two,
-                         double azimuth_deg, const std::string& source) {
+GroundMotion directional(const std::string& name, std::vector<double> a, double dt, bool two, double azimuth_deg,
+                         const std::string& source) {
   GroundMotion m;
   m.name = name;
   m.dt = dt;
@@ -112,23 +110,20 @@ GroundMotion pulse_motion(const std::string& name, const PulseParams& p) {
     // a sample on an interior jump of the one-cosine pulse takes the mean of the one-sided
     // limits, so trapezoid integration keeps v and d of the closed form (no O(dt) drift)
     const double tol = 1e-6 * p.dt;
-    if (p.kind == PulseKind::one_cosine && t > tol &&
-        (std::abs(t - p.t0) < tol || std::abs(t - p.t0 - p.period) < tol))
+    if (p.kind == PulseKind::one_cosine && t > tol && (std::abs(t - p.t0) < tol || std::abs(t - p.t0 - p.period) < tol))
       a[i] *= 0.5;
   }
   const char* kind = p.kind == PulseKind::one_sine     ? "one-sine"
                      : p.kind == PulseKind::one_cosine ? "one-cosine"
                                                        : "Ricker";
-  return directional(name, std::move(a), p.dt, p.two_horizontals, p.azimuth_deg,
-                     std::string(kind) + " pulse, amplitude " + num(p.amplitude_g) +
-                         " g, period " + num(p.period) + " s");
+  return directional(
+      name, std::move(a), p.dt, p.two_horizontals, p.azimuth_deg,
+      std::string(kind) + " pulse, amplitude " + num(p.amplitude_g) + " g, period " + num(p.period) + " s");
 }
 
 namespace {
 
-double mp_t0(const MavroeidisParams& p) {
-  return p.t0 > 0.0 ? p.t0 : 0.5 * p.gamma * p.period + 1.0;
-}
+double mp_t0(const MavroeidisParams& p) { return p.t0 > 0.0 ? p.t0 : 0.5 * p.gamma * p.period + 1.0; }
 
 }  // namespace
 
@@ -137,8 +132,7 @@ double mavroeidis_velocity(const MavroeidisParams& p, double t) {
   const double s = t - mp_t0(p);
   if (std::abs(s) > p.gamma / (2.0 * fp)) return 0.0;
   const double nu = p.nu_deg * kPi / 180.0;
-  return 0.5 * p.pgv * (1.0 + std::cos(2.0 * kPi * fp * s / p.gamma)) *
-         std::cos(2.0 * kPi * fp * s + nu);
+  return 0.5 * p.pgv * (1.0 + std::cos(2.0 * kPi * fp * s / p.gamma)) * std::cos(2.0 * kPi * fp * s + nu);
 }
 
 double mavroeidis_acceleration(const MavroeidisParams& p, double t) {
@@ -164,16 +158,14 @@ GroundMotion mavroeidis_motion(const std::string& name, const MavroeidisParams& 
   std::vector<double> a(n);
   for (std::size_t i = 0; i < n; ++i) a[i] = mavroeidis_acceleration(p, double(i) * p.dt);
   return directional(name, std::move(a), p.dt, p.two_horizontals, p.azimuth_deg,
-                     "Mavroeidis-Papageorgiou pulse, A " + num(p.pgv) + " m/s, Tp " +
-                         num(p.period) + " s, gamma " + num(p.gamma) + ", nu " + num(p.nu_deg) +
-                         " deg");
+                     "Mavroeidis-Papageorgiou pulse, A " + num(p.pgv) + " m/s, Tp " + num(p.period) + " s, gamma " +
+                         num(p.gamma) + ", nu " + num(p.nu_deg) + " deg");
 }
 
 namespace {
 
 // one component of the RD08 model before scaling (unit: arbitrary)
-std::vector<double> rd_component(const StochasticParams& p, std::size_t n, double f_mid,
-                                 std::uint64_t seed) {
+std::vector<double> rd_component(const StochasticParams& p, std::size_t n, double f_mid, std::uint64_t seed) {
   NormalStream noise(seed);
   std::vector<double> u(n);
   for (double& v : u) v = noise.next();
@@ -188,8 +180,7 @@ std::vector<double> rd_component(const StochasticParams& p, std::size_t n, doubl
   }
   // impulse responses decay as exp(-zeta w s); beyond exp(-25) they are dropped
   const double w_min = 2.0 * kPi * p.f_min;
-  const std::size_t reach = std::min<std::size_t>(
-      n, std::size_t(std::ceil(25.0 / (zf * w_min) / p.dt)) + 1);
+  const std::size_t reach = std::min<std::size_t>(n, std::size_t(std::ceil(25.0 / (zf * w_min) / p.dt)) + 1);
   std::vector<double> a(n, 0.0);
   for (std::size_t i = 1; i < n; ++i) {
     const double t = double(i) * p.dt;
@@ -228,8 +219,8 @@ GroundMotion stochastic_motion(const std::string& name, const StochasticParams& 
   require(std::isfinite(p.f_mid) && std::isfinite(p.f_slope), name, "f_mid, f_slope finite");
   require(p.fc >= 0.0 && std::isfinite(p.fc), name, "fc must be >= 0");
   require(p.pga_g > 0.0 && std::isfinite(p.pga_g), name, "pga must be positive");
-  require(p.vertical_ratio >= 0.0 && std::isfinite(p.vertical_ratio) &&
-              p.vertical_freq_ratio > 0.0 && std::isfinite(p.vertical_freq_ratio),
+  require(p.vertical_ratio >= 0.0 && std::isfinite(p.vertical_ratio) && p.vertical_freq_ratio > 0.0 &&
+              std::isfinite(p.vertical_freq_ratio),
           name, "vertical ratios must be >= 0");
   // bound the O(n * reach) work so no parameter set can hang the generator
   const double reach = std::min(double(n), 25.0 / (p.zeta_f * 2.0 * kPi * p.f_min) / p.dt);
@@ -239,9 +230,9 @@ GroundMotion stochastic_motion(const std::string& name, const StochasticParams& 
   m.name = name;
   m.dt = p.dt;
   std::ostringstream src;
-  src << "Rezaeian-Der Kiureghian stochastic, seed " << p.seed << ", PGA " << p.pga_g
-      << " g, f_mid " << p.f_mid << " Hz, f_slope " << p.f_slope << " Hz/s, zeta_f " << p.zeta_f
-      << ", t_peak " << p.t_peak << " s, shape " << p.shape << ", fc " << p.fc << " Hz";
+  src << "Rezaeian-Der Kiureghian stochastic, seed " << p.seed << ", PGA " << p.pga_g << " g, f_mid " << p.f_mid
+      << " Hz, f_slope " << p.f_slope << " Hz/s, zeta_f " << p.zeta_f << ", t_peak " << p.t_peak << " s, shape "
+      << p.shape << ", fc " << p.fc << " Hz";
   for (int c = 0; c < p.components; ++c) {
     const bool vertical = c == 2;
     const double f = vertical ? p.f_mid * p.vertical_freq_ratio : p.f_mid;

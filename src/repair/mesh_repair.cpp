@@ -106,8 +106,10 @@ geometry::TriangleSoup repair_scan(const geometry::TriangleSoup& soup, ScanRepai
     }
     std::vector<Mesh::Face_index> added;
     PMP::triangulate_hole(mesh, h, std::back_inserter(added));
-    if (added.empty()) ++report.holes_left;
-    else ++report.holes_filled;
+    if (added.empty())
+      ++report.holes_left;
+    else
+      ++report.holes_filled;
   }
   mesh.collect_garbage();
   geometry::TriangleSoup repaired = soup_of(mesh);

@@ -124,7 +124,8 @@ std::string calibration_manifest(const CalibrationSettings& s, const io::LabTest
   list("flatten base (m)", s.flatten_base_m);
   m << "contact models:";
   for (const ContactChoice& c : s.contact_models)
-    m << " " << (c.method == contact::ContactMethod::rigid ? std::string("rigid") : format("%.17g", c.normal_stiffness));
+    m << " "
+      << (c.method == contact::ContactMethod::rigid ? std::string("rigid") : format("%.17g", c.normal_stiffness));
   m << "\n";
   list("restitution", s.restitution);
   list("damping (s/m)", s.damping);
@@ -225,8 +226,7 @@ campaign::CampaignOptions Calibrator::prepare() {
   const CalibrationSettings& o = settings_;
   check_settings(o);
   tests_ = io::read_lab_tests(o.tests);
-  if (!tests_.has_outcomes)
-    throw InputError(o.tests, 1, "has no 'overturned' column: calibration fits the observed outcomes");
+  io::require_outcomes(tests_, "calibration fits the observed outcomes");
   std::map<std::string, int> groups;
   for (const io::LabTest& t : tests_.tests) {
     observed_.push_back(*t.overturned);
@@ -273,11 +273,11 @@ campaign::CampaignOptions Calibrator::prepare() {
   windows_ = strong_motion_records(tests_, lab_, level_g);
   double kept = 0;
   for (const auto& w : windows_) kept += w.end - w.start;
-  callbacks_.tell(format(
-      "shaketable: %zu tests of %zu recorded motions (%ld overturned); strong-motion windows (|a| > %.3f g, "
-      "%s of the weakest base's static toppling acceleration%s) keep %.0f s of motion",
-      tests_.tests.size(), groups.size(), overturned, level_g, rigid_only ? "half" : "a tenth",
-      rigid_only ? "" : ": penalty contact rocks the rock below it", kept));
+  callbacks_.tell(
+      format("shaketable: %zu tests of %zu recorded motions (%ld overturned); strong-motion windows (|a| > %.3f g, "
+             "%s of the weakest base's static toppling acceleration%s) keep %.0f s of motion",
+             tests_.tests.size(), groups.size(), overturned, level_g, rigid_only ? "half" : "a tenth",
+             rigid_only ? "" : ": penalty contact rocks the rock below it", kept));
   stage1_ = first_stage_physics(bases, o);
   for (Physics& p : stage1_) p.base_scene = settled_scene(o.scan, p.base_scene, p, work_);
   headings1_ = heading_ring(o.headings);
@@ -311,8 +311,9 @@ void Calibrator::claim_work_folder(const std::string& manifest) {
     return;  // the same calibration: its campaigns resume
   }
   if (fs::exists(work) && !fs::is_empty(work, ec))
-    throw InputError(work_, 0, "exists and is not a calibration's work folder (no calibration.manifest): choose another "
-                               "--out, or --restart to start over");
+    throw InputError(work_, 0,
+                     "exists and is not a calibration's work folder (no calibration.manifest): choose another "
+                     "--out, or --restart to start over");
   fs::create_directories(work, ec);
   if (ec) throw InputError(work_, 0, "cannot create the calibration's folder: " + ec.message());
   io::write_output_file(manifest_file.string(), [&](std::ostream& out) { out << manifest; });

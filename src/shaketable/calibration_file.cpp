@@ -180,9 +180,10 @@ CalibrationSummary write_calibration(const CalibrationReport& r) {
   j["lab_format"] = r.lab_format_file.empty() ? "default" : r.lab_format_file;
   j["tests_count"] = long(y.size());
   j["overturned_count"] = long(std::count(y.begin(), y.end(), 1));
-  j["method"] = "maximum likelihood over the final stage's design: P(overturn) = lapse/2 + (1 - lapse) x the share of "
-                "the headings within the spread that overturn the simulated rock; 95 % region = log-likelihood within "
-                "1.92 of the best; cross-validation leaves out one recorded motion at a time";
+  j["method"] =
+      "maximum likelihood over the final stage's design: P(overturn) = lapse/2 + (1 - lapse) x the share of "
+      "the headings within the spread that overturn the simulated rock; 95 % region = log-likelihood within "
+      "1.92 of the best; cross-validation leaves out one recorded motion at a time";
   io::Json params;
   params["heading_deg"] = {{"value", heading}, {"interval", {heading + turn_lo, heading + turn_hi}}};
   params["heading_spread_deg"] = {{"value", best.spread_deg}, {"interval", {0.0, spread_hi}}};

@@ -7,6 +7,7 @@
 
 #include "rigid/core/error.hpp"
 #include "rigid/core/types.hpp"
+#include "rigid/io/csv.hpp"
 #include "rigid/io/lab_recording.hpp"
 #include "rigid/io/output_file.hpp"
 #include "rigid/motion/measures.hpp"
@@ -32,7 +33,8 @@ void check_settings(const FragilitySettings& s) {
   if (!s.bins_s.empty()) {
     bool increasing = s.bins_s.size() >= 2;
     for (std::size_t i = 0; i < s.bins_s.size(); ++i)
-      increasing = increasing && std::isfinite(s.bins_s[i]) && s.bins_s[i] > 0 && (i == 0 || s.bins_s[i] > s.bins_s[i - 1]);
+      increasing =
+          increasing && std::isfinite(s.bins_s[i]) && s.bins_s[i] > 0 && (i == 0 || s.bins_s[i] > s.bins_s[i - 1]);
     if (!increasing) throw InputError("", 0, "--bins: at least two positive, strictly increasing edges (s)");
   }
   if (s.figure_format != "png" && s.figure_format != "pdf" && s.figure_format != "svg")
@@ -48,8 +50,7 @@ std::optional<campaign::CampaignOptions> FragilityDesign::next(const campaign::C
   const FragilitySettings& o = settings_;
   check_settings(o);
   tests_ = io::read_lab_tests(o.tests);
-  if (!tests_.has_outcomes)
-    throw InputError(o.tests, 1, "has no overturned column: the lab's fragility is fitted on the observed outcomes");
+  io::require_outcomes(tests_, "the lab's fragility is fitted on the observed outcomes");
   lab_ = lab_input(o.lab_format);
   ensemble_ = load_ensemble(o.scene);
   const Ensemble& e = ensemble_;
@@ -129,23 +130,21 @@ std::optional<campaign::CampaignOptions> FragilityDesign::next(const campaign::C
 
 fs::path FragilityDesign::write_fit_inputs(const io::Cube& cube) const {
   io::write_output_file((work_ / "lab_tests.csv").string(), [&](std::ostream& out) {
-    out << "test_no,record,pga_g,pgv_over_pga_s,overturned\n";
+    io::CsvWriter csv(out);
+    csv.row({"test_no", "record", "pga_g", "pgv_over_pga_s", "overturned"});
     for (std::size_t t = 0; t < tests_.tests.size(); ++t) {
       const io::LabTest& test = tests_.tests[t];
-      char line[512];
-      std::snprintf(line, sizeof line, "%ld,%s,%.6f,%.6f,%d\n", test.test_no, test.record.c_str(), measured_[t].pga_g,
-                    measured_[t].pgv_pga_s, *test.overturned);
-      out << line;
+      csv.field(test.test_no).field(test.record).fixed(measured_[t].pga_g, 6).fixed(measured_[t].pgv_pga_s, 6);
+      csv.field(*test.overturned).end_row();
     }
   });
   io::write_output_file((work_ / "motions.csv").string(), [&](std::ostream& out) {
-    out << "record,test_no,pga_g,pgv_over_pga_s\n";
+    io::CsvWriter csv(out);
+    csv.row({"record", "test_no", "pga_g", "pgv_over_pga_s"});
     for (std::size_t t : motion_test_) {
       const io::LabTest& test = tests_.tests[t];
-      char line[512];
-      std::snprintf(line, sizeof line, "%s,%ld,%.6f,%.6f\n", test.record.c_str(), test.test_no, measured_[t].pga_g,
-                    measured_[t].pgv_pga_s);
-      out << line;
+      csv.field(test.record).field(test.test_no).fixed(measured_[t].pga_g, 6).fixed(measured_[t].pgv_pga_s, 6);
+      csv.end_row();
     }
   });
   // The model's P(overturn) per (motion, PGA): the ensemble's rule, without the lab's lapse (a
@@ -165,7 +164,8 @@ fs::path FragilityDesign::write_fit_inputs(const io::Cube& cube) const {
         const double p = ensemble_.probability(
             [&](int variant, int rotation) {
               const auto code = static_cast<io::CellOutcome>(
-                  cube.objects[std::size_t(variant)].outcome[(r * scales + s) * std::size_t(rotations) + std::size_t(rotation)]);
+                  cube.objects[std::size_t(variant)]
+                      .outcome[(r * scales + s) * std::size_t(rotations) + std::size_t(rotation)]);
               complete = complete && (code == io::CellOutcome::survived || code == io::CellOutcome::overturned);
               return code == io::CellOutcome::overturned;
             },

@@ -2,9 +2,9 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <sstream>
 
 #include "rigid/core/error.hpp"
+#include "rigid/io/csv.hpp"
 #include "rigid/io/output_file.hpp"
 
 namespace rigid::shaketable {
@@ -67,18 +67,17 @@ PredictionSummary Predictor::finish(const io::Cube& cube) const {
       return code == io::CellOutcome::overturned;
     }));
   }
-  std::ostringstream csv;
-  csv << "test_no,record,pga_g,pgv_over_pga_s,p_overturn,predicted\n";
-  for (int t = 0; t < tests; ++t) {
-    const io::LabTest& test = tests_.tests[std::size_t(t)];
-    const io::RecordMeta& meta = cube.records[std::size_t(t)];
-    char line[512];
-    std::snprintf(line, sizeof line, "%ld,%s,%.5f,%.5f,%.6f,%d\n", test.test_no, test.record.c_str(),
-                  meta.gmroti_pga_g, meta.pgv_pga_s, s.probability[std::size_t(t)],
-                  s.probability[std::size_t(t)] >= 0.5 ? 1 : 0);
-    csv << line;
-  }
-  io::write_output_file(o.out, [&](std::ostream& out) { out << csv.str(); });
+  io::write_output_file(o.out, [&](std::ostream& out) {
+    io::CsvWriter csv(out);
+    csv.row({"test_no", "record", "pga_g", "pgv_over_pga_s", "p_overturn", "predicted"});
+    for (int t = 0; t < tests; ++t) {
+      const io::LabTest& test = tests_.tests[std::size_t(t)];
+      const io::RecordMeta& meta = cube.records[std::size_t(t)];
+      const double p = s.probability[std::size_t(t)];
+      csv.field(test.test_no).field(test.record).fixed(meta.gmroti_pga_g, 5).fixed(meta.pgv_pga_s, 5).fixed(p, 6);
+      csv.field(p >= 0.5 ? 1 : 0).end_row();
+    }
+  });
   s.tests = tests;
   s.members = ensemble_.members.size();
   s.calibration = ensemble_.json;

@@ -2,13 +2,13 @@
 // on stderr naming the file (and line or facet) and the problem; never a crash or a hang.
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
 #include <algorithm>
 #include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
-#include <sys/wait.h>
 
 namespace {
 
@@ -21,8 +21,8 @@ struct Result {
 
 Result run_rigid(const std::string& args) {
   const fs::path err_file = fs::temp_directory_path() / ("rigid_bad_input_" + std::to_string(::getpid()) + ".err");
-  const std::string cmd = "timeout 60 " + std::string(RIGID_BINARY_DIR) + "/bin/rigid " + args +
-                          " > /dev/null 2> " + err_file.string();
+  const std::string cmd =
+      "timeout 60 " + std::string(RIGID_BINARY_DIR) + "/bin/rigid " + args + " > /dev/null 2> " + err_file.string();
   const int raw = std::system(cmd.c_str());
   std::ifstream in(err_file);
   std::string err((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -46,15 +46,15 @@ class BadInput : public ::testing::Test {
   }
   static std::string cube_ascii(double top = 1.0, double bottom = 0.0) {
     const double v[8][3] = {{0, 0, bottom}, {1, 0, bottom}, {1, 1, bottom}, {0, 1, bottom},
-                            {0, 0, top}, {1, 0, top}, {1, 1, top}, {0, 1, top}};
+                            {0, 0, top},    {1, 0, top},    {1, 1, top},    {0, 1, top}};
     const int f[12][3] = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
                           {1, 2, 6}, {1, 6, 5}, {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}};
     std::string s = "solid cube\n";
     for (const auto& t : f) {
       s += " facet normal 0 0 0\n  outer loop\n";
       for (int k : t) {
-        s += "   vertex " + std::to_string(v[k][0]) + " " + std::to_string(v[k][1]) + " " +
-             std::to_string(v[k][2]) + "\n";
+        s += "   vertex " + std::to_string(v[k][0]) + " " + std::to_string(v[k][1]) + " " + std::to_string(v[k][2]) +
+             "\n";
       }
       s += "  endloop\n endfacet\n";
     }
@@ -71,7 +71,9 @@ class BadInput : public ::testing::Test {
   fs::path dir_;
 };
 
-TEST_F(BadInput, MissingSceneFile) { expect_error("run " + (dir_ / "none.model").string(), {"none.model", "not found"}); }
+TEST_F(BadInput, MissingSceneFile) {
+  expect_error("run " + (dir_ / "none.model").string(), {"none.model", "not found"});
+}
 
 TEST_F(BadInput, MissingStlNamesModelLine) {
   const auto m = write("a.model", "block cube.stl\n1 0 0 0\nblock missing.stl\n0 0 0 0\n");
@@ -117,7 +119,8 @@ TEST_F(BadInput, OpenMeshNamesFacet) {
 }
 
 TEST_F(BadInput, UnknownTomlKey) {
-  const auto t = write("a.toml", "model_text = \"block cube.stl 1 0 0 0 block top.stl 0 0 0 0\"\n[physics]\nfrction = 0.5\n");
+  const auto t =
+      write("a.toml", "model_text = \"block cube.stl 1 0 0 0 block top.stl 0 0 0 0\"\n[physics]\nfrction = 0.5\n");
   expect_error("run " + t, {"a.toml:3", "frction"});
 }
 

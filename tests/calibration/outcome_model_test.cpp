@@ -82,8 +82,10 @@ TEST(OutcomeModel, RecoversAPlantedVariantAndHeading) {
   std::vector<int> group;
   for (int t = 0; t < 160; ++t) {
     amplitude.push_back(u(rng));
-    if (t % 8 == 0) direction.push_back(angle(rng));
-    else direction.push_back(direction.back());
+    if (t % 8 == 0)
+      direction.push_back(angle(rng));
+    else
+      direction.push_back(direction.back());
     group.push_back(t / 8);  // 20 "records" of 8 tests, one direction each
   }
   const OutcomeGrid grid = toy_grid(amplitude, direction, capacity, headings);

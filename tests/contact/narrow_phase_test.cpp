@@ -68,8 +68,10 @@ TEST(NarrowPhase, FaceOnFaceGivesTheFourCornersAtHalfTheIndentation) {
   expect_vec(f.plane.normal, Vec3::UnitZ(), kTol, "normal");
   EXPECT_NEAR(f.plane.overlap, depth, kTol);
   ASSERT_EQ(f.points.size(), 4u);
-  std::vector<Vec3> corners = {{0.1 - hx, -0.2 - hy, -depth / 2}, {0.1 + hx, -0.2 - hy, -depth / 2},
-                               {0.1 + hx, -0.2 + hy, -depth / 2}, {0.1 - hx, -0.2 + hy, -depth / 2}};
+  std::vector<Vec3> corners = {{0.1 - hx, -0.2 - hy, -depth / 2},
+                               {0.1 + hx, -0.2 - hy, -depth / 2},
+                               {0.1 + hx, -0.2 + hy, -depth / 2},
+                               {0.1 - hx, -0.2 + hy, -depth / 2}};
   for (const auto& p : f.points) {
     EXPECT_NEAR(p.overlap, depth, kTol);
     EXPECT_NE(p.key, kEdgeSubcontact);

@@ -226,8 +226,7 @@ TEST(ClosedMesh, FlatDoubleCoveredTriangleIsRejected) {
 TEST(ClosedMesh, NonOrientableOrUnclosableInputsNeverPass) {
   EXPECT_NE(mesh_error({}).find("no facets"), std::string::npos);
   // a single triangle
-  EXPECT_NE(mesh_error({{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)}}).find("open edge"),
-            std::string::npos);
+  EXPECT_NE(mesh_error({{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)}}).find("open edge"), std::string::npos);
   // the same triangle twice in the same direction: each edge used twice the same way
   const Triangle t{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)};
   const std::string msg = mesh_error({t, t});

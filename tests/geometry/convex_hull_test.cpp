@@ -21,9 +21,7 @@ using namespace rigid::geometry;
 using rigid::test::Rng;
 using rigid::test::unit_ball_points;
 
-bool contains(const std::vector<Vec3>& pts, const Vec3& v) {
-  return std::find(pts.begin(), pts.end(), v) != pts.end();
-}
+bool contains(const std::vector<Vec3>& pts, const Vec3& v) { return std::find(pts.begin(), pts.end(), v) != pts.end(); }
 
 // Containment oracle: every input point lies on or below every outward facet plane.
 void expect_contains_all(const TriangleSoup& hull, const std::vector<Vec3>& pts, double tol) {
@@ -109,8 +107,7 @@ TEST(ConvexHull, NearlyCoplanarClusterStaysAValidMesh) {
     pts.push_back(Vec3(rng.uniform(), rng.uniform(), 1 + 1e-12 * (rng.uniform() - 0.5)));
   }
   pts.push_back(Vec3(0.5, 0.5, 0));
-  for (int i = 0; i < 50; ++i)
-    pts.push_back(Vec3(rng.uniform(), rng.uniform(), 1 + 1e-3 * rng.uniform()));
+  for (int i = 0; i < 50; ++i) pts.push_back(Vec3(rng.uniform(), rng.uniform(), 1 + 1e-3 * rng.uniform()));
   const TriangleSoup hull = convex_hull(pts);
   EXPECT_NO_THROW(build_block(hull, 1.0, {}, "slab"));
   expect_contains_all(hull, pts, 1e-7);

@@ -83,8 +83,7 @@ std::vector<Vec3> random_cloud(std::uint64_t seed, int n) {
   std::vector<Vec3> pts;
   // an irregular ellipsoid-ish cloud: no symmetry, so every product of inertia is non-zero
   for (const Vec3& u : rigid::test::unit_ball_points(seed, n)) {
-    pts.push_back(
-        Vec3(1.7 * u.x() + 0.3 * u.y(), 0.9 * u.y() - 0.2 * u.z(), 0.6 * u.z() + 0.1 * u.x()));
+    pts.push_back(Vec3(1.7 * u.x() + 0.3 * u.y(), 0.9 * u.y() - 0.2 * u.z(), 0.6 * u.z() + 0.1 * u.x()));
   }
   return pts;
 }
@@ -98,8 +97,7 @@ TEST(MassProperties, BoxMatchesClosedForm) {
   expect_rel(p.mass, m, kRel, "mass");
   EXPECT_TRUE(p.centroid.isApprox(lo + 0.5 * Vec3(a, b, c), kRel));
   Mat3 expected = Mat3::Zero();
-  expected.diagonal() << m * (b * b + c * c) / 12, m * (a * a + c * c) / 12,
-      m * (a * a + b * b) / 12;
+  expected.diagonal() << m * (b * b + c * c) / 12, m * (a * a + c * c) / 12, m * (a * a + b * b) / 12;
   expect_mat_near(p.inertia, expected, kRel);
   // ascending principal moments are I_zz < I_yy < I_xx here, along the coordinate axes
   expect_rel(p.principal_moments[0], expected(2, 2), kRel, "I0");
@@ -143,8 +141,7 @@ TEST(MassProperties, UnitRightTetrahedronMatchesDirichletIntegrals) {
   expect_rel(p.volume, 1.0 / 6, kRel, "volume");
   EXPECT_TRUE(p.centroid.isApprox(Vec3::Constant(0.25), kRel));
   Mat3 expected;
-  expected << 1.0 / 80, 1.0 / 480, 1.0 / 480, 1.0 / 480, 1.0 / 80, 1.0 / 480, 1.0 / 480, 1.0 / 480,
-      1.0 / 80;
+  expected << 1.0 / 80, 1.0 / 480, 1.0 / 480, 1.0 / 480, 1.0 / 80, 1.0 / 480, 1.0 / 480, 1.0 / 480, 1.0 / 80;
   expect_mat_near(p.inertia, rho * expected, kRel);
   // eigenvalues of a I + b (J - I): a - b (twice) and a + 2b
   expect_rel(p.principal_moments[0], rho * (1.0 / 80 - 1.0 / 480), kRel, "I0");
@@ -198,8 +195,7 @@ TEST(MassProperties, RigidMotionRotatesInertiaAndKeepsPrincipalMoments) {
   expect_rel(pm.mass, p.mass, kRel, "mass");
   EXPECT_LT((pm.centroid - (r * p.centroid + shift)).norm(), kRel * shift.norm());
   expect_mat_near(pm.inertia, r * p.inertia * r.transpose(), kRel);
-  for (int k = 0; k < 3; ++k)
-    expect_rel(pm.principal_moments[k], p.principal_moments[k], kRel, "moment");
+  for (int k = 0; k < 3; ++k) expect_rel(pm.principal_moments[k], p.principal_moments[k], kRel, "moment");
   // the moved body also agrees with the independent oracle
   const Oracle o = quadrature_oracle(moved);
   expect_mat_near(pm.inertia, rho * o.inertia, kRel);
@@ -207,8 +203,7 @@ TEST(MassProperties, RigidMotionRotatesInertiaAndKeepsPrincipalMoments) {
 
 TEST(MassProperties, RejectsNonPositiveOrNonFiniteDensity) {
   const ClosedMesh mesh = mesh_of(box_soup(Vec3::Zero(), Vec3::Ones()));
-  for (double rho : {0.0, -1.0, std::numeric_limits<double>::quiet_NaN(),
-                     std::numeric_limits<double>::infinity()}) {
+  for (double rho : {0.0, -1.0, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
     EXPECT_THROW(mass_properties(mesh, rho), std::invalid_argument) << rho;
   }
 }

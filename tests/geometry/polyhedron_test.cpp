@@ -61,9 +61,7 @@ void expect_consistent(const ConvexPolyhedron& p) {
   // Euler's formula over the vertices that lie on feature edges
   std::size_t corners = 0;
   for (const auto& nb : p.vertex_neighbors) corners += !nb.empty();
-  EXPECT_EQ(static_cast<long>(corners) - static_cast<long>(p.edges.size()) +
-                static_cast<long>(p.faces.size()),
-            2);
+  EXPECT_EQ(static_cast<long>(corners) - static_cast<long>(p.edges.size()) + static_cast<long>(p.faces.size()), 2);
   // neighbour lists are symmetric
   for (std::size_t v = 0; v < p.vertex_neighbors.size(); ++v) {
     for (int w : p.vertex_neighbors[v]) {
@@ -216,16 +214,14 @@ TEST(Polyhedron, GeodesicSphereKeepsEveryTriangleAsAFace) {
 TEST(Polyhedron, BuildIsDeterministic) {
   Rng rng{5};
   std::vector<Vec3> pts;
-  for (int i = 0; i < 200; ++i)
-    pts.push_back(Vec3(rng.uniform(), 2 * rng.uniform(), rng.uniform()));
+  for (int i = 0; i < 200; ++i) pts.push_back(Vec3(rng.uniform(), 2 * rng.uniform(), rng.uniform()));
   const TriangleSoup soup = convex_hull(pts);
   const ConvexPolyhedron a = build_block(soup, 2650.0, {}, "r");
   const ConvexPolyhedron b = build_block(soup, 2650.0, {}, "r");
   ASSERT_EQ(a.vertices.size(), b.vertices.size());
   for (std::size_t i = 0; i < a.vertices.size(); ++i) EXPECT_EQ(a.vertices[i], b.vertices[i]);
   ASSERT_EQ(a.faces.size(), b.faces.size());
-  for (std::size_t i = 0; i < a.faces.size(); ++i)
-    EXPECT_EQ(a.faces[i].vertices, b.faces[i].vertices);
+  for (std::size_t i = 0; i < a.faces.size(); ++i) EXPECT_EQ(a.faces[i].vertices, b.faces[i].vertices);
   EXPECT_EQ(a.inertia, b.inertia);
   EXPECT_EQ(a.rotation.coeffs(), b.rotation.coeffs());
   expect_consistent(a);

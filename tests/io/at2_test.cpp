@@ -74,9 +74,10 @@ TEST(At2Read, FortranExponentsAndThreeValuesPerLine) {
   // 1.0D-03, 1.25d-01, letter-less 1.0-005, a plain 0.0, sign-glued fields
   const At2Record r = read_at2(kData + "fortran_exponents.AT2");
   expect_values(r);
-  const At2Record g = parse_at2("t\ns, c\nACCELERATION IN UNITS OF G\nNPTS= 4, DT= 0.01\n"
-                                " -.1000E-02-.2000E-02  0.00300-0.00400\n",
-                                "glued", {});
+  const At2Record g = parse_at2(
+      "t\ns, c\nACCELERATION IN UNITS OF G\nNPTS= 4, DT= 0.01\n"
+      " -.1000E-02-.2000E-02  0.00300-0.00400\n",
+      "glued", {});
   ASSERT_EQ(g.values.size(), 4u);
   EXPECT_DOUBLE_EQ(g.values[0], -0.001);
   EXPECT_DOUBLE_EQ(g.values[1], -0.002);
@@ -84,8 +85,7 @@ TEST(At2Read, FortranExponentsAndThreeValuesPerLine) {
 }
 
 TEST(At2Read, HeaderlessNeedsExplicitDt) {
-  expect_input_error([] { read_at2(kData + "headerless.AT2"); }, kData + "headerless.AT2", 1,
-                     "time step");
+  expect_input_error([] { read_at2(kData + "headerless.AT2"); }, kData + "headerless.AT2", 1, "time step");
   At2ReadOptions o;
   o.dt = 0.005;
   const At2Record r = read_at2(kData + "headerless.AT2", o);
@@ -97,31 +97,22 @@ TEST(At2Read, HeaderlessNeedsExplicitDt) {
 TEST(At2Read, ErrorsNameFileAndLine) {
   expect_input_error([] { read_at2(kData + "bad_npts.AT2"); }, kData + "bad_npts.AT2", 6,
                      "NPTS=10 in the header but 8 values");
-  expect_input_error([] { read_at2(kData + "bad_value.AT2"); }, kData + "bad_value.AT2", 6,
-                     "NaN");
-  expect_input_error([] { read_at2(kData + "bad_dt.AT2"); }, kData + "bad_dt.AT2", 4,
-                     "DT must be positive");
-  expect_input_error([] { read_at2(kData + "no_header.AT2"); }, kData + "no_header.AT2", 0,
-                     "missing AT2 header");
+  expect_input_error([] { read_at2(kData + "bad_value.AT2"); }, kData + "bad_value.AT2", 6, "NaN");
+  expect_input_error([] { read_at2(kData + "bad_dt.AT2"); }, kData + "bad_dt.AT2", 4, "DT must be positive");
+  expect_input_error([] { read_at2(kData + "no_header.AT2"); }, kData + "no_header.AT2", 0, "missing AT2 header");
   const std::string hdr = "t\ns, c\nACCELERATION TIME SERIES IN UNITS OF G\nNPTS= 2, DT= 0.01\n";
   expect_input_error([&] { parse_at2(hdr + "0.1 abc\n", "m.AT2"); }, "m.AT2", 5, "non-numeric");
-  expect_input_error([&] { parse_at2(hdr + "0.1 0.2 0.3\n", "m.AT2"); }, "m.AT2", 5,
-                     "more values than NPTS=2");
+  expect_input_error([&] { parse_at2(hdr + "0.1 0.2 0.3\n", "m.AT2"); }, "m.AT2", 5, "more values than NPTS=2");
   expect_input_error([&] { parse_at2(hdr + "0.1 1e999\n", "m.AT2"); }, "m.AT2", 5, "range");
   expect_input_error([&] { parse_at2(hdr + "0.1 inf\n", "m.AT2"); }, "m.AT2", 5, "infinite");
   expect_input_error([] { parse_at2("", "e.AT2"); }, "e.AT2", 0, "empty");
-  expect_input_error(
-      [] {
-        parse_at2("t\ns, c\nVELOCITY TIME SERIES IN UNITS OF CM/S\nNPTS= 1, DT= 0.01\n1\n", "v");
-      },
-      "v", 3, "not an acceleration");
-  expect_input_error([] { read_at2(kData + "does_not_exist.AT2"); },
-                     kData + "does_not_exist.AT2", 0, "cannot open");
+  expect_input_error([] { parse_at2("t\ns, c\nVELOCITY TIME SERIES IN UNITS OF CM/S\nNPTS= 1, DT= 0.01\n1\n", "v"); },
+                     "v", 3, "not an acceleration");
+  expect_input_error([] { read_at2(kData + "does_not_exist.AT2"); }, kData + "does_not_exist.AT2", 0, "cannot open");
 }
 
 TEST(At2Read, UnitsOtherThanG) {
-  const At2Record r = parse_at2(
-      "t\ns, c\nACCELERATION TIME SERIES IN UNITS OF CM/S/S\nNPTS= 1, DT= 0.01\n981\n", "cm");
+  const At2Record r = parse_at2("t\ns, c\nACCELERATION TIME SERIES IN UNITS OF CM/S/S\nNPTS= 1, DT= 0.01\n981\n", "cm");
   EXPECT_DOUBLE_EQ(r.component_si().acc[0], 9.81);
 }
 
@@ -157,8 +148,7 @@ TEST(At2Write, RoundTripIsExactToThePrintedPrecision) {
 struct TempDir {
   fs::path path;
   TempDir() {
-    path = fs::temp_directory_path() /
-           ("rigid_at2_test_" + std::to_string(std::random_device{}()));
+    path = fs::temp_directory_path() / ("rigid_at2_test_" + std::to_string(std::random_device{}()));
     fs::create_directories(path);
   }
   ~TempDir() {
@@ -232,8 +222,7 @@ TEST(At2Sets, UnequalLengthsNeedResampling) {
 TEST(At2Info, ReportHasIssueKeysPerSet) {
   TempDir d;
   write_motion_set(three_component(200, 0.01), (d.path / "S").string());
-  const std::string j =
-      motion_info_report((d.path / "S-X.AT2").string(), {}, {}, {}, /*json=*/true);
+  const std::string j = motion_info_report((d.path / "S-X.AT2").string(), {}, {}, {}, /*json=*/true);
   EXPECT_EQ(j.find('\n'), std::string::npos);
   const Json parsed = Json::parse(j);
   EXPECT_TRUE(parsed.contains("gmroti50_pga_g"));

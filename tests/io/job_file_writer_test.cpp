@@ -90,9 +90,10 @@ TEST(JobFileWriter, ARangeOfScalesKeepsItsStatedDecimalsAndItsSums) {
   fs::create_directories(dir);
   std::ofstream(dir / "rock.toml") << "# scene\n";
   std::ofstream(dir / "a-X.AT2") << "x\n";
-  std::ofstream(dir / "job.toml") << "[campaign]\nscales = \"0.1:1.0:0.1\"\nrotations = 3\ncheckpoint_interval_s = 5\n"
-                                     "[[object]]\nscene = \"rock.toml\"\n[[record]]\nmotion = \"a-X.AT2\"\nstart = 2.0\n"
-                                     "name = \"mine\"\nalign = \"resample\"\n[run]\naccuracy = \"fast\"\ndt_s = 1e-4\n";
+  std::ofstream(dir / "job.toml")
+      << "[campaign]\nscales = \"0.1:1.0:0.1\"\nrotations = 3\ncheckpoint_interval_s = 5\n"
+         "[[object]]\nscene = \"rock.toml\"\n[[record]]\nmotion = \"a-X.AT2\"\nstart = 2.0\n"
+         "name = \"mine\"\nalign = \"resample\"\n[run]\naccuracy = \"fast\"\ndt_s = 1e-4\n";
   const io::JobFile first = io::read_job_file((dir / "job.toml").string());
   ASSERT_EQ(first.scales_g.size(), 10u);
   EXPECT_EQ(first.scales_g[2], 0.3);

@@ -1,5 +1,6 @@
 // Record lists (table TSV, .ABF) and the comparison of the study's tabulated GMRotI50 values with
-// the values computed from the shared PEER files (docs/ground-motions.md, "The study's table against the shared records").
+// the values computed from the shared PEER files (docs/ground-motions.md, "The study's table against the shared
+// records").
 #include "rigid/io/record_list.hpp"
 
 #include <gtest/gtest.h>
@@ -38,8 +39,7 @@ TEST(RecordTable, ParsesTheStudyTable) {
   for (const auto& e : l.records) {
     empty_quake += e.earthquake.empty();
     // the last column is PGV / (PGA g) with g = 980.665 cm/s^2 (physics.md §1), 5 digits
-    EXPECT_NEAR(e.gmroti_pgv_cm_s / (e.gmroti_pga_g * 980.665) / e.pgv_pga_s, 1.0, 2e-4)
-        << e.file;
+    EXPECT_NEAR(e.gmroti_pgv_cm_s / (e.gmroti_pga_g * 980.665) / e.pgv_pga_s, 1.0, 2e-4) << e.file;
   }
   EXPECT_EQ(empty_quake, 1);  // the TCU128 row has no earthquake name
 }
@@ -47,8 +47,7 @@ TEST(RecordTable, ParsesTheStudyTable) {
 TEST(RecordTable, MalformedLinesNameTheLine) {
   EXPECT_THROW(parse_record_table("A\t1999\t7\tx.AT2\t1\n", "t.tsv"), InputError);
   try {
-    parse_record_table("# c\nA\t1999\t7\tx.AT2\t1\t2\t0.1\t10\t0.1\nB\t1999\t7\ty.AT2\tabc\t2\n",
-                       "t.tsv");
+    parse_record_table("# c\nA\t1999\t7\tx.AT2\t1\t2\t0.1\t10\t0.1\nB\t1999\t7\ty.AT2\tabc\t2\n", "t.tsv");
     ADD_FAILURE();
   } catch (const InputError& e) {
     EXPECT_EQ(e.line(), 3);
@@ -87,8 +86,8 @@ TEST(RecordTable, OptionalAlignColumn) {
 }
 
 TEST(RecordAbf, ParsesScalesDeprecatedZeroAndRecords) {
-  const RecordList l = parse_abf(
-      "0.1 0.2, 0.3\r\n0\r\nCHY028-X.AT2\r\n# comment\r\nA.AT2,B.AT2 1.5 12.25\r\n", "b.abf");
+  const RecordList l =
+      parse_abf("0.1 0.2, 0.3\r\n0\r\nCHY028-X.AT2\r\n# comment\r\nA.AT2,B.AT2 1.5 12.25\r\n", "b.abf");
   EXPECT_EQ(l.pga_scales_g, (std::vector<double>{0.1, 0.2, 0.3}));
   ASSERT_EQ(l.records.size(), 2u);
   EXPECT_EQ(l.records[0].file, "CHY028-X.AT2");
@@ -97,9 +96,9 @@ TEST(RecordAbf, ParsesScalesDeprecatedZeroAndRecords) {
   EXPECT_DOUBLE_EQ(l.records[1].start, 1.5);
   EXPECT_DOUBLE_EQ(l.records[1].end, 12.25);
   EXPECT_EQ(l.records[1].line, 5);
-  EXPECT_THROW(parse_abf("0.1\n1\nX.AT2\n", "b.abf"), InputError);      // line 2 must be 0
-  EXPECT_THROW(parse_abf("0.1 -2\n0\nX.AT2\n", "b.abf"), InputError);   // negative scale
-  EXPECT_THROW(parse_abf("0.1\n0\nX.AT2 1\n", "b.abf"), InputError);    // start without end
+  EXPECT_THROW(parse_abf("0.1\n1\nX.AT2\n", "b.abf"), InputError);     // line 2 must be 0
+  EXPECT_THROW(parse_abf("0.1 -2\n0\nX.AT2\n", "b.abf"), InputError);  // negative scale
+  EXPECT_THROW(parse_abf("0.1\n0\nX.AT2 1\n", "b.abf"), InputError);   // start without end
   EXPECT_THROW(parse_abf("", "b.abf"), InputError);
 }
 
@@ -130,24 +129,21 @@ TEST(TableComparison, ComputedVsTabulatedGmroti) {
   for (const auto& e : read_record_list(table.string()).records) rows[e.file] = e;
 
   // outliers explained in docs/ground-motions.md, each with the evidence checked below
-  const std::set<std::string> explained = {"059v2-X.AT2", "CHY074-X.AT2", "H_E06-X.AT2",
-                                           "DZC-X.AT2",   "GBZ-X.AT2",    "H_EMO-X.AT2",
-                                           "CHY104-X.AT2"};
+  const std::set<std::string> explained = {"059v2-X.AT2", "CHY074-X.AT2", "H_E06-X.AT2", "DZC-X.AT2",
+                                           "GBZ-X.AT2",   "H_EMO-X.AT2",  "CHY104-X.AT2"};
   SetReadOptions o;
   o.align.resample = true;  // some horizontals differ by a few samples: zero-pad (same dt)
   int n = 0, pga_ok = 0, pgv_ok = 0;
-  std::printf("%-14s %8s %8s %7s | %8s %8s %7s | %8s %8s | %8s %8s\n", "record", "tab PGA",
-              "GMRotI", "diff%", "tab PGV", "GMRotI", "diff%", "GMRotD", "GMRotD v", "win PGA",
-              "win PGV");
+  std::printf("%-14s %8s %8s %7s | %8s %8s %7s | %8s %8s | %8s %8s\n", "record", "tab PGA", "GMRotI", "diff%",
+              "tab PGV", "GMRotI", "diff%", "GMRotD", "GMRotD v", "win PGA", "win PGV");
   for (const auto& [name, set] : shared_sets(peer)) {
     ASSERT_TRUE(rows.count(name)) << name;
     ASSERT_TRUE(set.files.count("H1") && set.files.count("H2")) << name;
     const RecordCheck c = check_record(rows[name], o, set.files.at("H1") + "," + set.files.at("H2"));
-    std::printf("%-14s %8.4f %8.4f %+7.1f | %8.2f %8.2f %+7.1f | %8.4f %8.2f | %8.4f %8.2f%s\n",
-                name.c_str(), c.entry.gmroti_pga_g, c.gmroti_pga_g, 100 * c.pga_rel_diff,
-                c.entry.gmroti_pgv_cm_s, c.gmroti_pgv_cm_s, 100 * c.pgv_rel_diff, c.gmrotd_pga_g,
-                c.gmrotd_pgv_cm_s, c.window_gmroti_pga_g, c.window_gmroti_pgv_cm_s,
-                explained.count(name) ? "  (explained outlier)" : "");
+    std::printf("%-14s %8.4f %8.4f %+7.1f | %8.2f %8.2f %+7.1f | %8.4f %8.2f | %8.4f %8.2f%s\n", name.c_str(),
+                c.entry.gmroti_pga_g, c.gmroti_pga_g, 100 * c.pga_rel_diff, c.entry.gmroti_pgv_cm_s, c.gmroti_pgv_cm_s,
+                100 * c.pgv_rel_diff, c.gmrotd_pga_g, c.gmrotd_pgv_cm_s, c.window_gmroti_pga_g,
+                c.window_gmroti_pgv_cm_s, explained.count(name) ? "  (explained outlier)" : "");
     ++n;
     const bool a = std::abs(c.pga_rel_diff) <= 0.03, v = std::abs(c.pgv_rel_diff) <= 0.10;
     pga_ok += a;

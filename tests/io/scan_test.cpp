@@ -21,8 +21,8 @@ namespace fs = std::filesystem;
 
 std::string scan(const char* name) { return (fs::path(RIGID_SHARED_DIR) / "scans" / name).string(); }
 
-#define SKIP_WITHOUT_SCANS()                                                                     \
-  if (!fs::exists(scan("sp1_rock.obj")) || !fs::exists(scan("sp1_rock_dense.ply")))              \
+#define SKIP_WITHOUT_SCANS()                                                        \
+  if (!fs::exists(scan("sp1_rock.obj")) || !fs::exists(scan("sp1_rock_dense.ply"))) \
   GTEST_SKIP() << "../shared/scans is absent: the real scans are not part of the repository"
 
 geometry::ClosedMesh checked(const std::string& path, std::vector<std::string>* warnings = nullptr) {
@@ -74,7 +74,8 @@ TEST(Scan, BothTessellationsImportWithTheirOwnVolume) {
   std::printf("centroid above the lowest corner: obj %.4f %.4f %.4f, ply %.4f %.4f %.4f m\n", obj_c.x(), obj_c.y(),
               obj_c.z(), ply_c.x(), ply_c.y(), ply_c.z());
   EXPECT_LT((ply_c - obj_c).norm() / std::cbrt(obj_props.volume), 0.01);
-  for (int k = 0; k < 3; ++k) EXPECT_NEAR(ply_props.principal_moments[k] / obj_props.principal_moments[k], 1.0, 0.03) << k;
+  for (int k = 0; k < 3; ++k)
+    EXPECT_NEAR(ply_props.principal_moments[k] / obj_props.principal_moments[k], 1.0, 0.03) << k;
   std::printf("obj: V %.5f m^3, m %.2f kg; ply: V %.5f m^3; moments obj %.3f %.3f %.3f, ply %.3f %.3f %.3f kg m^2\n",
               obj_props.volume, obj_props.mass, ply_props.volume, obj_props.principal_moments[0],
               obj_props.principal_moments[1], obj_props.principal_moments[2], ply_props.principal_moments[0],
@@ -130,8 +131,9 @@ TEST(Scan, DecompositionHugsTheMesh) {
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   double pieces_volume = 0;
   for (const auto& p : d.pieces) pieces_volume += geometry::soup_volume(p.soup);
-  std::printf("decomposition: %zu pieces in %.2f s, full hulls %.5f m^3, with the vertex budget %.5f m^3, mesh %.5f m^3\n",
-              d.pieces.size(), seconds, d.hull_volume, pieces_volume, volume);
+  std::printf(
+      "decomposition: %zu pieces in %.2f s, full hulls %.5f m^3, with the vertex budget %.5f m^3, mesh %.5f m^3\n",
+      d.pieces.size(), seconds, d.hull_volume, pieces_volume, volume);
   EXPECT_NEAR(pieces_volume / volume, 1.0, 0.02);
   EXPECT_LE(int(d.pieces.size()), options.max_pieces);
 }

@@ -170,8 +170,7 @@ TEST(StlRead, BinaryNanAndZeroFacetsNameTheFacet) {
   EXPECT_EQ(std::string(e.what()), "rock.stl: facet 3: vertex coordinate is NaN or infinite");
   std::string empty(84, '\0');
   EXPECT_NE(std::string(parse_error(empty).what()).find("zero facets"), std::string::npos);
-  EXPECT_NE(std::string(parse_error("solid x\nendsolid x\n").what()).find("no facets"),
-            std::string::npos);
+  EXPECT_NE(std::string(parse_error("solid x\nendsolid x\n").what()).find("no facets"), std::string::npos);
 }
 
 TEST(StlRead, MalformedAsciiNamesTheLine) {

@@ -117,8 +117,7 @@ TEST(Window, SelectsSamplesAndRestartsTime) {
 }
 
 TEST(Scaling, TargetPgaWithOneHorizontalUsesItsPga) {
-  GroundMotion m = make_ground_motion("s", {{{0.0, 0.5, -2.0, 1.0}, 0.01, "x"},
-                                             {{0.0, 0.0, 0.0, 3.0}, 0.01, "z"}});
+  GroundMotion m = make_ground_motion("s", {{{0.0, 0.5, -2.0, 1.0}, 0.01, "x"}, {{0.0, 0.0, 0.0, 3.0}, 0.01, "z"}});
   m.z = m.y;  // treat the second component as vertical
   m.y.clear();
   m.has_y = false;

@@ -116,8 +116,10 @@ TEST(LabLowHighPass, EveryOrderHasTheButterworthMagnitude) {
         const double f = ratio * fc;
         const double r = std::tan(kPi * f * kDt) / std::tan(kPi * fc * kDt), rn = std::pow(r, n);
         const double lp = 1.0 / std::sqrt(1.0 + rn * rn), hp = rn * lp;
-        EXPECT_NEAR(gain_at(low, f, kDt), lp, 1e-6 * lp) << "low-pass " << fc << " Hz order " << n << " at " << f << " Hz";
-        EXPECT_NEAR(gain_at(high, f, kDt), hp, 1e-6 * hp) << "high-pass " << fc << " Hz order " << n << " at " << f << " Hz";
+        EXPECT_NEAR(gain_at(low, f, kDt), lp, 1e-6 * lp)
+            << "low-pass " << fc << " Hz order " << n << " at " << f << " Hz";
+        EXPECT_NEAR(gain_at(high, f, kDt), hp, 1e-6 * hp)
+            << "high-pass " << fc << " Hz order " << n << " at " << f << " Hz";
       }
     }
   }

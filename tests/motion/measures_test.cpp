@@ -30,9 +30,7 @@ struct SinePair {
   }
   // closed form: a1 cos(th) + a2 sin(th) = Re[(A cos th + B e^{i phi} sin th) e^{i w t}],
   // whose peak over t is the modulus of the complex amplitude
-  double peak(double th) const {
-    return std::abs(A * std::cos(th) + B * std::polar(1.0, phi) * std::sin(th));
-  }
+  double peak(double th) const { return std::abs(A * std::cos(th) + B * std::polar(1.0, phi) * std::sin(th)); }
   double gm(double th_deg) const {
     const double th = th_deg * kPi / 180;
     return std::sqrt(peak(th) * peak(th + kPi / 2));
@@ -57,8 +55,7 @@ TEST(GmRotD, SinusoidPairMatchesClosedFormEllipse) {
     EXPECT_NEAR(rotd(s.a1, s.a2, 100) / *std::max_element(p_cf.begin(), p_cf.end()), 1.0, tol);
     // RotD100 vs the ellipse's semi-major axis sqrt(lambda_max) of [[A^2, AB cos], [., B^2]]
     const double c = s.A * s.B * std::cos(s.phi);
-    const double lmax = 0.5 * (s.A * s.A + s.B * s.B) +
-                        std::sqrt(0.25 * std::pow(s.A * s.A - s.B * s.B, 2) + c * c);
+    const double lmax = 0.5 * (s.A * s.A + s.B * s.B) + std::sqrt(0.25 * std::pow(s.A * s.A - s.B * s.B, 2) + c * c);
     EXPECT_NEAR(rotd(s.a1, s.a2, 100) / std::sqrt(lmax), 1.0, 2e-4);  // 1-degree grid
   }
 }
@@ -157,9 +154,7 @@ TEST(Sdof, HarmonicInputReachesSteadyStateAmplitude) {
   }
 }
 
-TEST(Sdof, ZeroPeriodGivesPga) {
-  EXPECT_DOUBLE_EQ(response_spectrum({0.0, -3.0, 1.0}, 0.01, {0.0})[0], 3.0);
-}
+TEST(Sdof, ZeroPeriodGivesPga) { EXPECT_DOUBLE_EQ(response_spectrum({0.0, -3.0, 1.0}, 0.01, {0.0})[0], 3.0); }
 
 }  // namespace
 }  // namespace rigid::motion

@@ -29,9 +29,7 @@ fs::path scratch(const std::string& name) {
   return dir;
 }
 
-void write(const fs::path& path, const std::string& text) {
-  std::ofstream(path) << text;
-}
+void write(const fs::path& path, const std::string& text) { std::ofstream(path) << text; }
 
 Physics penalty(double k, double d, double mu) {
   Physics p;

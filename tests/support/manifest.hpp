@@ -19,9 +19,12 @@ inline std::vector<std::map<std::string, std::string>> read_manifest(const std::
     std::vector<std::string> f(1);
     bool quoted = false;
     for (char c : line) {
-      if (c == '"') quoted = !quoted;
-      else if (c == ',' && !quoted) f.emplace_back();
-      else f.back() += c;
+      if (c == '"')
+        quoted = !quoted;
+      else if (c == ',' && !quoted)
+        f.emplace_back();
+      else
+        f.back() += c;
     }
     if (header.empty()) {
       header = f;

@@ -46,16 +46,16 @@ OutcomeGrid select_variants(const OutcomeGrid& grid, const std::vector<int>& var
 
 /// One candidate model of the real tests.
 struct Candidate {
-  int variant = 0;   ///< physics variant (index in the design)
-  int heading = 0;   ///< heading centre (index on the grid)
-  double spread_deg = 0;  ///< heading window half-width: every grid heading within it counts equally
-  double lapse = 0;  ///< probability that an outcome is a coin toss (unit: 1)
+  int variant = 0;            ///< physics variant (index in the design)
+  int heading = 0;            ///< heading centre (index on the grid)
+  double spread_deg = 0;      ///< heading window half-width: every grid heading within it counts equally
+  double lapse = 0;           ///< probability that an outcome is a coin toss (unit: 1)
   double log_likelihood = 0;  ///< of the outcomes it was fitted to (natural log)
 };
 
 /// Which candidates are tried.
 struct SearchSettings {
-  std::vector<double> spreads_deg{0, 10, 20, 30};        ///< unit: deg
+  std::vector<double> spreads_deg{0, 10, 20, 30};         ///< unit: deg
   std::vector<double> lapses{0.02, 0.05, 0.1, 0.2, 0.3};  ///< unit: 1
 };
 

@@ -43,7 +43,6 @@ struct SupportHints {
 
 /// Shortest link between A and B. `guess` is any direction from A towards B (e.g. the last
 /// common-plane normal); it only affects speed.
-LinkResult shortest_link(const PlacedHull& a, const PlacedHull& b, const Vec3& guess,
-                         SupportHints& hints);
+LinkResult shortest_link(const PlacedHull& a, const PlacedHull& b, const Vec3& guess, SupportHints& hints);
 
 }  // namespace rigid::contact

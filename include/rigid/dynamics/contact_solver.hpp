@@ -25,9 +25,9 @@ namespace rigid::dynamics {
 /// Velocities of one body as the solver sees them (world frame). A body with inverse mass 0 and
 /// a zero inverse inertia (a pedestal) is moved by nothing.
 struct SolverBody {
-  Vec3 velocity{0, 0, 0};          ///< unit: m/s
-  Vec3 angular_velocity{0, 0, 0};  ///< unit: rad/s
-  double inverse_mass = 0;         ///< unit: 1/kg
+  Vec3 velocity{0, 0, 0};               ///< unit: m/s
+  Vec3 angular_velocity{0, 0, 0};       ///< unit: rad/s
+  double inverse_mass = 0;              ///< unit: 1/kg
   Mat3 inverse_inertia = Mat3::Zero();  ///< world frame (unit: 1/(kg m^2))
 };
 
@@ -45,7 +45,7 @@ struct ContactRow {
   double normal_impulse = 0;      ///< p_n (unit: N s); in: warm start, out: solution
   double correction_impulse = 0;  ///< split impulse (unit: N s), moves positions only
   // filled by prepare()
-  double normal_mass = 0;         ///< 1 / (J_n M^-1 J_n^T)
+  double normal_mass = 0;             ///< 1 / (J_n M^-1 J_n^T)
   Vec3 ra_n{0, 0, 0}, rb_n{0, 0, 0};  ///< ra x n, rb x n
   /// I_a^-1 (ra x n), I_b^-1 (rb x n): the angular velocity a unit normal impulse gives each body
   Vec3 turn_a{0, 0, 0}, turn_b{0, 0, 0};
@@ -79,7 +79,7 @@ struct SolverSettings {
 };
 
 struct SolverResult {
-  int iterations = 0;   ///< sweeps of the velocity solve
+  int iterations = 0;  ///< sweeps of the velocity solve
   bool converged = false;
 };
 
@@ -107,7 +107,6 @@ SolverResult solve_velocities(std::vector<SolverBody>& bodies, std::vector<Conta
 /// correction_velocity, applied to `pseudo` velocities (zeroed first) that move positions only,
 /// so no kinetic energy is added.
 void solve_correction(const std::vector<SolverBody>& bodies, std::vector<SolverBody>& pseudo,
-                      std::vector<ContactRow>& rows, const SolverSettings& settings,
-                      std::vector<SolverBody>& scratch);
+                      std::vector<ContactRow>& rows, const SolverSettings& settings, std::vector<SolverBody>& scratch);
 
 }  // namespace rigid::dynamics

@@ -12,9 +12,9 @@ namespace rigid::geometry {
 
 /// One convex piece of a contact shape.
 struct ConvexPiece {
-  TriangleSoup soup;          ///< its hull, outward triangles
-  std::size_t vertices = 0;   ///< hull vertices
-  double volume = 0;          ///< unit: m^3
+  TriangleSoup soup;         ///< its hull, outward triangles
+  std::size_t vertices = 0;  ///< hull vertices
+  double volume = 0;         ///< unit: m^3
   /// Hausdorff distance between this piece and the full hull of the points it was reduced from:
   /// the reduced hull lies inside the full one, so it is the largest distance of a full-hull
   /// vertex outside the reduced hull (exact, not sampled; unit: m). 0 when nothing was dropped.
@@ -23,9 +23,9 @@ struct ConvexPiece {
 
 /// The convex hull of `points` reduced to at most `max_vertices` vertices (>= 4) by farthest-point
 /// refinement: from an extreme simplex and the corners of the hull's lowest plane (a rock's flat
-/// base: its support polygon is kept whole, budget permitting), the hull vertex farthest outside the current hull is added
-/// until the budget is used or no vertex is farther out than `tolerance` (unit: m). Throws
-/// std::invalid_argument for fewer than four points not in one plane, or a budget below 4.
+/// base: its support polygon is kept whole, budget permitting), the hull vertex farthest outside the current hull is
+/// added until the budget is used or no vertex is farther out than `tolerance` (unit: m). Throws std::invalid_argument
+/// for fewer than four points not in one plane, or a budget below 4.
 ConvexPiece reduced_hull(std::span<const Vec3> points, int max_vertices, double tolerance = 0);
 
 /// Settings of the approximate convex decomposition.
@@ -34,16 +34,16 @@ struct DecompositionOptions {
   /// (A scan's surface is rough at the centimetre scale: sp1_rock, 8.8 % below its hull, needs
   /// ~8 pieces for 5.6 %, ~100 for 2.5 %, ~220 for 1 %.)
   double concavity = 0.02;
-  int max_pieces = 128;       ///< never more pieces than this
-  int max_vertices = 48;      ///< vertex budget of each piece (reduced_hull)
-  int positions = 7;          ///< candidate cut positions per axis and split
+  int max_pieces = 128;   ///< never more pieces than this
+  int max_vertices = 48;  ///< vertex budget of each piece (reduced_hull)
+  int positions = 7;      ///< candidate cut positions per axis and split
 };
 
 /// Outcome of a decomposition.
 struct Decomposition {
   std::vector<ConvexPiece> pieces;
-  double mesh_volume = 0;     ///< unit: m^3
-  double hull_volume = 0;     ///< the pieces' full hulls, summed (disjoint cells; unit: m^3)
+  double mesh_volume = 0;  ///< unit: m^3
+  double hull_volume = 0;  ///< the pieces' full hulls, summed (disjoint cells; unit: m^3)
 };
 
 /// Approximate convex decomposition of a closed mesh by recursive plane cuts (V-HACD's cost, on

@@ -25,11 +25,11 @@ inline constexpr double kHullCollinearTolerance = 1e-15;
 /// dropped, and so are duplicates. Fewer than three points: all of them, sorted. `order` is
 /// scratch: neither vector allocates once it is large enough (for per-step callers).
 void convex_hull_2d(std::span<const Point2> points, std::vector<int>& hull, std::vector<int>& order,
-                 double collinear_tolerance = kHullCollinearTolerance);
+                    double collinear_tolerance = kHullCollinearTolerance);
 
 /// The same, returning the indices.
 std::vector<int> convex_hull_2d_indices(std::span<const Point2> points,
-                                     double collinear_tolerance = kHullCollinearTolerance);
+                                        double collinear_tolerance = kHullCollinearTolerance);
 
 /// The same, returning the hull's vertices.
 Polygon2 convex_hull_2d(std::span<const Point2> points, double collinear_tolerance = kHullCollinearTolerance);

@@ -33,9 +33,9 @@ struct MeshOptions {
 
 /// A closed, consistently outward-oriented triangle mesh with welded vertices, in the file's frame.
 struct ClosedMesh {
-  std::vector<Vec3> vertices;                    ///< unit: m
-  std::vector<std::array<int, 3>> triangles;     ///< counter-clockwise seen from outside
-  std::vector<std::string> warnings;             ///< e.g. "orientation was inward; flipped"
+  std::vector<Vec3> vertices;                 ///< unit: m
+  std::vector<std::array<int, 3>> triangles;  ///< counter-clockwise seen from outside
+  std::vector<std::string> warnings;          ///< e.g. "orientation was inward; flipped"
 };
 
 /// Welds vertices, builds adjacency and checks the mesh: non-empty, no degenerate (zero-area)
@@ -43,8 +43,7 @@ struct ClosedMesh {
 /// outward (fixes an inward mesh and records a warning), and, when options.require_convex, a
 /// topological sphere that is convex within tolerance.
 /// Throws rigid::InputError(source, 0, "facet N: <problem>") when a check fails.
-ClosedMesh make_closed_mesh(const TriangleSoup& soup, const MeshOptions& options,
-                            const std::string& source);
+ClosedMesh make_closed_mesh(const TriangleSoup& soup, const MeshOptions& options, const std::string& source);
 
 /// Removes the facets that have two corners at exactly the same point (a scanner's duplicated
 /// vertex: the facet has no area, and welding would make it a degenerate triangle) and returns
@@ -58,11 +57,11 @@ std::vector<std::array<int, 3>> triangle_neighbors(const ClosedMesh& mesh);
 
 /// Volume, centroid and inertia of a homogeneous closed mesh (Blow & Binstock; physics.md §7).
 struct MassProperties {
-  double volume = 0;        ///< unit: m^3
-  double mass = 0;          ///< unit: kg
-  Vec3 centroid{0, 0, 0};   ///< in the mesh frame (unit: m)
-  Mat3 inertia = Mat3::Zero();  ///< about the centroid, mesh-frame axes (unit: kg m^2)
-  Vec3 principal_moments{0, 0, 0};  ///< ascending (unit: kg m^2)
+  double volume = 0;                       ///< unit: m^3
+  double mass = 0;                         ///< unit: kg
+  Vec3 centroid{0, 0, 0};                  ///< in the mesh frame (unit: m)
+  Mat3 inertia = Mat3::Zero();             ///< about the centroid, mesh-frame axes (unit: kg m^2)
+  Vec3 principal_moments{0, 0, 0};         ///< ascending (unit: kg m^2)
   Mat3 principal_axes = Mat3::Identity();  ///< columns: principal axes in the mesh frame, det = +1
 };
 
@@ -72,30 +71,30 @@ MassProperties mass_properties(const ClosedMesh& mesh, double density);
 /// A planar face of a convex block: merged coplanar triangles, vertices counter-clockwise seen
 /// from outside.
 struct Face {
-  Vec3 normal;                 ///< outward unit normal (body frame)
-  double offset = 0;           ///< plane: normal . x = offset (unit: m)
-  std::vector<int> vertices;   ///< polygon loop, CCW from outside
+  Vec3 normal;                ///< outward unit normal (body frame)
+  double offset = 0;          ///< plane: normal . x = offset (unit: m)
+  std::vector<int> vertices;  ///< polygon loop, CCW from outside
 };
 
 /// An edge between two faces (a feature edge: edges inside a merged planar face are dropped).
 struct Edge {
-  int v0 = 0, v1 = 0;          ///< vertex indices
-  int face_left = 0;           ///< face on which v0->v1 runs counter-clockwise
-  int face_right = 0;          ///< the other face
+  int v0 = 0, v1 = 0;  ///< vertex indices
+  int face_left = 0;   ///< face on which v0->v1 runs counter-clockwise
+  int face_right = 0;  ///< the other face
 };
 
 /// A convex block in its body frame: origin at the centroid, axes along the principal axes of
 /// inertia, so the rotational dynamics can use a diagonal inertia tensor.
 struct ConvexPolyhedron {
-  std::vector<Vec3> vertices;                  ///< body frame (unit: m), never moved after build
+  std::vector<Vec3> vertices;  ///< body frame (unit: m), never moved after build
   std::vector<Face> faces;
   std::vector<Edge> edges;
   std::vector<std::vector<int>> vertex_neighbors;  ///< vertex -> adjacent vertices (feature edges)
   std::vector<std::vector<int>> face_neighbors;    ///< face -> faces sharing a feature edge
-  double volume = 0;          ///< unit: m^3
-  double mass = 0;            ///< unit: kg
-  Vec3 inertia{0, 0, 0};      ///< principal moments, body frame (unit: kg m^2)
-  double bounding_radius = 0; ///< max |vertex - bounding_centre| (unit: m)
+  double volume = 0;                               ///< unit: m^3
+  double mass = 0;                                 ///< unit: kg
+  Vec3 inertia{0, 0, 0};                           ///< principal moments, body frame (unit: kg m^2)
+  double bounding_radius = 0;                      ///< max |vertex - bounding_centre| (unit: m)
   /// Centre of the bounding sphere in the body frame (unit: m): the origin for a whole block, the
   /// piece's own middle for a piece of a compound body (make_piece).
   Vec3 bounding_centre{0, 0, 0};
@@ -105,8 +104,7 @@ struct ConvexPolyhedron {
 };
 
 /// Builds the body-frame block from a checked mesh and its mass properties.
-ConvexPolyhedron make_polyhedron(const ClosedMesh& mesh, const MassProperties& props,
-                                 const MeshOptions& options);
+ConvexPolyhedron make_polyhedron(const ClosedMesh& mesh, const MassProperties& props, const MeshOptions& options);
 
 /// Convenience: soup -> checked mesh -> mass properties -> body-frame block.
 ConvexPolyhedron build_block(const TriangleSoup& soup, double density, const MeshOptions& options,

@@ -15,13 +15,13 @@ namespace rigid::io {
 /// NAME-X.AT2, or an explicit comma-joined mapping of arbitrarily named files
 /// (`x=RSN1_E.AT2,y=RSN1_N.AT2,z=RSN1_V.AT2` or `H1.AT2,H2.AT2[,V.AT2]`).
 struct RecordEntry {
-  long line = 0;            ///< line in the list file
-  std::string earthquake;   ///< may be empty
-  int year = 0;             ///< 0 if not given
+  long line = 0;           ///< line in the list file
+  std::string earthquake;  ///< may be empty
+  int year = 0;            ///< 0 if not given
   double magnitude = std::numeric_limits<double>::quiet_NaN();
-  std::string file;         ///< motion-set spec as written
-  double start = 0.0;       ///< window start (unit: s)
-  double end = std::numeric_limits<double>::infinity();  ///< window end (unit: s)
+  std::string file;                                                   ///< motion-set spec as written
+  double start = 0.0;                                                 ///< window start (unit: s)
+  double end = std::numeric_limits<double>::infinity();               ///< window end (unit: s)
   double gmroti_pga_g = std::numeric_limits<double>::quiet_NaN();     ///< listed (unit: g)
   double gmroti_pgv_cm_s = std::numeric_limits<double>::quiet_NaN();  ///< listed (unit: cm/s)
   double pgv_pga_s = std::numeric_limits<double>::quiet_NaN();        ///< listed (unit: s)
@@ -40,8 +40,8 @@ struct RecordList {
 
 /// Parses the table format: one record per line, 9 tab-separated columns: earthquake, year,
 /// magnitude, file, start s, end s, GMRotI PGA g, GMRotI PGV cm/s, PGV/PGA s (the last three
-/// may be empty; earthquake may be empty), and an optional 10th, align (empty, auto or resample). Blank lines, `#` comments and a header line (second
-/// column not a number) are skipped. InputError(name, line) for malformed lines.
+/// may be empty; earthquake may be empty), and an optional 10th, align (empty, auto or resample). Blank lines, `#`
+/// comments and a header line (second column not a number) are skipped. InputError(name, line) for malformed lines.
 RecordList parse_record_table(std::string_view text, const std::string& name);
 
 /// Parses a Rigid batch file: line 1 the PGA scales (unit: g, separated by blanks, commas or
@@ -59,15 +59,15 @@ RecordList read_record_list(const std::string& path);
 /// record; the values on the listed window are reported beside them.
 struct RecordCheck {
   RecordEntry entry;
-  std::string spec;                  ///< set spec that was read
+  std::string spec;  ///< set spec that was read
   std::size_t npts = 0;
-  double dt = 0.0;                   ///< unit: s
-  bool window_clamped = false;       ///< the listed end lies past the record
+  double dt = 0.0;              ///< unit: s
+  bool window_clamped = false;  ///< the listed end lies past the record
   // whole record
   double gmroti_pga_g = 0.0, gmroti_pgv_cm_s = 0.0;
   double gmrotd_pga_g = 0.0, gmrotd_pgv_cm_s = 0.0;
-  double gm_min_pga_g = 0.0, gm_max_pga_g = 0.0;    ///< range of GM(theta) over 0..89 deg
-  double rotd0_pga_g = 0.0, rotd100_pga_g = 0.0;    ///< min and max single-direction PGA
+  double gm_min_pga_g = 0.0, gm_max_pga_g = 0.0;  ///< range of GM(theta) over 0..89 deg
+  double rotd0_pga_g = 0.0, rotd100_pga_g = 0.0;  ///< min and max single-direction PGA
   double gmroti_angle_deg = 0.0;
   // the listed window [start, end], integrated from rest at its start
   double window_gmroti_pga_g = 0.0, window_gmroti_pgv_cm_s = 0.0;

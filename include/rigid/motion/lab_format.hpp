@@ -37,8 +37,8 @@ struct LabColumn {
 /// How to read a lab recording and what to make of it. Defaults: this lab's export.
 struct LabFormat {
   LabDelimiter delimiter = LabDelimiter::tab;
-  int header_lines = 1;  ///< lines before the data, 0..100; the last one names the columns
-  LabColumn time{1, ""}; ///< time (unit: s), uniformly sampled and increasing
+  int header_lines = 1;   ///< lines before the data, 0..100; the last one names the columns
+  LabColumn time{1, ""};  ///< time (unit: s), uniformly sampled and increasing
   /// which channel drives the ground: combined by default, because the pedestal is driven by the
   /// integrated velocity, which needs the displacement transducer's low frequencies (the
   /// accelerometer's content below 0.6 Hz is 2-6 times the transducer's on the shake-table
@@ -55,8 +55,8 @@ struct LabFormat {
   std::string displacement_unit = "V";
   double volts_to_length = 5.9797e-4;    ///< length per volt (unit: volts_length_unit / V)
   std::string volts_length_unit = "in";  ///< "m", "cm", "mm" or "in"
-  double scale = 1.0;  ///< multiplies the channel after unit conversion (unit: 1), != 0
-  motion::LabProcessing processing;  ///< baseline, band-pass (0.1-25 Hz, order 4)
+  double scale = 1.0;                    ///< multiplies the channel after unit conversion (unit: 1), != 0
+  motion::LabProcessing processing;      ///< baseline, band-pass (0.1-25 Hz, order 4)
 };
 
 }  // namespace rigid::motion

@@ -17,20 +17,20 @@ namespace rigid::motion {
 
 /// What is subtracted from a raw signal before filtering.
 enum class LabBaseline {
-  none,   ///< nothing
-  mean,   ///< the mean (the default: a constant offset of the transducer)
-  linear, ///< the least-squares line a + b t (an offset and a drift)
+  none,       ///< nothing
+  mean,       ///< the mean (the default: a constant offset of the transducer)
+  linear,     ///< the least-squares line a + b t (an offset and a drift)
   polynomial  ///< the least-squares polynomial of LabProcessing::baseline_degree
 };
 
 /// The lab signal processing options (defaults: mean removed, band-pass 0.1-25 Hz, order 4).
 struct LabProcessing {
   LabBaseline baseline = LabBaseline::mean;
-  int baseline_degree = 2;   ///< degree of the `polynomial` baseline, 0..10
-  bool band_pass = true;     ///< false: no filter (the signal is used as recorded, baseline removed)
-  double low_hz = 0.1;       ///< lower corner (unit: Hz), -3 dB of the one-way filter, > 0
-  double high_hz = 25.0;     ///< upper corner (unit: Hz), > low_hz, < Nyquist
-  int order = 4;             ///< Butterworth order of the low-pass prototype, 1..8 (band-pass: 2 order poles)
+  int baseline_degree = 2;  ///< degree of the `polynomial` baseline, 0..10
+  bool band_pass = true;    ///< false: no filter (the signal is used as recorded, baseline removed)
+  double low_hz = 0.1;      ///< lower corner (unit: Hz), -3 dB of the one-way filter, > 0
+  double high_hz = 25.0;    ///< upper corner (unit: Hz), > low_hz, < Nyquist
+  int order = 4;            ///< Butterworth order of the low-pass prototype, 1..8 (band-pass: 2 order poles)
   /// The combined channel's crossover (unit: Hz), inside the band: the displacement below it,
   /// the accelerometer above it (merge_complementary, same order as the band-pass)
   double crossover_hz = 2.0;
@@ -72,14 +72,12 @@ std::vector<double> remove_baseline(const std::vector<double>& x, LabBaseline ki
 std::vector<double> second_derivative(const std::vector<double>& x, double dt);
 
 /// Baseline then band-pass (when enabled) of an acceleration series (any unit; the result has it).
-std::vector<double> process_acceleration(const std::vector<double>& acc, double dt,
-                                         const LabProcessing& p);
+std::vector<double> process_acceleration(const std::vector<double>& acc, double dt, const LabProcessing& p);
 
 /// The acceleration of a displacement series: baseline, band-pass (when enabled), then
 /// second_derivative (unit: the displacement's per s^2). Filtering first keeps the
 /// differentiation's amplification of high-frequency transducer noise out of the band.
-std::vector<double> acceleration_from_displacement(const std::vector<double>& disp, double dt,
-                                                   const LabProcessing& p);
+std::vector<double> acceleration_from_displacement(const std::vector<double>& disp, double dt, const LabProcessing& p);
 
 /// "none", "mean", "linear", "polynomial".
 const char* lab_baseline_name(LabBaseline b);

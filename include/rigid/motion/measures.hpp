@@ -25,8 +25,7 @@ double percentile(std::vector<double> values, double pp);
 
 /// Peak |a1 cos(theta) + a2 sin(theta)| for theta = k*180/n_angles deg, k = 0..n_angles-1.
 /// Equal lengths required (the shorter length is used otherwise).
-std::vector<double> rotated_peaks(const std::vector<double>& a1, const std::vector<double>& a2,
-                                  int n_angles = 180);
+std::vector<double> rotated_peaks(const std::vector<double>& a1, const std::vector<double>& a2, int n_angles = 180);
 
 /// Geometric means GM(theta) = sqrt(peak|a1'| * peak|a2'|) for theta = 0..89 deg (90 values).
 std::vector<double> gmrot_by_angle(const std::vector<double>& a1, const std::vector<double>& a2);
@@ -41,13 +40,12 @@ double rotd(const std::vector<double>& a1, const std::vector<double>& a2, double
 /// GMRotIpp over several measures (each one a pair of series, e.g. acceleration, velocity or
 /// oscillator responses): the single angle theta* and each measure's GM(theta*).
 struct GmRotI {
-  double angle_deg = 0.0;       ///< theta* (unit: deg, 0..89)
-  std::vector<double> values;   ///< GM_m(theta*) per measure (units of the inputs)
-  std::vector<double> gmrotd;   ///< GMRotDpp per measure, for reference
-  double penalty = 0.0;         ///< penalty at theta* (unit: 1)
+  double angle_deg = 0.0;      ///< theta* (unit: deg, 0..89)
+  std::vector<double> values;  ///< GM_m(theta*) per measure (units of the inputs)
+  std::vector<double> gmrotd;  ///< GMRotDpp per measure, for reference
+  double penalty = 0.0;        ///< penalty at theta* (unit: 1)
 };
-GmRotI gmroti(const std::vector<std::pair<const std::vector<double>*, const std::vector<double>*>>&
-                  measures,
+GmRotI gmroti(const std::vector<std::pair<const std::vector<double>*, const std::vector<double>*>>& measures,
               double pp = 50.0);
 
 /// Relative displacement u and velocity v of a damped SDOF oscillator (natural period T > 0,
@@ -57,13 +55,12 @@ struct SdofResponse {
   std::vector<double> u;  ///< relative displacement (unit: m)
   std::vector<double> v;  ///< relative velocity (unit: m/s)
 };
-SdofResponse sdof_response(const std::vector<double>& acc, double dt, double period,
-                           double zeta = 0.05);
+SdofResponse sdof_response(const std::vector<double>& acc, double dt, double period, double zeta = 0.05);
 
 /// Pseudo-spectral acceleration PSA(T) = (2 pi/T)^2 max|u| (unit: m/s^2) for each period
 /// (unit: s); a period <= 0 gives the PGA.
-std::vector<double> response_spectrum(const std::vector<double>& acc, double dt,
-                                      const std::vector<double>& periods, double zeta = 0.05);
+std::vector<double> response_spectrum(const std::vector<double>& acc, double dt, const std::vector<double>& periods,
+                                      double zeta = 0.05);
 
 /// Options for the orientation-independent measures of a motion.
 struct MeasureOptions {
@@ -79,15 +76,15 @@ struct MeasureOptions {
 
 /// Orientation-independent PGA and PGV of the two horizontals of a motion.
 struct HorizontalMeasures {
-  double gmrotd50_pga = 0.0;  ///< unit: m/s^2
-  double gmrotd50_pgv = 0.0;  ///< unit: m/s
-  double gmroti50_pga = 0.0;  ///< unit: m/s^2
-  double gmroti50_pgv = 0.0;  ///< unit: m/s
+  double gmrotd50_pga = 0.0;        ///< unit: m/s^2
+  double gmrotd50_pgv = 0.0;        ///< unit: m/s
+  double gmroti50_pga = 0.0;        ///< unit: m/s^2
+  double gmroti50_pgv = 0.0;        ///< unit: m/s
   double gmroti50_angle_deg = 0.0;  ///< theta* (unit: deg)
-  double rotd50_pga = 0.0;    ///< unit: m/s^2
-  double rotd100_pga = 0.0;   ///< unit: m/s^2
-  double rotd50_pgv = 0.0;    ///< unit: m/s
-  double rotd100_pgv = 0.0;   ///< unit: m/s
+  double rotd50_pga = 0.0;          ///< unit: m/s^2
+  double rotd100_pga = 0.0;         ///< unit: m/s^2
+  double rotd50_pgv = 0.0;          ///< unit: m/s
+  double rotd100_pgv = 0.0;         ///< unit: m/s
 };
 
 /// Measures of the x/y pair; throws InputError if the motion lacks a second horizontal.
@@ -101,9 +98,9 @@ struct MotionInfo {
     Peaks peaks;  ///< SI
   };
   struct SpectralValue {
-    double period = 0.0;                   ///< unit: s
-    std::vector<double> per_axis;          ///< PSA per axis (unit: m/s^2)
-    double gmrotd50 = 0.0, rotd50 = 0.0;   ///< unit: m/s^2 (two horizontals only)
+    double period = 0.0;                  ///< unit: s
+    std::vector<double> per_axis;         ///< PSA per axis (unit: m/s^2)
+    double gmrotd50 = 0.0, rotd50 = 0.0;  ///< unit: m/s^2 (two horizontals only)
   };
   std::string name;
   std::vector<std::string> sources;
@@ -114,7 +111,7 @@ struct MotionInfo {
   std::vector<Axis> axes;
   bool two_horizontals = false;
   HorizontalMeasures horizontal;  ///< valid if two_horizontals
-  double pgv_pga = 0.0;  ///< GMRotI50 PGV / GMRotI50 PGA (one horizontal: PGV/PGA of x) (unit: s)
+  double pgv_pga = 0.0;           ///< GMRotI50 PGV / GMRotI50 PGA (one horizontal: PGV/PGA of x) (unit: s)
   std::vector<SpectralValue> spectrum;
 };
 

@@ -36,11 +36,11 @@ enum class PulseKind {
 /// Parameters of a pulse record; one horizontal (x) unless azimuth is set.
 struct PulseParams {
   PulseKind kind = PulseKind::one_sine;
-  double amplitude_g = 1.0;  ///< A (unit: g)
-  double period = 0.5;       ///< Tp (unit: s), > 0
-  double t0 = 0.0;           ///< start delay (unit: s), >= 0
-  double duration = 0.0;     ///< record length (unit: s); 0 = t0 + pulse length + 2 Tp of quiet
-  double dt = 0.005;         ///< time step (unit: s)
+  double amplitude_g = 1.0;      ///< A (unit: g)
+  double period = 0.5;           ///< Tp (unit: s), > 0
+  double t0 = 0.0;               ///< start delay (unit: s), >= 0
+  double duration = 0.0;         ///< record length (unit: s); 0 = t0 + pulse length + 2 Tp of quiet
+  double dt = 0.005;             ///< time step (unit: s)
   bool two_horizontals = false;  ///< if true, split along azimuth_deg into x and y
   double azimuth_deg = 0.0;      ///< pulse direction from x toward y (unit: deg)
 };
@@ -57,13 +57,13 @@ GroundMotion pulse_motion(const std::string& name, const PulseParams& p);
 /// v(t) = A/2 [1 + cos(2 pi fp (t-t0)/gamma)] cos(2 pi fp (t-t0) + nu) for
 /// |t - t0| <= gamma/(2 fp), else 0; acceleration is its analytic derivative.
 struct MavroeidisParams {
-  double pgv = 0.5;        ///< A, velocity amplitude (unit: m/s)
-  double period = 1.0;     ///< Tp = 1/fp (unit: s)
-  double gamma = 2.0;      ///< oscillatory character (unit: 1), > 1
-  double nu_deg = 0.0;     ///< phase nu (unit: deg)
-  double t0 = 0.0;         ///< pulse centre (unit: s); 0 = gamma Tp/2 + 1 s (starts at 1 s)
-  double duration = 0.0;   ///< record length (unit: s); 0 = pulse end + 2 s
-  double dt = 0.005;       ///< time step (unit: s)
+  double pgv = 0.5;       ///< A, velocity amplitude (unit: m/s)
+  double period = 1.0;    ///< Tp = 1/fp (unit: s)
+  double gamma = 2.0;     ///< oscillatory character (unit: 1), > 1
+  double nu_deg = 0.0;    ///< phase nu (unit: deg)
+  double t0 = 0.0;        ///< pulse centre (unit: s); 0 = gamma Tp/2 + 1 s (starts at 1 s)
+  double duration = 0.0;  ///< record length (unit: s); 0 = pulse end + 2 s
+  double dt = 0.005;      ///< time step (unit: s)
   bool two_horizontals = false;
   double azimuth_deg = 0.0;  ///< pulse direction from x toward y (unit: deg)
 };
@@ -83,18 +83,18 @@ GroundMotion mavroeidis_motion(const std::string& name, const MavroeidisParams& 
 /// displacement return to zero; finally scaled so the PGA of each horizontal is pga_g.
 struct StochasticParams {
   std::uint64_t seed = 1;
-  double duration = 20.0;   ///< unit: s
-  double dt = 0.01;         ///< unit: s
-  double pga_g = 0.3;       ///< target PGA of each horizontal component (unit: g)
-  double t_peak = 5.0;      ///< time of the modulating function's peak (unit: s), > 0
-  double shape = 3.0;       ///< a2 (unit: 1), > 1; a3 = (a2-1)/t_peak
-  double f_mid = 5.0;       ///< filter frequency at t_mid = t_peak (unit: Hz)
-  double f_slope = -0.1;    ///< filter frequency change per second (unit: Hz/s)
-  double f_min = 0.3;       ///< lower bound on the filter frequency (unit: Hz)
-  double zeta_f = 0.3;      ///< filter damping ratio (unit: 1), in (0,1)
-  double fc = 0.2;          ///< high-pass corner (unit: Hz); 0 = none
-  int components = 3;       ///< 1 = x, 2 = x,y, 3 = x,y,z
-  double vertical_ratio = 0.6;   ///< PGA of z relative to the horizontals (unit: 1)
+  double duration = 20.0;            ///< unit: s
+  double dt = 0.01;                  ///< unit: s
+  double pga_g = 0.3;                ///< target PGA of each horizontal component (unit: g)
+  double t_peak = 5.0;               ///< time of the modulating function's peak (unit: s), > 0
+  double shape = 3.0;                ///< a2 (unit: 1), > 1; a3 = (a2-1)/t_peak
+  double f_mid = 5.0;                ///< filter frequency at t_mid = t_peak (unit: Hz)
+  double f_slope = -0.1;             ///< filter frequency change per second (unit: Hz/s)
+  double f_min = 0.3;                ///< lower bound on the filter frequency (unit: Hz)
+  double zeta_f = 0.3;               ///< filter damping ratio (unit: 1), in (0,1)
+  double fc = 0.2;                   ///< high-pass corner (unit: Hz); 0 = none
+  int components = 3;                ///< 1 = x, 2 = x,y, 3 = x,y,z
+  double vertical_ratio = 0.6;       ///< PGA of z relative to the horizontals (unit: 1)
   double vertical_freq_ratio = 1.5;  ///< f_mid of z relative to the horizontals (unit: 1)
 };
 

@@ -16,10 +16,10 @@ struct ScanRepair {
   std::size_t facets_added = 0;    ///< facets of the repaired surface that are not in the scan
   std::size_t edges_stitched = 0;  ///< pairs of border edges at one place joined into one edge
   std::size_t holes_filled = 0;
-  std::size_t holes_left = 0;      ///< holes of more than kMaxHoleEdges edges, left open
+  std::size_t holes_left = 0;  ///< holes of more than kMaxHoleEdges edges, left open
   bool self_intersections_left = false;
-  double volume_before = 0;        ///< |signed volume| of the scan's facets (unit: m^3)
-  double volume_after = 0;         ///< of the repaired surface (unit: m^3)
+  double volume_before = 0;  ///< |signed volume| of the scan's facets (unit: m^3)
+  double volume_after = 0;   ///< of the repaired surface (unit: m^3)
 };
 
 /// Holes with at most this many border edges are filled by repair_scan: a scanner's gap, not a

@@ -72,7 +72,8 @@ std::string base_name(double flatten_m);
 std::vector<double> heading_ring(int count);
 
 /// Stage 1: every base model (its scene) with every contact law, the first impact law and friction.
-std::vector<Physics> first_stage_physics(const std::map<double, std::string>& base_scenes, const CalibrationSettings& s);
+std::vector<Physics> first_stage_physics(const std::map<double, std::string>& base_scenes,
+                                         const CalibrationSettings& s);
 
 /// Stage 2 from the stage-1 grid: the `keep` best variants, each crossed with every value of its
 /// impact law (restitution for rigid, damping for penalty) and friction, at the headings within
