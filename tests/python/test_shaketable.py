@@ -238,7 +238,7 @@ def test_calibrate_predict_and_fragility(rigid, tmp):
     bad("empty.csv", head, "no test")
     bad("all_equal.csv", head + "1,a,,0.1,motions/Test001.txt.gz,1\n2,a,,0.1,motions/Test002.txt.gz,1\n",
         "cannot identify")
-    bad("bad_outcome.csv", head + "1,a,,0.1,motions/Test001.txt.gz,yes\n", "not 0 or 1")
+    bad("bad_outcome.csv", head + "1,a,,0.1,motions/Test001.txt.gz,yes\n", "is not 0, 1")
     r = run(rigid, "shaketable", "predict", os.path.join(tmp, "planted", "prism.toml"), "--tests", tests, "--out", tests)
     lines = r.stderr.strip().splitlines()
     assert r.returncode == 2 and len(lines) == 1 and "tests.csv" in lines[0] and os.path.getsize(tests) > 0, "predict --out over its test list refused, the list intact: %s" % lines
