@@ -7,6 +7,7 @@
 #include "output_options.hpp"
 #include "rigid/core/error.hpp"
 #include "rigid/shaketable/calibrate.hpp"
+#include "rigid/shaketable/calibration_document.hpp"
 #include "shaketable.hpp"
 
 namespace rigid::app {
@@ -36,6 +37,7 @@ void print_summary(const rigid::shaketable::CalibrationSummary& s) {
 // The flags as the workflow's settings: contact laws parsed.
 CalibrationSettings settings_of(const CalibrateFlags& f) {
   CalibrationSettings s = f.settings;
+  s.command_line = rigid::shaketable::command_line_text(campaign_argc(), campaign_argv());
   s.contact_models.clear();
   for (const std::string& text : f.contact_models) {
     const auto choice = rigid::shaketable::parse_contact_choice(text);

@@ -342,6 +342,7 @@ CalibrationSummary Calibrator::finish() const {
   report.scan = settings_.scan;
   report.tests_csv = settings_.tests;
   report.out = settings_.out;
+  report.command_line = settings_.command_line;
   report.observed = observed_;
   report.group = group_;
   report.stages = {{&*grid1_, stage1_}, {&*grid2_, stage2_}};

@@ -11,6 +11,7 @@
 #include "rigid/io/json.hpp"
 #include "rigid/io/output_file.hpp"
 #include "rigid/io/scene_writer.hpp"
+#include "rigid/shaketable/calibration_document.hpp"
 
 namespace rigid::shaketable {
 namespace {
@@ -221,7 +222,7 @@ CalibrationSummary write_calibration(const CalibrationReport& r) {
   j["stages"] = stages;
   j["wall_s"] = r.wall_s;
   const std::string json_path = r.out + ".calibration.json";
-  io::write_output_file(json_path, [&](std::ostream& out) { out << j.dump(2) << "\n"; });
+  write_calibration_document(json_path, j, r.command_line);
 
   CalibrationSummary summary;
   summary.label = chosen.label();

@@ -13,6 +13,7 @@ namespace rigid::shaketable {
 
 struct CalibrationReport {
   std::string scan, tests_csv, out, lab_format_file;
+  std::string command_line;  ///< what the document says made it
   std::vector<int> observed, group;
   /// each stage's outcome grid and the physics of its variants; the last one is fitted
   std::vector<std::pair<const calibration::OutcomeGrid*, std::vector<Physics>>> stages;

@@ -2,13 +2,14 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <set>
 
 #include "rigid/calibration/outcome_model.hpp"
 #include "rigid/core/error.hpp"
 #include "rigid/io/json.hpp"
+#include "rigid/io/provenance.hpp"
+#include "rigid/shaketable/calibration_document.hpp"
 
 namespace rigid::shaketable {
 namespace {
@@ -37,25 +38,19 @@ double Ensemble::probability(const std::function<bool(int, int)>& overturned, bo
   return p;
 }
 
-Ensemble load_ensemble(const std::string& scene_file) {
+std::vector<double> Ensemble::scene_weights() const {
+  std::vector<double> w(scenes.size(), 0.0);
+  double total = 0;
+  for (const Member& m : members) total += m.weight;
+  for (const Member& m : members) w[std::size_t(m.variant)] += m.weight / total;
+  return w;
+}
+
+Ensemble load_calibration(const std::string& json) {
+  const io::Json j = read_calibration_document(json);
   Ensemble e;
-  std::string json = scene_file;
-  if (json.size() > 5 && json.ends_with(".toml")) json = json.substr(0, json.size() - 5);
-  json += ".calibration.json";
-  if (!fs::exists(json)) {
-    e.scenes = {absolute(scene_file)};
-    e.rotations_deg = {0.0};
-    e.members.push_back({0, {0}, 1.0, 0.0});
-    return e;
-  }
   e.json = json;
-  io::Json j;
-  try {
-    std::ifstream in(json);
-    j = io::Json::parse(in);
-  } catch (const std::exception& ex) {
-    throw InputError(json, 0, std::string("not a calibration file: ") + ex.what());
-  }
+  e.json_sha256 = io::file_sha256(json);
   if (!j.contains("ensemble") || !j["ensemble"].is_array() || j["ensemble"].empty())
     throw InputError(json, 0, "has no ensemble");
   std::map<std::string, int> variant_of;
@@ -70,6 +65,9 @@ Ensemble load_ensemble(const std::string& scene_file) {
     if (!(member.weight > 0) || !(member.lapse >= 0 && member.lapse <= 1))
       throw InputError(json, 0, "ensemble member with a weight <= 0 or a lapse outside [0, 1]");
     const std::string file = absolute((fs::path(json).parent_path() / m["scene"].get<std::string>()).string());
+    std::error_code ec;
+    if (!fs::is_regular_file(file, ec))
+      throw InputError(json, 0, "ensemble member's scene " + file + " does not exist");
     const auto [it, added] = variant_of.emplace(file, int(variant_of.size()));
     if (added) e.scenes.push_back(file);
     member.variant = it->second;
@@ -88,6 +86,18 @@ Ensemble load_ensemble(const std::string& scene_file) {
     }
     ++k;
   }
+  return e;
+}
+
+Ensemble load_ensemble(const std::string& scene_file) {
+  std::string json = scene_file;
+  if (json.size() > 5 && json.ends_with(".toml")) json = json.substr(0, json.size() - 5);
+  json += ".calibration.json";
+  if (fs::exists(json)) return load_calibration(json);
+  Ensemble e;
+  e.scenes = {absolute(scene_file)};
+  e.rotations_deg = {0.0};
+  e.members.push_back({0, {0}, 1.0, 0.0});
   return e;
 }
 

@@ -7,11 +7,16 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <iterator>
 
 #include "rigid/calibration/outcome_model.hpp"
 #include "rigid/core/error.hpp"
 #include "rigid/io/job_file.hpp"
+#include "rigid/io/json.hpp"
+#include "rigid/io/provenance.hpp"
 #include "rigid/shaketable/calibrate.hpp"
+#include "rigid/shaketable/calibration_document.hpp"
 #include "rigid/shaketable/ensemble.hpp"
 #include "rigid/shaketable/fragility.hpp"
 #include "rigid/shaketable/physics.hpp"
@@ -68,9 +73,11 @@ TEST(ShaketableEnsemble, MembersAverageTheOneRuleByWeight) {
   EXPECT_DOUBLE_EQ(calibration::member_probability(0.0, 0.2), 0.1);
   const fs::path dir = scratch("ensemble");
   write(dir / "rock.toml", "# a scene; the ensemble names its own\n");
-  write(dir / "rock.calibration.json", R"({"ensemble": [
+  write(dir / "member_v2.toml", "# another member's scene\n");
+  shaketable::write_calibration_document((dir / "rock.calibration.json").string(), io::Json::parse(R"({"ensemble": [
       {"scene": "rock.toml", "weight": 3, "lapse": 0.1, "rotations_deg": [-10, 0, 10]},
-      {"scene": "member_v2.toml", "weight": 1, "lapse": 0, "rotations_deg": [0]}]})");
+      {"scene": "member_v2.toml", "weight": 1, "lapse": 0, "rotations_deg": [0]}]})"),
+                                         "rigid test");
   const shaketable::Ensemble e = shaketable::load_ensemble((dir / "rock.toml").string());
   ASSERT_EQ(e.scenes.size(), 2u);
   EXPECT_EQ(e.rotations_deg, (std::vector<double>{-10, 0, 10}));
@@ -81,6 +88,8 @@ TEST(ShaketableEnsemble, MembersAverageTheOneRuleByWeight) {
   const auto overturned = [](int variant, int rotation) { return variant == 1 || rotation < 2; };
   EXPECT_NEAR(e.probability(overturned), 0.75 * (0.05 + 0.9 * 2.0 / 3.0) + 0.25 * 1.0, 1e-15);
   EXPECT_NEAR(e.probability(overturned, false), 0.75 * 2.0 / 3.0 + 0.25, 1e-15);
+  // a field campaign weights each scene by its members' share: 3 of 4, 1 of 4
+  EXPECT_EQ(e.scene_weights(), (std::vector<double>{0.75, 0.25}));
 
   // its designed job: one object, the scenes as variants, the headings as rotation angles
   const io::JobFile job = shaketable::ensemble_job((dir / "rock.toml").string(), e, shaketable::lab_input(""));
@@ -96,10 +105,77 @@ TEST(ShaketableEnsemble, ASceneWithoutCalibrationIsItselfAtHeadingZero) {
   EXPECT_TRUE(e.json.empty());
   EXPECT_EQ(e.rotations_deg, std::vector<double>{0.0});
   EXPECT_EQ(e.probability([](int, int) { return true; }), 1.0);
-  write(dir / "rock.calibration.json", R"({"ensemble": [{"scene": "rock.toml", "weight": -1, "lapse": 0,
-      "rotations_deg": [0]}]})");
+  write(dir / "rock.toml", "# scene\n");
+  shaketable::write_calibration_document((dir / "rock.calibration.json").string(),
+                                         io::Json::parse(R"({"ensemble": [{"scene": "rock.toml", "weight": -1,
+                                             "lapse": 0, "rotations_deg": [0]}]})"),
+                                         "rigid test");
   EXPECT_THROW(shaketable::load_ensemble((dir / "rock.toml").string()), InputError);
   fs::remove_all(dir);
+}
+
+namespace {
+
+// The message of the InputError `f` throws ("" when it throws none).
+std::string refusal(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST(CalibrationDocument, AWholeUneditedDocumentReadsBackWithItsEnvelope) {
+  const fs::path dir = scratch("document");
+  const std::string file = (dir / "a.calibration.json").string();
+  shaketable::write_calibration_document(file, io::Json::parse(R"({"ensemble": [1, 2.5e-7]})"), "rigid 'a b'");
+  const io::Json j = shaketable::read_calibration_document(file);
+  EXPECT_EQ(j["format"], "rigid calibration");
+  EXPECT_EQ(j["format_version"], shaketable::kCalibrationFormatVersion);
+  EXPECT_EQ(j["command_line"], "rigid 'a b'");
+  EXPECT_EQ(j["ensemble"][1].get<double>(), 2.5e-7);
+  // the checksum is SHA-256 of the document without it, compact: sha256sum of that line by hand
+  io::Json without = j;
+  without.erase("sha256");
+  EXPECT_EQ(j["sha256"], io::sha256_hex(io::json_line(without)));
+  fs::remove_all(dir);
+}
+
+TEST(CalibrationDocument, EditedTruncatedOrOtherVersionsAreRefusedByName) {
+  const fs::path dir = scratch("refused");
+  const std::string file = (dir / "a.calibration.json").string();
+  shaketable::write_calibration_document(file, io::Json::parse(R"({"weight": 0.25})"), "rigid test");
+  std::ifstream in(file);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto read = [&] { shaketable::read_calibration_document(file); };
+  const auto with = [&](const std::string& from, const std::string& to) {
+    std::string t = text;
+    const auto at = t.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    write(file, t.replace(at, from.size(), to));
+  };
+  with("0.25", "0.35");  // an edit by hand
+  EXPECT_NE(refusal(read).find("checksum"), std::string::npos) << refusal(read);
+  write(file, text.substr(0, text.size() / 2));  // cut short
+  EXPECT_NE(refusal(read).find("truncated"), std::string::npos) << refusal(read);
+  with("\"format_version\": 2", "\"format_version\": 3");
+  EXPECT_NE(refusal(read).find("version 3"), std::string::npos) << refusal(read);
+  write(file, R"({"ensemble": []})");  // a file of the old, unversioned kind
+  EXPECT_NE(refusal(read).find("not a calibration file"), std::string::npos) << refusal(read);
+  EXPECT_NE(refusal([&] {
+              shaketable::read_calibration_document((dir / "none.json").string());
+            }).find("no such calibration file"),
+            std::string::npos);
+  EXPECT_NE(refusal(read).find(file), std::string::npos);  // names the file
+  fs::remove_all(dir);
+}
+
+TEST(CalibrationDocument, CommandLinesQuoteWhatTheShellWouldSplit) {
+  const char* argv[] = {"rigid", "shaketable", "calibrate", "my scan.ply", "--out", "it's"};
+  EXPECT_EQ(shaketable::command_line_text(6, argv), "rigid shaketable calibrate 'my scan.ply' --out 'it'\\''s'");
 }
 
 TEST(ShaketableDesign, TheDesignedJobReadsBackAsItsPhysicsAndWindows) {

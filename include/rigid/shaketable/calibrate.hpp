@@ -31,6 +31,7 @@ struct ContactChoice {
 /// What a calibration compares and how (each value's range: check_settings).
 struct CalibrationSettings {
   std::string scan, tests, out, lab_format;  ///< out: DIR/NAME
+  std::string command_line;                  ///< the command as typed: the calibration file records it
   double scale = 1.0;                        ///< scan units to metres
   std::string up = "z";
   std::vector<double> flatten_base_m{0.005};  ///< base models (unit: m)

@@ -20,6 +20,7 @@ struct Ensemble {
     double weight = 1, lapse = 0;
   };
   std::string json;                   ///< the calibration file read ("" when none)
+  std::string json_sha256;            ///< its SHA-256 ("" when none): what a transfer or a cube records
   std::vector<std::string> scenes;    ///< absolute paths, one per variant (the scene itself without a file)
   std::vector<double> rotations_deg;  ///< every member's headings, sorted, as turns of the motion
   std::vector<Member> members;
@@ -27,10 +28,18 @@ struct Ensemble {
   /// member's headings that overturned, `overturned(variant, rotation)`, with its lapse). The
   /// lapse is the lab's, not the rock's: `with_lapse` false leaves it out (a fragility).
   double probability(const std::function<bool(int, int)>& overturned, bool with_lapse = true) const;
+  /// Each scene's share of the members' weight (sums to 1), one per scene: what a field campaign
+  /// weights its physics variants by (headings there are random, so members of one scene merge).
+  std::vector<double> scene_weights() const;
 };
 
-/// The ensemble of the calibration file beside `scene` (SCENE.calibration.json), or the scene
-/// alone. Throws InputError naming the file for a malformed one.
+/// The ensemble of a calibration file (read_calibration_document: whole, unedited, this format
+/// version). Throws InputError naming the file for anything else, and for a member scene that
+/// does not exist.
+Ensemble load_calibration(const std::string& calibration_json);
+
+/// The ensemble of the calibration file beside `scene` (SCENE.calibration.json: load_calibration),
+/// or the scene alone.
 Ensemble load_ensemble(const std::string& scene);
 
 /// The designed job of a scene over its ensemble, as predict and fragility run it: the object
