@@ -6,6 +6,7 @@
 #include "campaign_report.hpp"
 #include "commands.hpp"
 #include "import_report.hpp"
+#include "old_spellings.hpp"
 
 namespace rigid::app::shaketable {
 
@@ -16,6 +17,18 @@ void add_recording_options(CLI::App& cmd, std::string& lab_format, std::string& 
   cmd.add_option("--progress", progress, "auto, bar, log or none")
       ->capture_default_str()
       ->check(CLI::IsMember({"auto", "bar", "log", "none"}));
+}
+
+void add_scan_import_options(CLI::App& cmd, rigid::shaketable::CalibrationSettings& s) {
+  cmd.add_option("--scale", s.scale, "Scan units to metres, as for rigid model import")->capture_default_str();
+  cmd.add_option("--up", s.up, "The scan's up axis, as for rigid model import")->capture_default_str();
+  CLI::Option* tilt = cmd.add_option("--tilt-rule", s.tilt_deg,
+                                     "Overturned = tilted beyond this angle (deg), as for rigid model import")
+                          ->capture_default_str();
+  add_old_spelling(cmd, *tilt, {"--tilt-deg", "", {}});
+  cmd.add_option("--max-vertices", s.max_vertices, "Vertex budget of the rock's hull")->capture_default_str();
+  cmd.add_option("--pedestal-margin", s.pedestal_margin, "The table: overhang of the box under the rock (m)")
+      ->capture_default_str();
 }
 
 rigid::shaketable::Callbacks command_callbacks(const std::string& progress) {

@@ -11,6 +11,7 @@
 
 #include "rigid/calibration/outcome_model.hpp"
 #include "rigid/campaign/driver.hpp"
+#include "rigid/shaketable/calibrate.hpp"
 #include "rigid/shaketable/workflow.hpp"
 
 namespace rigid::app::shaketable {
@@ -18,6 +19,11 @@ namespace rigid::app::shaketable {
 /// The options every shaketable command shares: --lab-format FILE (the recordings' format) and
 /// --progress (auto, bar, log or none).
 void add_recording_options(CLI::App& cmd, std::string& lab_format, std::string& progress);
+
+/// How a scan becomes the rock's scene, as calibrate and transfer import it: --scale, --up,
+/// --tilt-rule (old spelling --tilt-deg), --max-vertices, --pedestal-margin, into those fields of
+/// `s` (their defaults are CalibrationSettings').
+void add_scan_import_options(CLI::App& cmd, rigid::shaketable::CalibrationSettings& s);
 
 /// Lines to stdout, campaign progress in `progress` mode, scans imported with their report.
 rigid::shaketable::Callbacks command_callbacks(const std::string& progress);

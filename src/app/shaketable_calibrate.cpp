@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <memory>
 
+#include "commands.hpp"
 #include "old_spellings.hpp"
 #include "output_options.hpp"
 #include "rigid/core/error.hpp"
@@ -67,8 +68,7 @@ void add_shaketable_calibrate(CLI::App& parent) {
   add_output_prefix(*cmd, o.out,
                     "NAME.toml (the calibrated scene), NAME.calibration.json, the work folder NAME.calibration/")
       ->required();
-  cmd->add_option("--scale", o.scale, "Scan units to metres, as for rigid model import")->capture_default_str();
-  cmd->add_option("--up", o.up, "The scan's up axis, as for rigid model import")->capture_default_str();
+  shaketable::add_scan_import_options(*cmd, o);
   CLI::Option* flatten = cmd->add_option("--flatten-base", o.flatten_base_m,
                                          "Base models to compare: the rough base cut flat this far above its "
                                          "lowest point (m), as for rigid model import")
@@ -94,13 +94,6 @@ void add_shaketable_calibrate(CLI::App& parent) {
   cmd->add_option("--keep", o.keep, "Stage 2: the best stage-1 variants refined")->capture_default_str();
   cmd->add_option("--refine-step", o.refine_step_deg,
                   "Stage 2: heading step around each kept variant's best heading (deg)")
-      ->capture_default_str();
-  CLI::Option* tilt = cmd->add_option("--tilt-rule", o.tilt_deg,
-                                      "Overturned = tilted beyond this angle (deg), as for rigid model import")
-                          ->capture_default_str();
-  add_old_spelling(*cmd, *tilt, {"--tilt-deg", "", {}});
-  cmd->add_option("--max-vertices", o.max_vertices, "Vertex budget of the rock's hull")->capture_default_str();
-  cmd->add_option("--pedestal-margin", o.pedestal_margin, "The table: overhang of the box under the rock (m)")
       ->capture_default_str();
   cmd->add_flag("--restart", o.restart,
                 "Start over: remove the work folder OUT.calibration/ of an earlier calibration into the same OUT (a "

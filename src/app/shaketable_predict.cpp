@@ -56,13 +56,16 @@ void add_shaketable_predict(CLI::App& parent) {
 
 void add_shaketable_calibrate(CLI::App& parent);
 void add_shaketable_fragility(CLI::App& parent);
+void add_shaketable_transfer(CLI::App& parent);
 
 void register_shaketable_command(CLI::App& app) {
-  CLI::App* cmd = app.add_subcommand("shaketable",
-                                     "A scanned rock against shake-table tests: calibrate its physics on "
-                                     "observed outcomes, predict others (docs/validation-shaketable.md)");
+  CLI::App* cmd =
+      app.add_subcommand("shaketable",
+                         "A scanned rock against shake-table tests: calibrate its physics on "
+                         "observed outcomes, carry it to another rock, predict others (docs/validation-shaketable.md)");
   cmd->require_subcommand(1);
   add_shaketable_calibrate(*cmd);
+  add_shaketable_transfer(*cmd);
   add_shaketable_predict(*cmd);
   add_shaketable_fragility(*cmd);
 }

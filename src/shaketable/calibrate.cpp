@@ -17,6 +17,7 @@
 #include "rigid/io/scene_writer.hpp"
 #include "rigid/scenario/scene.hpp"
 #include "rigid/shaketable/ensemble.hpp"
+#include "rigid/shaketable/settle.hpp"
 
 namespace rigid::shaketable {
 namespace {
@@ -33,33 +34,6 @@ double wrap360(double deg) {
   double h = std::fmod(deg, 360.0);
   if (h < 0) h += 360.0;
   return std::round(h * 1e6) / 1e6;
-}
-
-// The base model's scene with the contact model's law, settled with it: a soft contact sinks and
-// leans the rock, and a run that started from the rigid pose would begin with that motion.
-std::string settled_scene(const std::string& scan, const std::string& base_scene, const Physics& p,
-                          const fs::path& work) {
-  const std::string name =
-      p.penalty() ? format("%s_k%.3g", p.base.c_str(), p.law.normal_stiffness) : format("%s_rigid", p.base.c_str());
-  fs::create_directories(work / name);
-  const std::string scene = fs::absolute(work / name / (name + ".toml")).lexically_normal().string();
-  io::SceneChanges changes;
-  changes.physics = p.contact_law_table();
-  changes.comment = name + ": " + base_scene + " with the " + contact::contact_method_name(p.law.method) +
-                    " contact model, settled with it";
-  io::write_derived_scene(base_scene, scene, changes);
-  const scenario::Scene placed = io::load_scene(scene);
-  const scenario::Scene settled = scenario::equilibrate(placed, dynamics::StepSettings{});
-  for (std::size_t i = 0; i < placed.bodies.size(); ++i) {
-    const double turned = scenario::tilt(placed.bodies[i].orientation, settled.bodies[i].orientation) * 180 / kPi;
-    if (!placed.bodies[i].fixed && turned > 5.0) {
-      throw InputError(scan, 0,
-                       format("does not stand on its base: settling with %s contact tilted it %.1f deg",
-                              contact::contact_method_name(p.law.method), turned));
-    }
-  }
-  io::save_state(scene.substr(0, scene.size() - 5) + ".state.toml", settled);
-  return scene;
 }
 
 // The best candidate of each variant, best variants first.

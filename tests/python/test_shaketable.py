@@ -35,10 +35,9 @@ def run(rigid, *args, cwd=None):
     return subprocess.run([rigid, *args], capture_output=True, text=True, env=ENV, cwd=cwd, timeout=900)
 
 
-def write_prism(path, tilt_x=0.0):
-    """A prism 0.9 m tall on an irregular convex pentagon (no mirror symmetry); tilt_x leans it."""
+def write_prism(path, tilt_x=0.0, h=0.9):
+    """A prism h m tall on an irregular convex pentagon (no mirror symmetry); tilt_x leans it."""
     base = [(0.16, 0.0), (0.05, 0.12), (-0.11, 0.08), (-0.13, -0.06), (0.04, -0.11)]
-    h = 0.9
     v = [(x, y, 0.0) for x, y in base] + [(x + tilt_x, y, h) for x, y in base]
     n = len(base)
     faces = [[n - 1 - k for k in range(n)], [n + k for k in range(n)]]  # bottom (outward down), top
