@@ -16,7 +16,8 @@ to another rock, checked on a synthetic lab of two rocks that share one planted 
   - the check can fail: the tall prism's own calibrated scene on the stocky prism's tests agrees
     less often than the carried physics with the heading given.
 - The document: source_calibration's SHA-256 is the file's (hashlib), the ensemble's weights add
-  to the source's, every member sees the whole ring, and nothing is scored.
+  to the source's, every member sees the whole ring, and nothing is scored; `predict` and
+  `fragility` read it as they read calibrate's.
 - Bad input: an edited, truncated or other-version calibration, a missing calibration or scan,
   a scan that tips while settling, bad --heading values: one line, exit 2.
 - Resume: a second run reuses the imports; another scan or calibration into the same OUT is
@@ -121,6 +122,12 @@ def test_transfer_predicts_the_other_rock(rigid, lab):
     assert r.returncode == 0, r.stderr
     known = predictions(rigid, tmp, "tr20/stocky.toml", "known")
     assert agree(known) >= len(truth) - 1, "heading given: %d of %d stocky outcomes predicted" % (agree(known), len(truth))
+    # fragility reads the transferred calibration as it reads calibrate's
+    r = run(rigid, "shaketable", "fragility", "tr20/stocky.toml", "--tests", "stocky_tests.csv", "--out", "frag/stocky",
+            "--max-pga", "1.5", "--bootstrap", "50", "--progress", "none", cwd=tmp)
+    assert r.returncode == 0, r.stderr
+    with open(os.path.join(tmp, "frag", "stocky.fragility.csv")) as f:
+        assert any(x["source"] == "model" for x in csv.DictReader(f)), "the model's rows from the carried ensemble"
     # the oracle can tell: the tall prism's own scene is not the stocky prism
     own = predictions(rigid, tmp, "cal/tall.toml", "tall_scene")
     assert agree(own) < agree(known), "the tall prism's scene predicts %d, the carried physics %d" % (agree(own), agree(known))
