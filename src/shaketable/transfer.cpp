@@ -1,6 +1,7 @@
 #include "rigid/shaketable/transfer.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -8,6 +9,7 @@
 #include <map>
 #include <sstream>
 
+#include "rigid/campaign/output_lock.hpp"
 #include "rigid/core/error.hpp"
 #include "rigid/io/output_file.hpp"
 #include "rigid/io/provenance.hpp"

@@ -6,13 +6,11 @@
 /// unknown (a ring of headings) unless given. Members of the same physics merge: the source
 /// rock's heading says nothing about the new one. No outcome of the new rock is read, and no
 /// campaign runs (docs/validation-shaketable.md).
-#include <chrono>
-#include <memory>
+#include <cstddef>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include "rigid/campaign/output_lock.hpp"
 #include "rigid/io/json.hpp"
 #include "rigid/shaketable/calibrate.hpp"
 #include "rigid/shaketable/physics.hpp"
