@@ -47,11 +47,12 @@ void draw_figure(const rigid::shaketable::CalibrationSummary& s, const Calibrati
                                     : run_python(script, {s.json, "--likelihood", s.likelihood_table, "--out", figure,
                                                           "--format", o.figure_format});
   if (status != 0) {
-    std::fprintf(stderr,
-                 "rigid: warning: %s not drawn (%s); the calibration is complete. It needs Debian's python3 with "
-                 "python3-numpy and python3-matplotlib (setup.sh installs them)\n",
-                 figure.c_str(),
-                 script.empty() ? "cannot find shaketable_calibration.py" : ("status " + std::to_string(status)).c_str());
+    std::fprintf(
+        stderr,
+        "rigid: warning: %s not drawn (%s); the calibration is complete. It needs Debian's python3 with "
+        "python3-numpy and python3-matplotlib (setup.sh installs them)\n",
+        figure.c_str(),
+        script.empty() ? "cannot find shaketable_calibration.py" : ("status " + std::to_string(status)).c_str());
   }
 }
 
@@ -127,8 +128,7 @@ void add_shaketable_calibrate(CLI::App& parent) {
                 "Start over: remove the work folder OUT.calibration/ of an earlier calibration into the same OUT (a "
                 "rerun otherwise resumes it, and is refused when its inputs, settings or outcomes changed)");
   shaketable::add_recording_options(*cmd, o.lab_format, f->progress);
-  cmd->add_option("--figure-format", o.figure_format,
-                  "The diagnostic figure OUT.calibration.FORMAT: png, pdf or svg")
+  cmd->add_option("--figure-format", o.figure_format, "The diagnostic figure OUT.calibration.FORMAT: png, pdf or svg")
       ->capture_default_str()
       ->check(CLI::IsMember({"png", "pdf", "svg"}));
   cmd->callback([f] {

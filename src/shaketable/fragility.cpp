@@ -187,8 +187,8 @@ fs::path FragilityDesign::write_fit_inputs(const io::Cube& cube) const {
 std::string FragilityDesign::physics_title() const {
   if (ensemble_.json.empty()) return "uncalibrated: the scene's own physics (no calibration file beside it)";
   const std::string file = fs::path(ensemble_.json).filename().string();
-  const std::string members = std::to_string(ensemble_.members.size()) + " member" +
-                              (ensemble_.members.size() == 1 ? "" : "s");
+  const std::string members =
+      std::to_string(ensemble_.members.size()) + " member" + (ensemble_.members.size() == 1 ? "" : "s");
   if (ensemble_.physics.empty()) return "calibrated physics of " + file + " (" + members + ")";
   return "calibrated physics: " + ensemble_.physics + " (" + file + ", " + members + ")";
 }
