@@ -200,8 +200,8 @@ Scores score(const std::vector<double>& probability, const std::vector<int>& obs
 std::vector<Scores> scores_by_group(const std::vector<double>& probability, const std::vector<int>& observed,
                                     const std::vector<int>& group) {
   const int groups = group.empty() ? 0 : *std::max_element(group.begin(), group.end()) + 1;
-  std::vector<std::vector<double>> p(std::size_t(groups));
-  std::vector<std::vector<int>> y(std::size_t(groups));
+  std::vector<std::vector<double>> p(static_cast<std::size_t>(groups));
+  std::vector<std::vector<int>> y(static_cast<std::size_t>(groups));
   for (std::size_t t = 0; t < group.size(); ++t) {
     p[std::size_t(group[t])].push_back(probability[t]);
     y[std::size_t(group[t])].push_back(observed[t]);

@@ -245,7 +245,8 @@ campaign::CampaignOptions Calibrator::prepare() {
   work_ = o.out + ".calibration";
   {  // every output checked against every input before the first write
     const io::InputFiles inputs = command_inputs(o.tests, tests_, lab_, {}, {o.scan});
-    for (const std::string ending : {".toml", ".state.toml", ".calibration.json", ".calibration." + o.figure_format})
+    for (const std::string& ending :
+         std::vector<std::string>{".toml", ".state.toml", ".calibration.json", ".calibration." + o.figure_format})
       inputs.refuse_as_output(o.out + ending);
     inputs.refuse_folder(work_);
   }
