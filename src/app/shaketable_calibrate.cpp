@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 
+#include "commands.hpp"
 #include "old_spellings.hpp"
 #include "output_options.hpp"
 #include "python_script.hpp"

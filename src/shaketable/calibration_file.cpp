@@ -8,6 +8,7 @@
 #include <set>
 
 #include "rigid/core/error.hpp"
+#include "rigid/io/csv.hpp"
 #include "rigid/io/json.hpp"
 #include "rigid/io/output_file.hpp"
 #include "rigid/io/scene_writer.hpp"
