@@ -216,7 +216,8 @@ std::pair<double, double> wilson_interval(int k, int n, double z) {
   const double share = double(k) / n, z2 = z * z;
   const double centre = (share + z2 / (2.0 * n)) / (1 + z2 / n);
   const double half = z / (1 + z2 / n) * std::sqrt(share * (1 - share) / n + z2 / (4.0 * n * n));
-  return {std::max(0.0, centre - half), std::min(1.0, centre + half)};
+  // the ends at 0 and n successes are exactly 0 and 1 (centre -/+ half there, but for round-off)
+  return {k <= 0 ? 0.0 : std::max(0.0, centre - half), k >= n ? 1.0 : std::min(1.0, centre + half)};
 }
 
 std::vector<ReliabilityBin> reliability(const std::vector<double>& probability, const std::vector<int>& observed,

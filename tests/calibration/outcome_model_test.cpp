@@ -97,6 +97,9 @@ TEST(OutcomeModel, WilsonIntervalMatchesPublishedExamples) {
   // n successes of n: the lower end is n / (n + z^2)
   near(wilson_interval(2, 2), 2 / (2 + 1.959964 * 1.959964), 1.0);
   near(wilson_interval(0, 0), 0.0, 1.0);
+  // exactly, not by round-off: a share of 0 or 1 lies inside its interval
+  EXPECT_EQ(wilson_interval(0, 9).first, 0.0);
+  EXPECT_EQ(wilson_interval(9, 9).second, 1.0);
 }
 
 TEST(OutcomeModel, ReliabilityTableByHand) {
