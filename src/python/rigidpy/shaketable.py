@@ -379,7 +379,9 @@ def reliability_points(table):
 
 def calibration_title(doc):
     heading = doc.get("parameters", {}).get("heading_deg", {}).get("value")
-    text = "Calibration of " + str(doc.get("scan", "?")) + ": " + str(doc.get("physics", "physics not stated"))
+    import os
+    scan = os.path.basename(str(doc.get("scan", "?")))
+    text = "Calibration of " + scan + ": " + str(doc.get("physics", "physics not stated"))
     if heading is not None:
         text += f", heading {heading:.1f} deg"
     return text
@@ -399,7 +401,7 @@ def calibration_figure(doc, likelihood_rows):
     a_lik.set_xlabel("heading of the table's axis in the scan's frame (deg)")
     a_lik.set_ylabel("log-likelihood (best spread and lapse)")
     a_lik.set_title(f"stage {stage}: likelihood by variant and heading", fontsize=9)
-    a_lik.legend(fontsize=6, loc="lower right")
+    a_lik.legend(fontsize=6, loc="upper center", bbox_to_anchor=(0.5, -0.2))  # below: it cannot cover a line
     a_lik.grid(alpha=0.3)
     # (b) held-out scores of each recorded motion
     cv = doc.get("cross_validated", {})
@@ -438,7 +440,7 @@ def calibration_figure(doc, likelihood_rows):
     a_rel.set_xlabel("predicted P(overturn) (bin mean)")
     a_rel.set_ylabel("observed share overturned")
     a_rel.set_title("reliability (numbers: tests per bin)", fontsize=9)
-    a_rel.legend(fontsize=7, loc="upper left")
+    a_rel.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.2))
     a_rel.grid(alpha=0.3)
     fig.suptitle(calibration_title(doc), fontsize=10)
     fig.tight_layout(rect=(0, 0, 1, 0.95))
