@@ -244,6 +244,9 @@ def test_calibrate_predict_and_fragility(rigid, tmp):
             preds.append(open(p).read() if rp.returncode == 0 else None)
             if variant == "with":
                 assert "accuracy" in rp.stdout, "predict scores against the outcomes it has"
+                assert "log loss" in rp.stdout and "reliability" in rp.stdout, "predict's probability quality"
+                bins = [l for l in rp.stdout.splitlines() if " tests, mean P " in l]
+                assert sum(int(l.split(":")[1].split()[0]) for l in bins) == len(rows), "every test in one bin: %s" % bins
             if variant == "without":
                 assert "accuracy" not in rp.stdout, "predict without outcomes prints no score"
         assert preds[0] is not None and preds[0] == preds[1] == preds[2], "predictions identical with the outcomes kept, removed and shuffled"
