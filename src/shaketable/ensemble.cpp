@@ -51,6 +51,7 @@ Ensemble load_calibration(const std::string& json) {
   Ensemble e;
   e.json = json;
   e.json_sha256 = io::file_sha256(json);
+  if (j.contains("physics") && j["physics"].is_string()) e.physics = j["physics"].get<std::string>();
   if (!j.contains("ensemble") || !j["ensemble"].is_array() || j["ensemble"].empty())
     throw InputError(json, 0, "has no ensemble");
   std::map<std::string, int> variant_of;
