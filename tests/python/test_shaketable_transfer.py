@@ -16,8 +16,9 @@ to another rock, checked on a synthetic lab of two rocks that share one planted 
   - the check can fail: the tall prism's own calibrated scene on the stocky prism's tests agrees
     less often than the carried physics with the heading given.
 - The document: source_calibration's SHA-256 is the file's (hashlib), the ensemble's weights add
-  to the source's, every member sees the whole ring, and nothing is scored; `predict` and
-  `fragility` read it as they read calibrate's.
+  to the source's, every member sees the whole ring (or, with --heading, the ring's headings
+  within the spread, worked by hand), and nothing is scored; `predict` and `fragility` read it
+  as they read calibrate's.
 - Bad input: an edited, truncated or other-version calibration, a missing calibration or scan,
   a scan that tips while settling, bad --heading values: one line, exit 2.
 - Resume: a second run reuses the imports; another scan or calibration into the same OUT is
@@ -125,6 +126,16 @@ def test_transfer_predicts_the_other_rock(rigid, lab):
     r = run(rigid, "shaketable", "transfer", "cal/tall.calibration.json", "stocky.obj", "--out", "tr20/stocky",
             "--heading", str(STOCKY_HEADING), *IMPORT, cwd=tmp)
     assert r.returncode == 0, r.stderr
+    with open(os.path.join(tmp, "tr20", "stocky.calibration.json")) as f:
+        t = json.load(f)["transfer"]
+    assert t["heading_known"] and t["heading_deg"] == STOCKY_HEADING and t["rotations_deg"] == [0.0], t
+    # a spread keeps the ring's headings within it (30 deg steps: 60 deg either side is five)
+    r = run(rigid, "shaketable", "transfer", "cal/tall.calibration.json", "stocky.obj", "--out", "spread/stocky",
+            "--heading", "20", "--heading-spread", "60", *IMPORT, cwd=tmp)
+    assert r.returncode == 0, r.stderr
+    with open(os.path.join(tmp, "spread", "stocky.calibration.json")) as f:
+        rotations = json.load(f)["transfer"]["rotations_deg"]
+    assert rotations == [-60.0, -30.0, 0.0, 30.0, 60.0], rotations
     known = predictions(rigid, tmp, "tr20/stocky.toml", "known")
     assert agree(known) >= len(truth) - 1, "heading given: %d of %d stocky outcomes predicted" % (agree(known), len(truth))
     # fragility reads the transferred calibration as it reads calibrate's
