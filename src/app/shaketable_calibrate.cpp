@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <memory>
 
+#include "commands.hpp"
 #include "old_spellings.hpp"
 #include "output_options.hpp"
 #include "rigid/core/error.hpp"

@@ -138,8 +138,15 @@ def pooled_fragility(args, cube, objs):
         per_variant.append((f, source, mix))
     if not per_variant:
         raise InputError(f"{args.cube}: object {objs[0].name}: no variant has a fragility ({fits[0].vector.get('reason')})")
-    n = len(per_variant)
-    mixture = [(w / n, t, b) for _, _, mix in per_variant for w, t, b in mix]
+    # each variant by its weight: equal, or a calibrated object's members' (renormalised over the
+    # variants that have a fragility, and in each replicate over those that fit in it)
+    weight = cube.variant_weights(objs[0].name)
+
+    def weight_of(f):
+        return float(weight[f.obj.variant]) if f.obj.variant is not None else 1.0
+
+    total = sum(weight_of(f) for f, _, _ in per_variant)
+    mixture = [(weight_of(f) / total * w, t, b) for f, _, mix in per_variant for w, t, b in mix]
     # replicate i of the pooled fragility; a variant without vector bootstrap (a threshold or the
     # scalar fit) is held fixed, and one whose fit does not exist in resample i (few records: the
     # resample's outcomes are separated) sits that replicate out, the others reweighted; with many
@@ -153,14 +160,18 @@ def pooled_fragility(args, cube, objs):
             if src == "vector fit":
                 t, b = f.vector["replicate_theta_g"][i], f.vector["replicate_beta"][i]
                 if np.all(np.isfinite(t)):
-                    members.append([(w, t[j], b[j]) for j, (w, _) in enumerate(points)])
+                    members.append((weight_of(f), [(w, t[j], b[j]) for j, (w, _) in enumerate(points)]))
             else:
-                members.append(mix)
+                members.append((weight_of(f), mix))
         if members:
-            replicates.append([(w / len(members), th, be) for m in members for w, th, be in m])
+            in_replicate = sum(wm for wm, _ in members)
+            replicates.append([(wm / in_replicate * w, th, be) for wm, m in members for w, th, be in m])
+    calibration = cube.calibrations.get(objs[0].name)
+    pooled_how = ("variants pooled" if calibration is None else
+                  f"the {len(calibration.weights)} member scenes of the calibration {calibration.path} mixed by weight")
     rock = RockFragility(f"{objs[0].name} (pooled)", mixture, replicates,
-                         "bootstrap over records, variants pooled" if replicates else
-                         "the pooled fragility alone (no bootstrap replicate)")
+                         f"bootstrap over records, {pooled_how}" if replicates else
+                         f"the pooled fragility alone (no bootstrap replicate; {pooled_how})")
     return rock, fits, per_variant, points, used
 
 
