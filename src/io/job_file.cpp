@@ -219,15 +219,23 @@ std::string read_object_calibration(const std::string& calibration, const std::s
   if (job.calibration)
     throw InputError(path, line,
                      "a job takes one calibrated [[object]] (another is at line " +
-                         std::to_string(job.calibration->line) + "): run each calibrated rock as a campaign of its own");
+                         std::to_string(job.calibration->line) +
+                         "): run each calibrated rock as a campaign of its own");
   const std::string file = (base / calibration).lexically_normal().string();
   std::error_code ec;
   if (!fs::exists(file, ec)) throw InputError(path, line, "calibration file not found: " + file);
-  const CalibrationEnsemble ensemble = read_calibration_ensemble(file);
-  const Json document = read_calibration_document(file);
+  CalibrationEnsemble ensemble;
+  Json document;
+  try {
+    ensemble = read_calibration_ensemble(file);
+    document = read_calibration_document(file);
+  } catch (const InputError& e) {  // name the [[object]] that takes it as well as the file
+    throw InputError(path, line, "calibration " + e.what());
+  }
   if (!document.contains("scene") || !document["scene"].is_string())
     throw InputError(file, 0, "names no scene (\"scene\": the calibrated scene beside the file)");
-  const std::string own = (fs::path(file).parent_path() / document["scene"].get<std::string>()).lexically_normal().string();
+  const std::string own =
+      (fs::path(file).parent_path() / document["scene"].get<std::string>()).lexically_normal().string();
   if (!scene.empty()) {
     const std::string given = (base / scene).lexically_normal().string();
     if (fs::weakly_canonical(given, ec) != fs::weakly_canonical(own, ec))
@@ -256,8 +264,8 @@ void calibration_variants(const std::vector<std::string>& member_scenes, JobFile
                      "job's variants): run the other objects as a campaign of their own");
   if (job.variants.count() > 0)
     throw InputError(job.path, job.variant_lines.empty() ? line : job.variant_lines.front(),
-                     "[sweep] and [[variant]] do not combine with a calibrated [[object]] (line " + std::to_string(line) +
-                         "): its calibration's members are the job's variants");
+                     "[sweep] and [[variant]] do not combine with a calibrated [[object]] (line " +
+                         std::to_string(line) + "): its calibration's members are the job's variants");
   scenario::VariantSpace space;
   space.method = "calibration";
   space.keys = {scenario::VariantKey::scene};
@@ -285,10 +293,12 @@ void read_objects(const toml::table& root, const fs::path& base, JobFile& job,
     const std::string calibration = optional_string(*t, "calibration", "", path);
     if (!calibration.empty()) {
       if (optional_bool(*t, "optional", false, path) && !fs::exists(base / calibration)) {
-        const std::string left_out = "[[object]] at line " + std::to_string(line_of(node)) + " left out: its calibration ";
+        const std::string left_out =
+            "[[object]] at line " + std::to_string(line_of(node)) + " left out: its calibration ";
         job.notes.push_back(left_out + (base / calibration).lexically_normal().string() +
                             " does not exist (optional = true)");
-        job.text += "\n# " + left_out + "\"" + calibration + "\" (relative to the job file) does not exist (optional = true)\n";
+        job.text +=
+            "\n# " + left_out + "\"" + calibration + "\" (relative to the job file) does not exist (optional = true)\n";
         continue;
       }
       const std::string own = read_object_calibration(calibration, scene, line_of(node), base, job, member_scenes);

@@ -271,6 +271,15 @@ def hazard_pooled(args, cube, curve, objs):
     rates = [hc.mixture_rate(curve, mix)[0] for _, _, mix in per_variant]
     survivals = [hc.survival(r, args.age) for r in rates]
     lo_pct, hi_pct = ff.EPISTEMIC_PERCENTILES[0], ff.EPISTEMIC_PERCENTILES[-1]
+    calibration = cube.calibrations.get(objs[0].name)
+    if calibration is None:
+        def epistemic_range(values):
+            return [float(v) for v in np.percentile(values, [lo_pct, hi_pct])]
+    else:  # a calibration's members count by their weights here as in the mixture
+        member_weights = [float(calibration.weights[f.obj.variant]) for f, _, _ in per_variant]
+
+        def epistemic_range(values):
+            return [float(v) for v in ff.weighted_percentile(values, member_weights, [lo_pct, hi_pct])]
     reps = [hc.mixture_rate(curve, m)[0] for m in rock.replicates]
     n_records = len(used)
     record_s = cube.pgv_pga[sorted(used)]
@@ -293,16 +302,19 @@ def hazard_pooled(args, cube, curve, objs):
                                     for (f, src, mix), r, sv in zip(per_variant, rates, survivals)],
               "n_records": n_records,
               "annual_toppling_rate": lam, "annual_toppling_rate_interval": [lam_lo, lam_hi],
-              "annual_toppling_rate_epistemic_range": [float(v) for v in np.percentile(rates, [lo_pct, hi_pct])],
+              "annual_toppling_rate_epistemic_range": epistemic_range(rates),
               "share_of_rate_beyond_curve": extended,
               "survival_probability": surv,
               "survival_probability_interval": [hc.survival(lam_hi, args.age), hc.survival(lam_lo, args.age)],
-              "survival_probability_epistemic_range": [float(v) for v in np.percentile(survivals, [lo_pct, hi_pct])],
+              "survival_probability_epistemic_range": epistemic_range(survivals),
               "epistemic_percentiles": [lo_pct, hi_pct],
               "confidence": args.confidence,
               "ruled_out": surv < 1 - args.confidence,
               "rate_factor_to_rule_out": rate_factor, "pga_factor_to_rule_out": pga_factor,
-              "interval_level": args.level, "bootstrap_replicates": args.bootstrap}
+              "interval_level": args.level, "bootstrap_replicates": args.bootstrap,
+              "calibration": None if calibration is None else {
+                  "path": calibration.path, "sha256": calibration.sha256, "members": len(calibration.weights),
+                  "weights": [float(w) for w in calibration.weights]}}
     no_replicates = {"replicate_theta_g": np.empty((0, len(points))), "replicate_beta": np.empty((0, len(points)))}
     emit_hazard(args, result, lambda: plot_hazard(args.plot, curve, mixture, no_replicates, points,
                                                   dict(result, object=f"{objs[0].name} (pooled)"),
@@ -319,7 +331,11 @@ def print_hazard(r):
     if r.get("pooled"):
         thresholds = sum(v["source"] == THRESHOLD_SOURCE for v in r["variant_fragility"])
         scalars = sum(v["source"] == SCALAR_SOURCE for v in r["variant_fragility"])
-        print(f"  fragility: pooled over {r['variants_pooled']} of {r['variants']} variants (equally weighted mixture of "
+        cal = r.get("calibration")
+        how = ("equally weighted mixture of" if cal is None else
+               f"the member scenes of the calibration {cal['path']} ({cal['members']} members), weights "
+               f"{', '.join(f'{w:.3g}' for w in cal['weights'])}, mixing")
+        print(f"  fragility: pooled over {r['variants_pooled']} of {r['variants']} variants ({how} "
               f"their vector fits" + (f"; {scalars} scalar fit(s) over all records" if scalars else "") +
               (f"; {thresholds} empirical threshold(s), steps" if thresholds else "") + ")")
     elif len(r["fragility"]) == 1:
