@@ -230,7 +230,7 @@ std::string read_object_calibration(const std::string& calibration, const std::s
     ensemble = read_calibration_ensemble(file);
     document = read_calibration_document(file);
   } catch (const InputError& e) {  // name the [[object]] that takes it as well as the file
-    throw InputError(path, line, "calibration " + e.what());
+    throw InputError(path, line, std::string("calibration ") + e.what());
   }
   if (!document.contains("scene") || !document["scene"].is_string())
     throw InputError(file, 0, "names no scene (\"scene\": the calibrated scene beside the file)");

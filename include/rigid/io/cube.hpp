@@ -49,8 +49,7 @@ struct VariantParameter {
 /// parameters' values of that variant. count 0: the job has no variants (the cube's layout is
 /// then schema_version 1, as before the axis existed).
 struct VariantTable {
-  std::string
-      method;  ///< how the values were drawn: "lhs", "grid", "list" or "calibration" (a calibrated object's members)
+  std::string method;                        ///< how the values were drawn: "lhs", "grid" or "list"
   std::uint64_t seed = 0;                    ///< the sweep's seed, so a draw can be repeated
   int count = 0;                             ///< number of variants V; 0: the job has no variants
   std::vector<VariantParameter> parameters;  ///< in job order

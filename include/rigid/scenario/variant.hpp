@@ -70,7 +70,7 @@ struct VariantDomain {
 
 /// The variants of a job: the parameters they change and each variant's values.
 struct VariantSpace {
-  std::string method;  ///< "lhs", "grid", "list" or "calibration" (a calibrated object's members)
+  std::string method;  ///< "lhs", "grid" or "list"
   std::uint64_t seed = 0;
   std::vector<VariantKey> keys;                     ///< the parameters changed, in job order
   std::vector<std::vector<VariantValue>> variants;  ///< [variant][parameter]
