@@ -33,7 +33,11 @@ void print_physics_note(const io::Cube& cube) {
   if (cube.calibration) {
     const io::CubeCalibration& c = *cube.calibration;
     std::string weights;
-    for (double w : c.weights) weights += (weights.empty() ? "" : ", ") + std::to_string(w).substr(0, 5);
+    for (double w : c.weights) {
+      char text[32];
+      std::snprintf(text, sizeof text, "%.3g", w);
+      weights += (weights.empty() ? "" : ", ") + std::string(text);
+    }
     std::printf("physics: calibrated, %s (%zu member scenes, weights %s; headings random as for any field rock)\n",
                 c.path.c_str(), c.weights.size(), weights.c_str());
     return;
