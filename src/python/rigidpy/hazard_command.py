@@ -40,9 +40,12 @@ class RockFragility:
     """A rock's fragility as a hazard integral needs it: `mixture`, the fitted fragility as a
     weighted mixture of lognormals [(weight, theta_g, beta)] (one per PGV/PGA point, or per variant),
     and its uncertainty as an ensemble of `members` [(weight, mixture)], weights summing to 1.
-    Today the members are the bootstrap replicates over records (`replicates`), equally weighted,
-    or the fitted mixture alone when there are none; a calibration ensemble's members with their
-    own weights fit the same slot (pass `members`)."""
+    The members are the bootstrap replicates over records (`replicates`), equally weighted, or the
+    fitted mixture alone when there are none. For a calibrated object (variants = a calibration's
+    member scenes) the mixture and every replicate already mix the members by the calibration's
+    weights (pooled_fragility), so the members stay the replicates: the calibration's physics is
+    integrated over, the records resampled. Another ensemble with its own weights fits the same
+    slot (pass `members`)."""
 
     def __init__(self, label, mixture, replicates, source, members=None):
         self.label = label
