@@ -37,6 +37,7 @@ CalibrationEnsemble read_calibration_ensemble(const std::string& json) {
   CalibrationEnsemble e;
   e.json = json;
   e.json_sha256 = file_sha256(json);
+  if (j.contains("physics") && j["physics"].is_string()) e.physics = j["physics"].get<std::string>();
   if (!j.contains("ensemble") || !j["ensemble"].is_array() || j["ensemble"].empty())
     throw InputError(json, 0, "has no ensemble");
   std::map<std::string, int> variant_of;
@@ -77,7 +78,8 @@ CalibrationEnsemble read_calibration_ensemble(const std::string& json) {
 
 Json calibration_summary(const Json& document) {
   Json s = Json::object();
-  for (const char* key : {"rigid_version", "created", "scene", "parameters", "in_sample", "cross_validated"}) {
+  for (const char* key :
+       {"rigid_version", "created", "scene", "physics", "parameters", "in_sample", "cross_validated"}) {
     if (document.contains(key)) s[key] = document[key];
   }
   return s;

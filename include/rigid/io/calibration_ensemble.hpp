@@ -19,6 +19,7 @@ struct CalibrationEnsemble {
   };
   std::string json;                   ///< the calibration file read ("" when none)
   std::string json_sha256;            ///< its SHA-256 ("" when none): what a transfer or a cube records
+  std::string physics;                ///< the calibrated physics in words (the file's "physics"; "" when none)
   std::vector<std::string> scenes;    ///< absolute paths, one per variant (the scene itself without a file)
   std::vector<double> rotations_deg;  ///< every member's headings, sorted, as turns of the motion
   std::vector<Member> members;
@@ -32,8 +33,9 @@ struct CalibrationEnsemble {
 /// does not exist.
 CalibrationEnsemble read_calibration_ensemble(const std::string& calibration_json);
 
-/// What a cube records of a calibration: the envelope's rigid_version and created, the chosen
-/// physics (`parameters`) and the scores present (in_sample, cross_validated), as one JSON object.
+/// What a cube records of a calibration: the envelope's rigid_version and created, its scene, the
+/// physics in words, the chosen physics (`parameters`) and the scores present (in_sample,
+/// cross_validated), as one JSON object.
 Json calibration_summary(const Json& document);
 
 }  // namespace rigid::io

@@ -99,7 +99,7 @@ struct ObjectCube {
 /// The calibration a calibrated object's physics comes from (job file `calibration = ...`),
 /// written as attributes of its group: calibration, calibration_sha256, calibration_weights (one
 /// per variant) and calibration_summary (JSON: the document's rigid_version, created, scene,
-/// chosen parameters and scores).
+/// physics in words, chosen parameters and scores).
 struct CubeCalibration {
   std::string path;
   std::string sha256;
