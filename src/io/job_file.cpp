@@ -233,7 +233,7 @@ std::string read_object_calibration(const std::string& calibration, const std::s
     throw InputError(path, line, std::string("calibration ") + e.what());
   }
   if (!document.contains("scene") || !document["scene"].is_string())
-    throw InputError(file, 0, "names no scene (\"scene\": the calibrated scene beside the file)");
+    throw InputError(path, line, "calibration " + file + " names no scene (\"scene\": the calibrated scene beside it)");
   const std::string own =
       (fs::path(file).parent_path() / document["scene"].get<std::string>()).lexically_normal().string();
   if (!scene.empty()) {
