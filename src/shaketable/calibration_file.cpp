@@ -91,14 +91,31 @@ io::Json variants_table(const OutcomeGrid& grid, const std::vector<Physics>& phy
   return rows;
 }
 
+// Each numeric parameter's place in the design (design_extension.hpp): the values tried along
+// the best's line, its physical limits and whether the best is interior.
+void add_design_status(io::Json& params, const CalibrationReport& r) {
+  const std::map<std::string, std::pair<std::string, Range>> keys{
+      {"K_N", {"normal_stiffness_n_m1_5", r.limits.normal_stiffness}},
+      {"D", {"damping_s_m", r.limits.damping}},
+      {"e", {"restitution", r.limits.restitution}},
+      {"mu", {"friction", r.limits.friction}},
+      {"lapse", {"lapse", r.limits.lapse}}};
+  for (const ParameterReport& p : r.parameters) {
+    const auto& [key, range] = keys.at(p.name);
+    params[key]["status"] = status_text(p.status);
+    params[key]["values_tried"] = p.tried;
+    params[key]["physical_limits"] = {range.low, range.high};
+  }
+}
+
 }  // namespace
 
 CalibrationSummary write_calibration(const CalibrationReport& r) {
-  const OutcomeGrid& grid = *r.stages.back().first;
-  const std::vector<Physics>& physics = r.stages.back().second;
+  const OutcomeGrid& grid = *r.fitted;
+  const std::vector<Physics>& physics = r.fitted_physics;
   const std::vector<int>& y = r.observed;
   const std::vector<bool> all(y.size(), true);
-  const std::vector<Candidate> ranked = calibration::rank_candidates(grid, y, all, {});
+  const std::vector<Candidate> ranked = calibration::rank_candidates(grid, y, all, r.search);
   const std::vector<Member> region = calibration::confidence_set(ranked);
   const std::vector<Member> members = calibration::leading_members(region);
   const Candidate& best = ranked.front();
@@ -107,7 +124,7 @@ CalibrationSummary write_calibration(const CalibrationReport& r) {
   const Scores in = calibration::score(calibration::ensemble_probability(grid, members), y);
   std::optional<Scores> cv;
   if (calibration::cross_validation_possible(r.group))
-    cv = calibration::score(calibration::cross_validated_probability(grid, y, r.group, {}), y);
+    cv = calibration::score(calibration::cross_validated_probability(grid, y, r.group, r.search), y);
 
   // the calibrated scene: the chosen base model and contact law, the rock turned so that the
   // table's axis is the scene's x axis
@@ -189,7 +206,9 @@ CalibrationSummary write_calibration(const CalibrationReport& r) {
   params["heading_deg"] = {{"value", heading}, {"interval", {heading + turn_lo, heading + turn_hi}}};
   params["heading_spread_deg"] = {{"value", best.spread_deg}, {"interval", {0.0, spread_hi}}};
   params["lapse"] = {{"value", best.lapse}, {"interval", {lapse_lo, lapse_hi}}};
-  params["base"] = {{"value", chosen.base}, {"in_region", bases}};
+  params["base"] = {{"value", chosen.base},
+                    {"in_region", bases},
+                    {"status", "not extended (each depth is another model of the scanned base: --flatten-base)"}};
   params["contact"] = {{"value", contact::contact_method_name(chosen.law.method)}, {"in_region", contacts}};
   if (chosen.penalty()) {
     params["normal_stiffness_n_m1_5"] = {{"value", chosen.law.normal_stiffness}, {"in_region", stiffness}};
@@ -198,6 +217,7 @@ CalibrationSummary write_calibration(const CalibrationReport& r) {
     params["restitution"] = {{"value", chosen.law.restitution}, {"in_region", restitution}};
   }
   params["friction"] = {{"value", chosen.law.friction}, {"in_region", friction}};
+  add_design_status(params, r);
   j["parameters"] = params;
   j["log_likelihood"] = best.log_likelihood;
   j["region_size"] = long(region.size());
@@ -211,8 +231,11 @@ CalibrationSummary write_calibration(const CalibrationReport& r) {
   }
   j["ensemble"] = ensemble;
   io::Json stages = io::Json::array();
-  for (const auto& [g, phys] : r.stages) {
+  for (std::size_t k = 0; k < r.stages.size(); ++k) {
+    const auto& [g, phys] = r.stages[k];
     io::Json s;
+    s["stage"] = long(k + 1);
+    s["purpose"] = r.stage_purposes[k];
     io::Json headings = io::Json::array();
     for (int h = 0; h < g->headings(); ++h) headings.push_back(g->heading_deg(h));
     s["headings_deg"] = headings;
@@ -236,6 +259,7 @@ CalibrationSummary write_calibration(const CalibrationReport& r) {
   summary.scene = scene;
   summary.json = json_path;
   summary.wall_s = r.wall_s;
+  summary.parameters = r.parameters;
   return summary;
 }
 

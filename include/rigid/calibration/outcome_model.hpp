@@ -44,6 +44,10 @@ class OutcomeGrid {
 /// The grid of a subset of its variants (in the order given).
 OutcomeGrid select_variants(const OutcomeGrid& grid, const std::vector<int>& variants);
 
+/// The variants of `a` followed by those of `b`, on the same tests and headings (a design extended
+/// by a stage on the same heading list). Throws std::invalid_argument when they differ.
+OutcomeGrid join_variants(const OutcomeGrid& a, const OutcomeGrid& b);
+
 /// One candidate model of the real tests.
 struct Candidate {
   int variant = 0;            ///< physics variant (index in the design)
