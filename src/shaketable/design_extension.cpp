@@ -118,9 +118,11 @@ const char* status_text(EdgeStatus s) {
     case EdgeStatus::at_physical_limit:
       return "at a physical limit";
     case EdgeStatus::not_identified:
+      return "not identified (its values fit equally)";
+    case EdgeStatus::fixed:
       break;
   }
-  return "not identified (its values fit equally)";
+  return "fixed (one value given)";
 }
 
 Range stiffness_limits(const std::vector<dynamics::BodyDef>& bodies, double base_half_width_m) {
@@ -188,7 +190,10 @@ ExtensionStage extension_stage(const OutcomeGrid& fitted, const std::vector<int>
     report.tried.erase(std::unique(report.tried.begin(), report.tried.end(), same), report.tried.end());
     // values that fit exactly as well say the outcomes do not depend on it: nothing to extend
     if (flat) report.status = EdgeStatus::not_identified;
-    if (flat || (below && above)) {
+    // a parameter the user gave one value is not a dimension of the design
+    const bool fixed = anywhere.size() < 2;
+    if (fixed) report.status = EdgeStatus::fixed;
+    if (fixed || flat || (below && above)) {
       out.parameters.push_back(report);
       continue;
     }

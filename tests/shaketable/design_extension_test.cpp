@@ -194,6 +194,24 @@ TEST(DesignExtension, StepsFollowTheDesignsOwnStep) {
   }
 }
 
+TEST(DesignExtension, AParameterGivenOneValueStaysFixed) {
+  // friction given one value (--friction 0.6): not extended, whatever the outcomes
+  std::vector<Physics> fitted;
+  for (double d : {2.0, 1.0, 4.0}) fitted.push_back(penalty(5e5, d, 0.6));
+  const std::vector<Physics> earlier{penalty(5e5, 2, 0.6), penalty(1e6, 2, 0.6)};
+  const auto stage =
+      shaketable::extension_stage(simulate(fitted), planted_outcomes(), fitted, earlier, {}, wide_limits(), true);
+  for (const std::string& m : stage.moves) EXPECT_NE(m.rfind("mu ", 0), 0u) << m;
+  bool seen = false;
+  for (const ParameterReport& p : stage.parameters) {
+    if (p.name == "mu") {
+      seen = true;
+      EXPECT_EQ(p.status, EdgeStatus::fixed);
+    }
+  }
+  EXPECT_TRUE(seen);
+}
+
 TEST(DesignExtension, LapseExtendsToItsOptimumOrItsLimits) {
   const std::vector<Physics> one{penalty(kPlantedStiffness, kPlantedDamping, 0.6)};
   const calibration::OutcomeGrid grid = simulate(one);

@@ -59,8 +59,9 @@ inline constexpr double kRigidSinkage_m = 1e-6;
 Range stiffness_limits(const std::vector<dynamics::BodyDef>& bodies, double base_half_width_m);
 
 /// One parameter's place in the design.
-enum class EdgeStatus { interior, at_edge_budget, at_physical_limit, not_identified };
-/// "interior", "at edge (budget)", "at a physical limit", "not identified (its values fit equally)"
+enum class EdgeStatus { interior, at_edge_budget, at_physical_limit, not_identified, fixed };
+/// "interior", "at edge (budget)", "at a physical limit", "not identified (its values fit equally)",
+/// "fixed (one value given)"
 const char* status_text(EdgeStatus s);
 
 struct ParameterReport {
@@ -83,7 +84,8 @@ struct ExtensionStage {
 /// values beside it along its line: the nearest value tried anywhere (`earlier`: e.g. stage 1)
 /// on that side, else one step beyond the edge (K_N: the design's own ratio, else 2; the others:
 /// the design's own step, else a default), clamped to `limits`. A parameter whose inward neighbour
-/// fits exactly as well as the best (same log-likelihood) is not identified and not extended. With
+/// fits exactly as well as the best (same log-likelihood) is not identified and not extended; one
+/// given a single value (in all stages, with this contact model) is fixed by the user. With
 /// `budget_left` false nothing is proposed and edges are marked "at edge (budget)".
 ExtensionStage extension_stage(const calibration::OutcomeGrid& fitted, const std::vector<int>& observed,
                                const std::vector<Physics>& fitted_physics, const std::vector<Physics>& earlier,
