@@ -125,7 +125,7 @@ const char* status_text(EdgeStatus s) {
   return "fixed (one value given)";
 }
 
-Range stiffness_limits(const std::vector<dynamics::BodyDef>& bodies, double base_half_width_m) {
+Range stiffness_limits(const std::vector<dynamics::BodyDef>& bodies, double base_half_width_m, double safety) {
   double weight = 0;
   for (const auto& b : bodies) {
     if (!b.fixed) weight = std::max(weight, b.shape.mass * kGravity);
@@ -139,7 +139,8 @@ Range stiffness_limits(const std::vector<dynamics::BodyDef>& bodies, double base
     contact::ContactLaw law;
     law.method = contact::ContactMethod::penalty;
     law.normal_stiffness = law.shear_stiffness = k;
-    const dynamics::StepSettings step;
+    dynamics::StepSettings step;
+    step.safety = safety;
     return dynamics::time_step(bodies, law, step) <= scenario::largest_time_step(bodies, law);
   };
   double lo = 1e2, hi = 1e13;

@@ -247,7 +247,7 @@ TEST(DesignExtension, StiffnessLimitsOfARock) {
   table.fixed = true;
   const std::vector<dynamics::BodyDef> bodies{table, rock};
   const double weight = 20 * kGravity;
-  const shaketable::Range k = shaketable::stiffness_limits(bodies, 0.05);
+  const shaketable::Range k = shaketable::stiffness_limits(bodies, 0.05, 0.2);
   EXPECT_NEAR(k.high, weight / 1e-9, 1e-6 * weight / 1e-9);
   const double sinkage_low = weight / std::pow(0.05, 1.5);
   EXPECT_GE(k.low, sinkage_low * (1 - 1e-12));
@@ -257,7 +257,7 @@ TEST(DesignExtension, StiffnessLimitsOfARock) {
   law.normal_stiffness = law.shear_stiffness = k.low * 1.001;
   EXPECT_LE(dynamics::time_step(bodies, law, {}), scenario::largest_time_step(bodies, law));
   // a wide base: the step decides, and just below it the run bounds refuse
-  const shaketable::Range wide = shaketable::stiffness_limits(bodies, 10.0);
+  const shaketable::Range wide = shaketable::stiffness_limits(bodies, 10.0, 0.2);
   law.normal_stiffness = law.shear_stiffness = wide.low * 0.99;
   if (wide.low > 1e5 * 1.01) {
     EXPECT_GT(dynamics::time_step(bodies, law, {}), scenario::largest_time_step(bodies, law));

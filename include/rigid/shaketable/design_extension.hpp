@@ -54,9 +54,9 @@ inline constexpr double kRigidSinkage_m = 1e-6;
 
 /// The stiffness range of a rock (its free block, resting on its base of half-width
 /// `base_half_width_m`): bounded below by the sinkage limit and by the penalty step's stability
-/// (the softest K_N whose automatic step the penalty model still accepts, scenario::check_run_bounds),
-/// above by kRigidSinkage_m.
-Range stiffness_limits(const std::vector<dynamics::BodyDef>& bodies, double base_half_width_m);
+/// (the softest K_N whose automatic step at `safety`, the campaigns' accuracy preset, the run
+/// bounds still accept: scenario::check_run_bounds), above by kRigidSinkage_m.
+Range stiffness_limits(const std::vector<dynamics::BodyDef>& bodies, double base_half_width_m, double safety);
 
 /// One parameter's place in the design.
 enum class EdgeStatus { interior, at_edge_budget, at_physical_limit, not_identified, fixed };
