@@ -16,13 +16,9 @@
 namespace rigid::io {
 
 void refuse_output_over_inputs(const std::string& output, const std::vector<std::string>& inputs) {
-  struct stat out {};
-  if (::stat(output.c_str(), &out) != 0) return;
-  for (const std::string& input : inputs) {
-    struct stat in {};
-    if (::stat(input.c_str(), &in) == 0 && in.st_dev == out.st_dev && in.st_ino == out.st_ino)
-      throw InputError(output, 0, "is the input " + input + "; choose another output file");
-  }
+  InputFiles files;
+  files.add(inputs);
+  files.refuse_as_output(output);
 }
 
 void InputFiles::add(const std::string& path) {

@@ -10,10 +10,6 @@
 
 namespace rigid::io {
 
-/// Throws rigid::InputError(output, 0, ...) when `output` is the same file as one of `inputs`
-/// (hard links and other spellings included). Paths that do not exist compare unequal.
-void refuse_output_over_inputs(const std::string& output, const std::vector<std::string>& inputs);
-
 /// The files a command reads, known by device and inode, so that none of its outputs replaces one
 /// of them whatever the spelling of its path (hard links, symbolic links, ../).
 class InputFiles {
@@ -35,6 +31,9 @@ class InputFiles {
   };
   std::vector<Identity> files_;
 };
+
+/// InputFiles of `inputs`, refuse_as_output(output): for a command with a few inputs.
+void refuse_output_over_inputs(const std::string& output, const std::vector<std::string>& inputs);
 
 /// Writes `path` atomically: `write` fills a stream on a private temporary (mkstemp in the same
 /// directory), which is flushed to disk and renamed over `path`. Throws rigid::InputError(path,
