@@ -45,8 +45,8 @@ void run_designed_campaigns(
 }
 
 void print_scores(const char* title, const calibration::Scores& s) {
-  std::printf("%s: accuracy %.3f, balanced accuracy %.3f, precision %.3f, recall %.3f, Brier %.3f\n", title, s.accuracy,
-              s.balanced_accuracy, s.precision, s.recall, s.brier);
+  std::printf("%s: accuracy %.3f, balanced accuracy %.3f, precision %.3f, recall %.3f, Brier %.3f, log loss %.3f\n",
+              title, s.accuracy, s.balanced_accuracy, s.precision, s.recall, s.brier, s.log_loss);
   std::printf("  confusion (rows observed, columns predicted): overturned %d | %d   stood %d | %d\n", s.true_positive,
               s.false_negative, s.false_positive, s.true_negative);
 }

@@ -2,10 +2,13 @@
 // and what it prints.
 #include <cstdio>
 #include <memory>
+#include <optional>
+#include <string>
 
 #include "commands.hpp"
 #include "old_spellings.hpp"
 #include "output_options.hpp"
+#include "python_script.hpp"
 #include "rigid/core/error.hpp"
 #include "rigid/shaketable/calibrate.hpp"
 #include "rigid/shaketable/calibration_document.hpp"
@@ -35,6 +38,25 @@ void print_summary(const rigid::shaketable::CalibrationSummary& s) {
   for (const auto& p : s.parameters)
     std::printf("  %s %.3g: %s\n", p.name.c_str(), p.value, rigid::shaketable::status_text(p.status));
   std::printf("wrote %s, %s (%.0f s)\n", s.scene.c_str(), s.json.c_str(), s.wall_s);
+}
+
+// The diagnostic figure, drawn by src/python/shaketable_calibration.py from what the calibration
+// wrote (after MPI has ended). The calibration stands without it: a figure that cannot be drawn
+// is a warning, not a failed command.
+void draw_figure(const rigid::shaketable::CalibrationSummary& s, const CalibrationSettings& o) {
+  const std::string figure = o.out + ".calibration." + o.figure_format;
+  const std::string script = find_plot_helper("shaketable_calibration.py");
+  const int status = script.empty() ? -1
+                                    : run_python(script, {s.json, "--likelihood", s.likelihood_table, "--out", figure,
+                                                          "--format", o.figure_format});
+  if (status != 0) {
+    std::fprintf(
+        stderr,
+        "rigid: warning: %s not drawn (%s); the calibration is complete. It needs Debian's python3 with "
+        "python3-numpy and python3-matplotlib (setup.sh installs them)\n",
+        figure.c_str(),
+        script.empty() ? "cannot find shaketable_calibration.py" : ("status " + std::to_string(status)).c_str());
+  }
 }
 
 // The flags as the workflow's settings: contact laws parsed.
@@ -113,8 +135,12 @@ void add_shaketable_calibrate(CLI::App& parent) {
                 "Start over: remove the work folder OUT.calibration/ of an earlier calibration into the same OUT (a "
                 "rerun otherwise resumes it, and is refused when its inputs, settings or outcomes changed)");
   shaketable::add_recording_options(*cmd, o.lab_format, f->progress);
+  cmd->add_option("--figure-format", o.figure_format, "The diagnostic figure OUT.calibration.FORMAT: png, pdf or svg")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"png", "pdf", "svg"}));
   cmd->callback([f] {
     std::unique_ptr<rigid::shaketable::Calibrator> calibrator;
+    std::optional<rigid::shaketable::CalibrationSummary> summary;
     shaketable::run_designed_campaigns(
         [&](const campaign::CampaignResult* previous) -> std::optional<campaign::CampaignOptions> {
           // rank 0 only: the flags are checked where the work starts, so that one rank says it
@@ -123,7 +149,11 @@ void add_shaketable_calibrate(CLI::App& parent) {
                                                                          shaketable::command_callbacks(f->progress));
           return calibrator->next(previous);
         },
-        [&](const campaign::CampaignResult&) { print_summary(calibrator->finish()); });
+        [&](const campaign::CampaignResult&) {
+          summary = calibrator->finish();
+          print_summary(*summary);
+        });
+    if (summary) draw_figure(*summary, f->settings);  // rank 0
   });
 }
 

@@ -85,7 +85,9 @@ void add_shaketable_fragility(CLI::App& parent) {
                                   "--seed",
                                   std::to_string(f->seed),
                                   "--format",
-                                  o.figure_format};
+                                  o.figure_format,
+                                  "--physics",
+                                  design->physics_title()};
     if (!o.bins_s.empty()) {
       std::string edges;
       char edge[32];

@@ -19,7 +19,14 @@ struct PredictFlags {
 void print_summary(const rigid::shaketable::PredictionSummary& s, const std::string& out) {
   std::printf("wrote %s (%d tests; P(overturn) over %zu ensemble members%s)\n", out.c_str(), s.tests, s.members,
               s.calibration.empty() ? "" : (" from " + s.calibration).c_str());
-  if (s.scores) shaketable::print_scores("against the observed outcomes", *s.scores);
+  if (!s.scores) return;
+  shaketable::print_scores("against the observed outcomes", *s.scores);
+  std::printf("  reliability (predicted P: tests, mean P, share overturned [95 %% Wilson interval]):\n");
+  for (const calibration::ReliabilityBin& b : s.reliability) {
+    if (b.tests == 0) continue;
+    std::printf("    %.1f-%.1f: %3d tests, mean P %.3f, overturned %.3f [%.3f, %.3f]\n", b.lower, b.upper, b.tests,
+                b.mean_probability, b.frequency, b.interval_low, b.interval_high);
+  }
 }
 
 }  // namespace

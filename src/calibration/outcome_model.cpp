@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 #include <stdexcept>
+#include <tuple>
 
 namespace rigid::calibration {
 
@@ -188,7 +189,7 @@ bool cross_validation_possible(const std::vector<int>& group) {
 Scores score(const std::vector<double>& probability, const std::vector<int>& observed) {
   Scores s;
   s.tests = int(probability.size());
-  double brier = 0;
+  double brier = 0, log_loss = 0;
   for (std::size_t t = 0; t < probability.size(); ++t) {
     const bool predicted = probability[t] >= 0.5;
     const bool y = observed[t] != 0;
@@ -197,6 +198,8 @@ Scores score(const std::vector<double>& probability, const std::vector<int>& obs
     if (!predicted && !y) ++s.true_negative;
     if (!predicted && y) ++s.false_negative;
     brier += (probability[t] - (y ? 1.0 : 0.0)) * (probability[t] - (y ? 1.0 : 0.0));
+    const double clipped = std::clamp(probability[t], kLogLossClip, 1 - kLogLossClip);
+    log_loss -= std::log(y ? clipped : 1 - clipped);
   }
   if (s.tests == 0) return s;
   s.accuracy = double(s.true_positive + s.true_negative) / s.tests;
@@ -207,7 +210,56 @@ Scores score(const std::vector<double>& probability, const std::vector<int>& obs
   s.precision =
       s.true_positive + s.false_positive ? double(s.true_positive) / (s.true_positive + s.false_positive) : 0.0;
   s.brier = brier / s.tests;
+  s.log_loss = log_loss / s.tests;
   return s;
+}
+
+std::vector<Scores> scores_by_group(const std::vector<double>& probability, const std::vector<int>& observed,
+                                    const std::vector<int>& group) {
+  const int groups = group.empty() ? 0 : *std::max_element(group.begin(), group.end()) + 1;
+  std::vector<std::vector<double>> p(static_cast<std::size_t>(groups));
+  std::vector<std::vector<int>> y(static_cast<std::size_t>(groups));
+  for (std::size_t t = 0; t < group.size(); ++t) {
+    p[std::size_t(group[t])].push_back(probability[t]);
+    y[std::size_t(group[t])].push_back(observed[t]);
+  }
+  std::vector<Scores> out;
+  for (int g = 0; g < groups; ++g) out.push_back(score(p[std::size_t(g)], y[std::size_t(g)]));
+  return out;
+}
+
+std::pair<double, double> wilson_interval(int k, int n, double z) {
+  if (n <= 0) return {0.0, 1.0};
+  const double share = double(k) / n, z2 = z * z;
+  const double centre = (share + z2 / (2.0 * n)) / (1 + z2 / n);
+  const double half = z / (1 + z2 / n) * std::sqrt(share * (1 - share) / n + z2 / (4.0 * n * n));
+  // the ends at 0 and n successes are exactly 0 and 1 (centre -/+ half there, but for round-off)
+  return {k <= 0 ? 0.0 : std::max(0.0, centre - half), k >= n ? 1.0 : std::min(1.0, centre + half)};
+}
+
+std::vector<ReliabilityBin> reliability(const std::vector<double>& probability, const std::vector<int>& observed,
+                                        int bins) {
+  std::vector<ReliabilityBin> out(std::size_t(std::max(bins, 1)));
+  std::vector<double> sum(out.size(), 0.0);
+  for (std::size_t b = 0; b < out.size(); ++b) {
+    out[b].lower = double(b) / double(out.size());
+    out[b].upper = double(b + 1) / double(out.size());
+  }
+  for (std::size_t t = 0; t < probability.size(); ++t) {
+    const double p = std::clamp(probability[t], 0.0, 1.0);
+    const std::size_t b = std::min(out.size() - 1, std::size_t(p * double(out.size())));
+    ++out[b].tests;
+    out[b].overturned += observed[t] != 0 ? 1 : 0;
+    sum[b] += p;
+  }
+  for (std::size_t b = 0; b < out.size(); ++b) {
+    ReliabilityBin& bin = out[b];
+    if (bin.tests == 0) continue;
+    bin.mean_probability = sum[b] / bin.tests;
+    bin.frequency = double(bin.overturned) / bin.tests;
+    std::tie(bin.interval_low, bin.interval_high) = wilson_interval(bin.overturned, bin.tests);
+  }
+  return out;
 }
 
 }  // namespace rigid::calibration

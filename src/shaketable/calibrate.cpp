@@ -111,6 +111,8 @@ void check_settings(const CalibrationSettings& o) {
     throw InputError("", 0, "--refine-step must be positive and below the coarse heading step");
   if (!(o.tilt_deg > 0 && o.tilt_deg < 90)) throw InputError("", 0, "--tilt-rule must be in (0, 90) deg");
   if (fs::path(o.out).filename().empty()) throw InputError("", 0, "--out needs DIR/NAME");
+  if (o.figure_format != "png" && o.figure_format != "pdf" && o.figure_format != "svg")
+    throw InputError("", 0, "--figure-format must be png, pdf or svg");
 }
 
 std::string calibration_manifest(const CalibrationSettings& s, const io::LabTestList& tests) {
@@ -269,7 +271,9 @@ campaign::CampaignOptions Calibrator::prepare() {
   work_ = o.out + ".calibration";
   {  // every output checked against every input before the first write
     const io::InputFiles inputs = command_inputs(o.tests, tests_, lab_, {}, {o.scan});
-    for (const char* ending : {".toml", ".state.toml", ".calibration.json"}) inputs.refuse_as_output(o.out + ending);
+    for (const std::string& ending :
+         std::vector<std::string>{".toml", ".state.toml", ".calibration.json", ".calibration." + o.figure_format})
+      inputs.refuse_as_output(o.out + ending);
     inputs.refuse_folder(work_);
   }
   claim_work_folder(calibration_manifest(o, tests_));
@@ -417,6 +421,7 @@ CalibrationSummary Calibrator::finish() const {
   report.search = search_;
   report.parameters = parameters_;
   report.limits = limits_;
+  for (const io::LabTest& t : tests_.tests) report.records.push_back(t.record);
   report.lab_format_file = lab_.format_file;
   report.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   return write_calibration(report);

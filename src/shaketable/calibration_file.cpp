@@ -8,6 +8,7 @@
 #include <set>
 
 #include "rigid/core/error.hpp"
+#include "rigid/io/csv.hpp"
 #include "rigid/io/json.hpp"
 #include "rigid/io/output_file.hpp"
 #include "rigid/io/scene_writer.hpp"
@@ -30,6 +31,7 @@ io::Json scores_json(const Scores& s) {
   j["precision"] = s.precision;
   j["recall"] = s.recall;
   j["brier"] = s.brier;
+  j["log_loss"] = s.log_loss;
   j["confusion"] = {{"true_positive", s.true_positive},
                     {"false_negative", s.false_negative},
                     {"false_positive", s.false_positive},
@@ -52,6 +54,84 @@ io::Json physics_json(const Physics& p) {
   return j;
 }
 
+// Predicted P in ten bins against the observed share: how far the probabilities can be taken at
+// their word.
+io::Json reliability_json(const std::vector<double>& p, const std::vector<int>& y) {
+  io::Json rows = io::Json::array();
+  for (const calibration::ReliabilityBin& b : calibration::reliability(p, y)) {
+    io::Json row;
+    row["p_low"] = b.lower;
+    row["p_high"] = b.upper;
+    row["tests"] = b.tests;
+    row["overturned"] = b.overturned;
+    if (b.tests > 0) {
+      row["mean_p"] = b.mean_probability;
+      row["frequency"] = b.frequency;
+      row["frequency_interval"] = {b.interval_low, b.interval_high};
+    } else {
+      row["mean_p"] = nullptr;
+      row["frequency"] = nullptr;
+      row["frequency_interval"] = nullptr;
+    }
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+// Scores of probabilities with their reliability table.
+io::Json probability_quality_json(const std::vector<double>& p, const std::vector<int>& y) {
+  io::Json j = scores_json(calibration::score(p, y));
+  j["reliability"] = reliability_json(p, y);
+  return j;
+}
+
+// The held-out scores of each recorded motion's own tests (its probabilities from a fit that did
+// not see it).
+io::Json scores_by_motion_json(const std::vector<double>& p, const std::vector<int>& y, const std::vector<int>& group,
+                               const std::vector<std::string>& records) {
+  std::vector<std::string> name_of;
+  for (std::size_t t = 0; t < group.size(); ++t) {
+    if (std::size_t(group[t]) >= name_of.size()) name_of.resize(std::size_t(group[t]) + 1);
+    name_of[std::size_t(group[t])] = t < records.size() ? records[t] : std::to_string(group[t]);
+  }
+  io::Json rows = io::Json::array();
+  const std::vector<Scores> by = calibration::scores_by_group(p, y, group);
+  for (std::size_t g = 0; g < by.size(); ++g) {
+    if (by[g].tests == 0) continue;
+    double mean_p = 0;
+    for (std::size_t t = 0; t < group.size(); ++t)
+      if (std::size_t(group[t]) == g) mean_p += p[t];
+    rows.push_back({{"record", name_of[g]},
+                    {"tests", by[g].tests},
+                    {"overturned", by[g].true_positive + by[g].false_negative},
+                    {"mean_p", mean_p / by[g].tests},
+                    {"accuracy", by[g].accuracy},
+                    {"brier", by[g].brier},
+                    {"log_loss", by[g].log_loss}});
+  }
+  return rows;
+}
+
+// The profile log-likelihood of each stage's variants over its headings (the best spread and lapse
+// at each heading centre): what the calibration figure draws, one row per (stage, variant, heading).
+void write_likelihood_table(const std::string& path, const CalibrationReport& r) {
+  const std::vector<bool> all(r.observed.size(), true);
+  io::write_output_file(path, [&](std::ostream& out) {
+    io::CsvWriter csv(out);
+    csv.row({"stage", "variant", "label", "heading_deg", "log_likelihood", "heading_spread_deg", "lapse"});
+    for (std::size_t stage = 0; stage < r.stages.size(); ++stage) {
+      const OutcomeGrid& grid = *r.stages[stage].first;
+      std::map<std::pair<int, int>, Candidate> best;  // (variant, heading): ranked best first
+      for (const Candidate& c : calibration::rank_candidates(grid, r.observed, all, r.search))
+        best.emplace(std::make_pair(c.variant, c.heading), c);
+      for (const auto& [key, c] : best) {
+        csv.field(int(stage + 1)).field(key.first).field(r.stages[stage].second[std::size_t(key.first)].label());
+        csv.field(grid.heading_deg(key.second)).field(c.log_likelihood).field(c.spread_deg).field(c.lapse).end_row();
+      }
+    }
+  });
+}
+
 // Signed difference b - a on the circle, in (-180, 180] (unit: deg).
 double turn_between(double a, double b) {
   double d = std::remainder(b - a, 360.0);
@@ -61,19 +141,19 @@ double turn_between(double a, double b) {
 // Each variant of a stage on its own: its best heading, spread and lapse, scored in and out of
 // sample (the heading refitted without the held-out record).
 io::Json variants_table(const OutcomeGrid& grid, const std::vector<Physics>& physics, const std::vector<int>& y,
-                        const std::vector<int>& group) {
+                        const calibration::SearchSettings& search, const std::vector<int>& group) {
   io::Json rows = io::Json::array();
   const std::vector<bool> all(y.size(), true);
   for (int v = 0; v < grid.variants(); ++v) {
     const OutcomeGrid one = calibration::select_variants(grid, {v});
-    const std::vector<Candidate> ranked = calibration::rank_candidates(one, y, all, {});
+    const std::vector<Candidate> ranked = calibration::rank_candidates(one, y, all, search);
     const Candidate& best = ranked.front();
     std::vector<double> p_in(y.size());
     for (std::size_t t = 0; t < y.size(); ++t) p_in[t] = calibration::overturn_probability(one, best, int(t));
     const Scores in = calibration::score(p_in, y);
     const bool cv_possible = calibration::cross_validation_possible(group);
     const Scores cv =
-        cv_possible ? calibration::score(calibration::cross_validated_probability(one, y, group, {}), y) : Scores{};
+        cv_possible ? calibration::score(calibration::cross_validated_probability(one, y, group, search), y) : Scores{};
     io::Json row = physics_json(physics[std::size_t(v)]);
     row["label"] = physics[std::size_t(v)].label();
     row["heading_deg"] = grid.heading_deg(best.heading);
@@ -121,10 +201,14 @@ CalibrationSummary write_calibration(const CalibrationReport& r) {
   const Candidate& best = ranked.front();
   const Physics& chosen = physics[std::size_t(best.variant)];
   const double heading = grid.heading_deg(best.heading);
-  const Scores in = calibration::score(calibration::ensemble_probability(grid, members), y);
+  const std::vector<double> p_in = calibration::ensemble_probability(grid, members);
+  const Scores in = calibration::score(p_in, y);
   std::optional<Scores> cv;
-  if (calibration::cross_validation_possible(r.group))
-    cv = calibration::score(calibration::cross_validated_probability(grid, y, r.group, r.search), y);
+  std::vector<double> p_cv;
+  if (calibration::cross_validation_possible(r.group)) {
+    p_cv = calibration::cross_validated_probability(grid, y, r.group, r.search);
+    cv = calibration::score(p_cv, y);
+  }
 
   // the calibrated scene: the chosen base model and contact law, the rock turned so that the
   // table's axis is the scene's x axis
@@ -195,6 +279,7 @@ CalibrationSummary write_calibration(const CalibrationReport& r) {
   j["scan"] = r.scan;
   j["tests"] = r.tests_csv;
   j["scene"] = fs::path(scene).filename().string();
+  j["physics"] = chosen.label();  // in words, for titles and logs
   j["lab_format"] = r.lab_format_file.empty() ? "default" : r.lab_format_file;
   j["tests_count"] = long(y.size());
   j["overturned_count"] = long(std::count(y.begin(), y.end(), 1));
@@ -221,9 +306,10 @@ CalibrationSummary write_calibration(const CalibrationReport& r) {
   j["parameters"] = params;
   j["log_likelihood"] = best.log_likelihood;
   j["region_size"] = long(region.size());
-  j["in_sample"] = scores_json(in);
+  j["in_sample"] = probability_quality_json(p_in, y);
   if (cv) {
-    j["cross_validated"] = scores_json(*cv);
+    j["cross_validated"] = probability_quality_json(p_cv, y);
+    j["cross_validated"]["by_motion"] = scores_by_motion_json(p_cv, y, r.group, r.records);
   } else {
     j["cross_validated"] = {{"available", false},
                             {"reason", "fewer than " + std::to_string(calibration::kMinCrossValidationGroups) +
@@ -239,13 +325,15 @@ CalibrationSummary write_calibration(const CalibrationReport& r) {
     io::Json headings = io::Json::array();
     for (int h = 0; h < g->headings(); ++h) headings.push_back(g->heading_deg(h));
     s["headings_deg"] = headings;
-    s["parameter_sets"] = variants_table(*g, phys, y, r.group);
+    s["parameter_sets"] = variants_table(*g, phys, y, r.search, r.group);
     stages.push_back(s);
   }
   j["stages"] = stages;
   j["wall_s"] = r.wall_s;
   const std::string json_path = r.out + ".calibration.json";
   write_calibration_document(json_path, j, r.command_line);
+  const std::string likelihood_path = r.out + ".calibration/likelihood.csv";
+  write_likelihood_table(likelihood_path, r);
 
   CalibrationSummary summary;
   summary.label = chosen.label();
@@ -258,6 +346,7 @@ CalibrationSummary write_calibration(const CalibrationReport& r) {
   summary.cross_validated = cv;
   summary.scene = scene;
   summary.json = json_path;
+  summary.likelihood_table = likelihood_path;
   summary.wall_s = r.wall_s;
   summary.parameters = r.parameters;
   return summary;

@@ -15,6 +15,7 @@ struct CalibrationReport {
   std::string scan, tests_csv, out, lab_format_file;
   std::string command_line;  ///< what the document says made it
   std::vector<int> observed, group;
+  std::vector<std::string> records;  ///< each test's recorded motion (group names it)
   /// each stage's outcome grid and the physics of its variants, and what the stage did
   std::vector<std::pair<const calibration::OutcomeGrid*, std::vector<Physics>>> stages;
   std::vector<std::string> stage_purposes;
@@ -28,7 +29,8 @@ struct CalibrationReport {
   double wall_s = 0;
 };
 
-/// Writes OUT.toml, the members' scenes and OUT.calibration.json; returns what it found.
+/// Writes OUT.toml, the members' scenes, OUT.calibration.json and the figure's likelihood table
+/// OUT.calibration/likelihood.csv; returns what it found.
 CalibrationSummary write_calibration(const CalibrationReport& report);
 
 }  // namespace rigid::shaketable

@@ -33,9 +33,11 @@ double Ensemble::probability(const std::function<bool(int, int)>& overturned, bo
     int over = 0;
     for (int r : m.rotations) over += overturned(m.variant, r) ? 1 : 0;
     const double share = double(over) / double(m.rotations.size());
-    p += m.weight / total * calibration::member_probability(share, with_lapse ? m.lapse : 0.0);
+    p += m.weight * calibration::member_probability(share, with_lapse ? m.lapse : 0.0);
   }
-  return p;
+  // normalised once at the end: members that all say 1 give exactly 1 (the same sum over the same
+  // weights), which per-member shares w / total need not
+  return p / total;
 }
 
 std::vector<double> Ensemble::scene_weights() const {
@@ -51,6 +53,7 @@ Ensemble load_calibration(const std::string& json) {
   Ensemble e;
   e.json = json;
   e.json_sha256 = io::file_sha256(json);
+  if (j.contains("physics") && j["physics"].is_string()) e.physics = j["physics"].get<std::string>();
   if (!j.contains("ensemble") || !j["ensemble"].is_array() || j["ensemble"].empty())
     throw InputError(json, 0, "has no ensemble");
   std::map<std::string, int> variant_of;

@@ -148,36 +148,49 @@ fs::path FragilityDesign::write_fit_inputs(const io::Cube& cube) const {
     }
   });
   // The model's P(overturn) per (motion, PGA): the ensemble's rule, without the lab's lapse (a
-  // fragility is the rock's). A (motion, PGA) counts only where every member's headings were all
-  // run (the stop rule's inferred cells are left out, as the fits leave them out), with the weight
-  // of the mean number of headings a member sees.
+  // fragility is the rock's), with the weight of the mean number of headings a member sees. Cells
+  // the stop rule inferred count as it says, overturned: above three scales that overturned the
+  // rock at every heading, so does the rest. A (motion, PGA) is known where every member's cells
+  // are (simulated or inferred); `simulated` marks those run throughout, the only ones the fit
+  // reads (fit.py: inferred cells are the rule's assumption, not simulations).
   const std::size_t records = cube.records.size(), scales = cube.scales_g.size();
   const int rotations = cube.rotations;
   double headings = 0;
   for (const Ensemble::Member& m : ensemble_.members) headings += double(m.rotations.size());
   headings /= double(ensemble_.members.size());
   io::write_output_file((work_ / "model.csv").string(), [&](std::ostream& out) {
-    out << "record_index,scale_g,p_overturn,cells\n";
+    out << "record_index,scale_g,p_overturn,cells,simulated\n";
     for (std::size_t r = 0; r < records; ++r) {
       for (std::size_t s = 0; s < scales; ++s) {
-        bool complete = true;
+        bool known = true, simulated = true;
         const double p = ensemble_.probability(
             [&](int variant, int rotation) {
               const auto code = static_cast<io::CellOutcome>(
                   cube.objects[std::size_t(variant)]
                       .outcome[(r * scales + s) * std::size_t(rotations) + std::size_t(rotation)]);
-              complete = complete && (code == io::CellOutcome::survived || code == io::CellOutcome::overturned);
-              return code == io::CellOutcome::overturned;
+              const bool ran = code == io::CellOutcome::survived || code == io::CellOutcome::overturned;
+              simulated = simulated && ran;
+              known = known && (ran || code == io::CellOutcome::inferred);
+              return code == io::CellOutcome::overturned || code == io::CellOutcome::inferred;
             },
             false);
         char line[160];
-        std::snprintf(line, sizeof line, "%zu,%.17g,%.17g,%.17g\n", r, cube.scales_g[s], complete ? p : 0.0,
-                      complete ? headings : 0.0);
+        std::snprintf(line, sizeof line, "%zu,%.17g,%.17g,%.17g,%d\n", r, cube.scales_g[s], known ? p : 0.0,
+                      known ? headings : 0.0, known && simulated ? 1 : 0);
         out << line;
       }
     }
   });
   return work_;
+}
+
+std::string FragilityDesign::physics_title() const {
+  if (ensemble_.json.empty()) return "uncalibrated: the scene's own physics (no calibration file beside it)";
+  const std::string file = fs::path(ensemble_.json).filename().string();
+  const std::string members =
+      std::to_string(ensemble_.members.size()) + " member" + (ensemble_.members.size() == 1 ? "" : "s");
+  if (ensemble_.physics.empty()) return "calibrated physics of " + file + " (" + members + ")";
+  return "calibrated physics: " + ensemble_.physics + " (" + file + ", " + members + ")";
 }
 
 }  // namespace rigid::shaketable

@@ -86,6 +86,7 @@ PredictionSummary Predictor::finish(const io::Cube& cube) const {
     std::vector<int> observed;
     for (const io::LabTest& t : tests_.tests) observed.push_back(*t.overturned);
     s.scores = calibration::score(s.probability, observed);
+    s.reliability = calibration::reliability(s.probability, observed);
   }
   return s;
 }

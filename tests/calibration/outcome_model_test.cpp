@@ -71,6 +71,80 @@ TEST(OutcomeModel, ScoresOfAKnownConfusionMatrix) {
   EXPECT_NEAR(s.balanced_accuracy, 0.5 * (2.0 / 3 + 4.0 / 5), 1e-12);
   const double brier = (0.01 + 0.16 + 0.64 + 0.49 + 0.01 + 0 + 0.16 + 0.09) / 8;
   EXPECT_NEAR(s.brier, brier, 1e-12);
+  // -ln of the probability given to what happened; the 0.0 of a test that stood is clipped to 0.001
+  const double log_loss = -(std::log(0.9) + std::log(0.6) + std::log(0.2) + std::log(0.3) + std::log(0.9) +
+                            std::log(0.999) + std::log(0.6) + std::log(0.7)) /
+                          8;
+  EXPECT_NEAR(s.log_loss, log_loss, 1e-12);
+  EXPECT_NEAR(s.log_loss, 0.5504323, 1e-6);  // the sum by hand: 4.4034583 / 8
+}
+
+TEST(OutcomeModel, LogLossClipsCertaintyThatWasWrong) {
+  // P = 0 for a test that overturned costs ln(1000), not infinity; P = 1 for one that did is free
+  // up to the clip
+  const Scores wrong = score({0.0}, {1});
+  EXPECT_NEAR(wrong.log_loss, std::log(1000.0), 1e-9);
+  const Scores right = score({1.0}, {1});
+  EXPECT_NEAR(right.log_loss, -std::log(0.999), 1e-12);
+  // a coin toss costs ln 2 whatever happens
+  EXPECT_NEAR(score({0.5, 0.5}, {0, 1}).log_loss, std::log(2.0), 1e-12);
+}
+
+TEST(OutcomeModel, ScoresByGroupAreEachGroupsOwn) {
+  const std::vector<double> p{0.9, 0.2, 0.4, 0.7};
+  const std::vector<int> y{1, 0, 1, 1};
+  const std::vector<Scores> by = scores_by_group(p, y, {0, 2, 0, 2});
+  ASSERT_EQ(by.size(), 3u);
+  EXPECT_EQ(by[0].tests, 2);
+  EXPECT_NEAR(by[0].accuracy, 0.5, 1e-12);  // 0.9 right, 0.4 wrong
+  EXPECT_NEAR(by[0].brier, (0.01 + 0.36) / 2, 1e-12);
+  EXPECT_EQ(by[1].tests, 0);
+  EXPECT_NEAR(by[2].accuracy, 1.0, 1e-12);
+  EXPECT_NEAR(by[2].log_loss, -(std::log(0.8) + std::log(0.7)) / 2, 1e-12);
+}
+
+TEST(OutcomeModel, WilsonIntervalMatchesPublishedExamples) {
+  // Newcombe (1998), Statistics in Medicine 17:857, Table I, method 3 (Wilson score)
+  const auto near = [](std::pair<double, double> got, double lo, double hi) {
+    EXPECT_NEAR(got.first, lo, 5e-5);
+    EXPECT_NEAR(got.second, hi, 5e-5);
+  };
+  near(wilson_interval(81, 263), 0.2553, 0.3662);
+  near(wilson_interval(15, 148), 0.0624, 0.1605);
+  near(wilson_interval(0, 20), 0.0, 0.1611);
+  near(wilson_interval(1, 29), 0.0061, 0.1718);
+  // n successes of n: the lower end is n / (n + z^2)
+  near(wilson_interval(2, 2), 2 / (2 + 1.959964 * 1.959964), 1.0);
+  near(wilson_interval(0, 0), 0.0, 1.0);
+  // exactly, not by round-off: a share of 0 or 1 lies inside its interval
+  EXPECT_EQ(wilson_interval(0, 9).first, 0.0);
+  EXPECT_EQ(wilson_interval(9, 9).second, 1.0);
+}
+
+TEST(OutcomeModel, ReliabilityTableByHand) {
+  const std::vector<double> p{0.05, 0.12, 0.15, 0.95, 1.0, 0.5, 0.55, 0.58, 0.52};
+  const std::vector<int> y{0, 0, 1, 1, 1, 0, 1, 1, 0};
+  const std::vector<ReliabilityBin> bins = reliability(p, y, 10);
+  ASSERT_EQ(bins.size(), 10u);
+  int total = 0;
+  for (const ReliabilityBin& b : bins) total += b.tests;
+  EXPECT_EQ(total, 9);
+  EXPECT_NEAR(bins[1].lower, 0.1, 1e-12);
+  EXPECT_NEAR(bins[1].upper, 0.2, 1e-12);
+  EXPECT_EQ(bins[0].tests, 1);
+  EXPECT_EQ(bins[0].overturned, 0);
+  EXPECT_NEAR(bins[0].interval_high, 0.7935, 5e-5);  // z^2 / (1 + z^2)
+  EXPECT_EQ(bins[1].tests, 2);
+  EXPECT_NEAR(bins[1].mean_probability, 0.135, 1e-12);
+  EXPECT_NEAR(bins[1].frequency, 0.5, 1e-12);
+  EXPECT_EQ(bins[5].tests, 4);  // 0.5 opens its bin
+  EXPECT_EQ(bins[5].overturned, 2);
+  EXPECT_NEAR(bins[5].mean_probability, 0.5375, 1e-12);
+  EXPECT_EQ(bins[9].tests, 2);  // 1.0 falls in the last bin
+  EXPECT_NEAR(bins[9].frequency, 1.0, 1e-12);
+  EXPECT_EQ(bins[3].tests, 0);
+  EXPECT_NEAR(bins[3].interval_low, 0.0, 0);
+  EXPECT_NEAR(bins[3].interval_high, 1.0, 0);
 }
 
 // A toy simulator: test t shakes with amplitude a_t along its own direction phi_t (records differ in

@@ -97,6 +97,58 @@ def check_fragility_thresholds(work, rows):
         assert low / ratio < first <= high * ratio, "%s: the model first overturns at %.2f g, the lab between %.3f and %.3f g" % (record, first, low, high)
 
 
+def check_probability_quality(cal, rows, tmp):
+    """The calibration's probability quality as written: each reliability table holds every test
+    once (and every overturn), the held-out scores cover every motion's tests, the figure and the
+    likelihood table it draws are there."""
+    overturned = sum(r["overturned"] for r in rows)
+    for part in ("in_sample", "cross_validated"):
+        q = cal[part]
+        assert q["log_loss"] > 0 and 0 <= q["brier"] <= 1, "%s: Brier %s, log loss %s" % (part, q["brier"], q["log_loss"])
+        bins = q["reliability"]
+        assert len(bins) == 10 and sum(b["tests"] for b in bins) == len(rows), "%s: every test in one bin" % part
+        assert sum(b["overturned"] for b in bins) == overturned, "%s: every overturn in its bin" % part
+        for b in bins:
+            if b["tests"]:
+                lo, hi = b["frequency_interval"]
+                assert b["p_low"] <= b["mean_p"] <= b["p_high"] and lo <= b["frequency"] <= hi, b
+    by = cal["cross_validated"]["by_motion"]
+    assert sorted(m["record"] for m in by) == sorted({r["record"] for r in rows}), "one row per recorded motion"
+    assert sum(m["tests"] for m in by) == len(rows) and sum(m["overturned"] for m in by) == overturned
+    # the whole is the tests' mean of the motions' own scores
+    brier = sum(m["brier"] * m["tests"] for m in by) / len(rows)
+    assert abs(brier - cal["cross_validated"]["brier"]) < 1e-9, "by-motion Brier scores add up to the whole"
+    assert os.path.getsize(os.path.join(tmp, "cal", "prism.calibration.png")) > 10000, "the calibration's figure"
+    with open(os.path.join(tmp, "cal", "prism.calibration", "likelihood.csv")) as fh:
+        lik = list(csv.DictReader(fh))
+    assert {int(r["stage"]) for r in lik} == {1, 2} and sum(r["stage"] == "1" for r in lik) == 12, "stage 1: 12 headings"
+    best = max(float(r["log_likelihood"]) for r in lik if r["stage"] == "2")
+    assert abs(best - cal["log_likelihood"]) < 1e-9, "the figure's best is the calibration's"
+
+
+def check_inferred_cells(work):
+    """model.csv against the cube: where the stop rule inferred every cell of a (motion, PGA), the
+    model's P is 1 with its full weight (the rule says overturned) and the fit leaves it out."""
+    import h5py
+    import numpy as np
+    with h5py.File(os.path.join(work, "fragility.h5"), "r") as f:
+        # [V, R, S, A]: a cube without variants stores [R, S, A]
+        outcome = np.concatenate([np.asarray(f["objects"][name]["outcome"][()]).reshape((-1,) + f["objects"][name]["outcome"].shape[-3:])
+                                  for name in f["objects"]])
+    with open(os.path.join(work, "model.csv")) as fh:
+        model = list(csv.DictReader(fh))
+    scales = sorted({float(m["scale_g"]) for m in model})
+    inferred = (outcome == 3).all(axis=(0, 3))  # [record, scale]: every object, every rotation
+    simulated = np.isin(outcome, (1, 2)).all(axis=(0, 3))
+    assert inferred.any(), "the grid reaches past the stop rule for some motion"
+    for m in model:
+        r, s = int(m["record_index"]), scales.index(float(m["scale_g"]))
+        if inferred[r, s]:
+            assert float(m["p_overturn"]) == 1.0 and float(m["cells"]) > 0 and m["simulated"] == "0", m
+        if simulated[r, s]:
+            assert m["simulated"] == "1" and float(m["cells"]) > 0, m
+
+
 def test_planted_lab_fit():
     """The lab fit on outcomes drawn from a known probit: 20 planted labs of 25 motions x 8 tests
     at PGAs spread around the median. The fit must find theta and beta, and its 90 % interval must
@@ -176,6 +228,7 @@ def test_calibrate_predict_and_fragility(rigid, tmp):
         assert cal["parameters"]["lapse"]["status"] in ("interior", "at a physical limit"), cal["parameters"]["lapse"]
         assert [s["stage"] for s in cal["stages"]] == [1, 2] and cal["stages"][1]["purpose"].startswith("stage 2 ("), (
             "each stage says what it did")
+        check_probability_quality(cal, rows, tmp)
         rr = run(rigid, "run", out + ".toml", "--lab", os.path.join(tmp, "motions", "Test001.txt.gz"))
         assert rr.returncode == 0, "the calibrated scene runs (%s)" % rr.stderr.strip()[:200]
 
@@ -199,6 +252,9 @@ def test_calibrate_predict_and_fragility(rigid, tmp):
             preds.append(open(p).read() if rp.returncode == 0 else None)
             if variant == "with":
                 assert "accuracy" in rp.stdout, "predict scores against the outcomes it has"
+                assert "log loss" in rp.stdout and "reliability" in rp.stdout, "predict's probability quality"
+                bins = [l for l in rp.stdout.splitlines() if " tests, mean P " in l]
+                assert sum(int(l.split(":")[1].split()[0]) for l in bins) == len(rows), "every test in one bin: %s" % bins
             if variant == "without":
                 assert "accuracy" not in rp.stdout, "predict without outcomes prints no score"
         assert preds[0] is not None and preds[0] == preds[1] == preds[2], "predictions identical with the outcomes kept, removed and shuffled"
@@ -219,6 +275,7 @@ def test_calibrate_predict_and_fragility(rigid, tmp):
         assert rf.returncode == 0, "fragility runs (%s)" % rf.stderr.strip()[-300:]
         if rf.returncode == 0:
             check_fragility_thresholds(fo + ".fragility.work", rows)
+            check_inferred_cells(fo + ".fragility.work")
             with open(fo + ".fragility.csv") as f:
                 table = {(x["pgv_pga_bin"], x["source"]): x for x in csv.DictReader(f)}
             assert all(("all motions", s) in table for s in ("lab", "model")) and len(table) == 8, "the table has lab and model rows for 3 bins and all motions"

@@ -11,6 +11,7 @@
 /// heading spread, lapse), and its likelihood is the Bernoulli likelihood of the observed outcomes.
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace rigid::calibration {
@@ -112,7 +113,16 @@ inline constexpr int kMinCrossValidationGroups = 3;
 /// Whether `group` has at least kMinCrossValidationGroups distinct groups.
 bool cross_validation_possible(const std::vector<int>& group);
 
-/// Scores of probabilities against outcomes; predicted = p >= 0.5.
+/// Log loss clips each probability to [kLogLossClip, 1 - kLogLossClip]: a prediction of exactly 0
+/// or 1 that is wrong would otherwise cost an infinite loss, and one such test would decide the
+/// whole score. The clip caps a test's loss at ln(1000) = 6.91. Calibrated ensembles reach it only
+/// with a lapse of 0 (their lapse keeps every P in [lapse/2, 1 - lapse/2]), which edge extension
+/// chooses only where the model explains every test it was fitted to.
+inline constexpr double kLogLossClip = 1e-3;
+
+/// Scores of probabilities against outcomes; predicted = p >= 0.5. Brier and log loss are proper
+/// scores (Brier 1950; Gneiting & Raftery 2007): expected best when the probabilities are the true
+/// ones, so they judge the probabilities themselves, not only the side of 0.5 they fall on.
 struct Scores {
   int tests = 0, true_positive = 0, false_positive = 0, true_negative = 0, false_negative = 0;
   double accuracy = 0;           ///< (tp + tn) / tests
@@ -120,7 +130,35 @@ struct Scores {
   double precision = 0;          ///< tp / (tp + fp); 0 when nothing is predicted to overturn
   double recall = 0;             ///< tp / (tp + fn)
   double brier = 0;              ///< mean of (p - y)^2
+  double log_loss = 0;           ///< mean of -ln p (overturned) or -ln(1 - p) (stood), p clipped (kLogLossClip)
 };
 Scores score(const std::vector<double>& probability, const std::vector<int>& observed);
+
+/// The scores of the tests of each group (a recorded motion) on their own, by group index
+/// (0..max group); a group without tests has tests = 0.
+std::vector<Scores> scores_by_group(const std::vector<double>& probability, const std::vector<int>& observed,
+                                    const std::vector<int>& group);
+
+/// One bin of a reliability table: the tests whose predicted P(overturn) fell in [lower, upper)
+/// (the last bin includes 1), against the share of them that overturned.
+struct ReliabilityBin {
+  double lower = 0, upper = 0;
+  int tests = 0, overturned = 0;
+  double mean_probability = 0;  ///< mean predicted P of the bin's tests (0 when empty)
+  double frequency = 0;         ///< overturned / tests (0 when empty)
+  /// Wilson's 95 % score interval of the frequency (Wilson 1927): a binomial interval that stays
+  /// inside [0, 1] and is not empty at 0 or n successes, unlike the normal one. [0, 1] when empty.
+  double interval_low = 0, interval_high = 1;
+};
+
+/// Wilson's score interval of k successes in n trials at the normal quantile z (95 %: 1.959964).
+/// [0, 1] for n = 0.
+std::pair<double, double> wilson_interval(int k, int n, double z = 1.959963984540054);
+
+/// The reliability table of probabilities against outcomes: `bins` equal bins of [0, 1], all of
+/// them, empty ones included. A calibrated model's bins lie on the diagonal (frequency = mean P)
+/// within their intervals.
+std::vector<ReliabilityBin> reliability(const std::vector<double>& probability, const std::vector<int>& observed,
+                                        int bins = 10);
 
 }  // namespace rigid::calibration

@@ -56,6 +56,7 @@ struct CalibrationSettings {
   /// Start over: the work folder of an earlier calibration into the same OUT is removed first (it
   /// is otherwise resumed, and refused when its inputs or settings differ)
   bool restart = false;
+  std::string figure_format = "png";  ///< OUT.calibration.FORMAT: png, pdf or svg
 };
 
 /// Throws InputError naming the setting (as its flag) when a value is outside its range.
@@ -109,6 +110,7 @@ struct CalibrationSummary {
   /// Leave-one-motion-out; nothing with fewer than calibration::kMinCrossValidationGroups motions
   std::optional<calibration::Scores> cross_validated;
   std::string scene, json;
+  std::string likelihood_table;  ///< what the calibration figure draws beside the JSON
   double wall_s = 0;
   std::vector<ParameterReport> parameters;  ///< the law's numeric parameters and the lapse, with their status
 };

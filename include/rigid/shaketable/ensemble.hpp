@@ -21,6 +21,7 @@ struct Ensemble {
   };
   std::string json;                   ///< the calibration file read ("" when none)
   std::string json_sha256;            ///< its SHA-256 ("" when none): what a transfer or a cube records
+  std::string physics;                ///< the calibrated physics in words (the file's "physics"; "" when none)
   std::vector<std::string> scenes;    ///< absolute paths, one per variant (the scene itself without a file)
   std::vector<double> rotations_deg;  ///< every member's headings, sorted, as turns of the motion
   std::vector<Member> members;

@@ -40,6 +40,9 @@ class FragilityDesign {
   /// test each motion is, the ensemble's P(overturn) per motion and PGA); returns the work folder.
   std::filesystem::path write_fit_inputs(const io::Cube& cube) const;
   std::string cube_path() const { return (work_ / "fragility.h5").string(); }
+  /// The physics the model runs, in one line for the figure's title: the calibration's, or the
+  /// scene's own when no calibration file lies beside it.
+  std::string physics_title() const;
 
  private:
   struct Measured {

@@ -24,6 +24,8 @@ struct PredictionSummary {
   std::string calibration;  ///< the calibration file averaged over ("" when none)
   std::vector<double> probability;
   std::optional<calibration::Scores> scores;
+  /// Predicted P in ten bins against the observed share (with outcomes only)
+  std::vector<calibration::ReliabilityBin> reliability;
 };
 
 class Predictor {

@@ -3,6 +3,7 @@ beside the calibrated model's, per PGV/PGA bin, with one table of medians and on
 
     shaketable_fragility.py CUBE --lab LAB.csv --motions MOTIONS.csv --model MODEL.csv --out OUT
                             [--bins E0,E1,...] [--bootstrap N] [--seed N] [--level 0.9] [--format png]
+                            [--physics TEXT]
 
 The command writes LAB.csv (each test's measured PGA, PGV/PGA and outcome), MOTIONS.csv (which
 recording each of the cube's records is) and MODEL.csv (the calibrated ensemble's P(overturn) per
@@ -14,7 +15,10 @@ motions as the resampled unit of the bootstrap: the tests of one motion share it
 the cells of one record do in a campaign. Lab: each test is one Bernoulli outcome at its measured
 PGA. Model: at each PGA of the grid, the ensemble's probability of overturning (the lapse rate is
 the lab's, not the rock's, and is left out) with the weight of the mean number of headings a
-member sees. A motion's bin is
+member sees. The fit reads the (motion, PGA)s simulated throughout (MODEL.csv's `simulated`);
+the figure's model points also count the stop rule's inferred cells, as overturned, as the rule
+says (leaving them out would average only the motions that never overturned at the top PGAs).
+A motion's bin is
 that of its PGV/PGA (the recording the model scales): lab and model fits in a bin are over the
 same motions. Exit status: 0 done, 2 bad input, 1 internal error.
 """
@@ -80,18 +84,40 @@ def lab_cells(lab_rows, motion_index):
 
 def model_cells(cube, model_rows):
     """Per (motion, scale): the ensemble's P(overturn) as the command computed it (MODEL.csv:
-    p_overturn over `cells` cells, 0 cells where not every member's headings were run)."""
+    p_overturn over `cells` cells, inferred cells counted as overturned; 0 cells where some
+    member's cell is unknown). Returns the fit's cells (simulated throughout only), P and the mask
+    of known (motion, scale)s the figure's points average."""
     R, S = len(cube.records), len(cube.scales)
+    return model_cells_on_grid(R, cube.scales, model_rows)
+
+
+def model_cells_on_grid(R, scales_g, model_rows):
+    """model_cells on R motions by the PGA grid `scales_g` (g)."""
+    S = len(scales_g)
     p = np.zeros((R, S))
     n = np.zeros((R, S))
-    column = {float(v): s for s, v in enumerate(cube.scales)}
+    ran = np.zeros((R, S), bool)
+    column = {float(v): s for s, v in enumerate(scales_g)}
     for i, row in enumerate(model_rows, start=2):
         r, scale = int(row["record_index"]), float(row["scale_g"])
         if not 0 <= r < R or scale not in column:
             raise InputError(f"model.csv:{i}: record {r} at {scale} g is not a cell of the cube")
         p[r, column[scale]] = float(row["p_overturn"])
         n[r, column[scale]] = float(row["cells"])
-    return BinnedCells(p * n, n, cube.scales), p, n > 0
+        ran[r, column[scale]] = row.get("simulated", "1") == "1"
+    return BinnedCells(p * n * ran, n * ran, scales_g), p, n > 0
+
+
+def model_points(model_p, known, motions):
+    """The figure's model point per PGA: the mean P over the motions whose cells are known there
+    (simulated or inferred), NaN where none is."""
+    return np.array([np.mean(model_p[motions, s][known[motions, s]]) if known[motions, s].any() else np.nan
+                     for s in range(model_p.shape[1])])
+
+
+LAB_OVERTURNED = "lab test: overturned (P = 1)"
+LAB_STOOD = "lab test: stood (P = 0)"
+MODEL_POINTS = "model: mean P over the bin's motions (inferred cells as overturned)"
 
 
 def bin_edges(text, pgv_pga):
@@ -154,6 +180,7 @@ def fragility_command(argv=None):
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--level", type=float, default=0.9)
     ap.add_argument("--format", default="png", choices=["png", "pdf", "svg"])
+    ap.add_argument("--physics", default="", help="the model's physics in one line, for the title")
     args = ap.parse_args(argv)
 
     cube = Cube(args.cube)
@@ -221,7 +248,7 @@ def fragility_command(argv=None):
                            [f"{v:.4f}" if v is not None and math.isfinite(v) else "" for v in
                             (f.get("theta_g"), t_lo, t_hi, f.get("beta"), b_lo, b_hi)] +
                            ["; ".join(n for n in (f.get("interval_note"), f.get("reason"), f.get("beyond_note")) if n)])
-    draw(rows, lab, model_p, simulated, cube.scales, figure, inputs)
+    draw(rows, lab, model_p, simulated, cube.scales, figure, inputs, args.physics)
     print(f"wrote {table} (the table) and {figure} (the figure)")
     return 0
 
@@ -232,12 +259,22 @@ def probit_curve(x, fit, theta=None):
     return ndtr(np.log(x / theta) / fit["beta"])
 
 
-def draw(rows, lab, model_p, simulated, scales_g, path, inputs):
+def draw(rows, lab, model_p, known, scales_g, path, inputs, physics=""):
+    import matplotlib.pyplot as plt
+    fig = fragility_figure(rows, lab, model_p, known, scales_g, physics)
+    cube_files.save_figure(fig, path, "--out", inputs, dpi=150)
+    plt.close(fig)
+
+
+def fragility_figure(rows, lab, model_p, known, scales_g, physics=""):
+    """The figure: one panel per PGV/PGA bin and one of all motions; the title names the model's
+    physics (`physics`, one line)."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     n = len(rows)
-    fig, axes = plt.subplots(1, n, figsize=(3.6 * n, 3.6), sharey=True, squeeze=False)
+    width = 3.6 * max(n, 3)  # the legend and title need about three panels of room
+    fig, axes = plt.subplots(1, n, figsize=(width, 3.6), sharey=True, squeeze=False)
     # PGA on a log axis: the lognormal's own scale, and the lab's tests span two decades
     low = 0.8 * min(float(np.min(scales_g)), float(np.min(lab.scales_g[lab.scales_g > 0])))
     top = 1.25 * max(float(np.max(scales_g)), float(np.max(lab.scales_g)))
@@ -248,12 +285,14 @@ def draw(rows, lab, model_p, simulated, scales_g, path, inputs):
         cols = np.flatnonzero(lab.n[motions].sum(axis=0) > 0)
         outcome = lab.k[motions][:, cols].sum(axis=0)
         jitter = np.random.default_rng(0).uniform(-0.03, 0.03, len(cols))
-        h = ax.scatter(lab.scales_g[cols], outcome + jitter, s=10, marker="|", color="C0", alpha=0.7)
-        handles["lab tests (1 overturned, 0 stood)"] = h
-        shares = [np.mean(model_p[motions, s][simulated[motions, s]]) if simulated[motions, s].any() else np.nan
-                  for s in range(len(scales_g))]
-        h = ax.plot(scales_g, shares, "o", ms=3, color="C3", alpha=0.6)[0]
-        handles["model: mean P over the bin's motions"] = h
+        # one marker each: a lone "|" at 0 and 1 read like counts of tests
+        for value, marker, name in ((1, "^", LAB_OVERTURNED), (0, "v", LAB_STOOD)):
+            at = outcome == value
+            if at.any():
+                handles[name] = ax.scatter(lab.scales_g[cols][at], outcome[at] + jitter[at], s=12, marker=marker,
+                                           color="C0" if value else "C2", alpha=0.7)
+        h = ax.plot(scales_g, model_points(model_p, known, motions), "o", ms=3, color="C3", alpha=0.6)[0]
+        handles[MODEL_POINTS] = h
         for source, color, style, name in (("lab", "C0", "-", "lab probit fit"), ("model", "C3", "--", "model probit fit")):
             f = r[source]
             if "theta_g" not in f:
@@ -271,16 +310,169 @@ def draw(rows, lab, model_p, simulated, scales_g, path, inputs):
         ax.set_ylim(-0.08, 1.08)
         ax.grid(alpha=0.3)
     axes[0][0].set_ylabel("P(overturn)")
+    import textwrap
+    title = "Shake-table fragility, lab beside model; model: " + (physics or "physics not stated")
+    fig.suptitle(textwrap.fill(title, width=int(15 * width)), fontsize=9)  # about 15 characters an inch
     # one legend below the panels: it cannot cover data
-    fig.legend(list(handles.values()), list(handles.keys()), loc="lower center", ncol=3, fontsize=8, frameon=False)
-    fig.tight_layout(rect=(0, 0.14, 1, 1))
-    cube_files.save_figure(fig, path, "--out", inputs, dpi=150)
-    plt.close(fig)
+    columns = 3
+    fig.legend(list(handles.values()), list(handles.keys()), loc="lower center", ncol=columns, fontsize=8,
+               frameon=False)
+    legend_rows = -(-len(handles) // columns)
+    fig.tight_layout(rect=(0, min(0.5, 0.05 * legend_rows + 0.04), 1, 0.93))
+    return fig
 
 
 def main(argv=None):
     try:
         return fragility_command(argv)
+    except (InputError, cube_files.OutputError) as e:
+        sys.stderr.write(f"rigid: error: {e}\n")
+        return 2
+
+
+# --- `rigid shaketable calibrate`'s diagnostic figure -------------------------------------------
+#
+#     shaketable_calibration.py NAME.calibration.json --likelihood LIKELIHOOD.csv --out FIGURE
+#                               [--format png]
+#
+# Draws what the calibration wrote, computes nothing: the profile log-likelihood of each variant
+# over its headings (LIKELIHOOD.csv, final stage), the held-out scores of each recorded motion and
+# the reliability tables (the JSON's cross_validated.by_motion and reliability).
+
+LIKELIHOOD_COLUMNS = ["stage", "variant", "label", "heading_deg", "log_likelihood"]
+
+
+def read_calibration_json(path):
+    """The calibration document as a dict; InputError for a file that is not one."""
+    import json
+    try:
+        with open(path) as fh:
+            doc = json.load(fh)
+    except OSError as e:
+        raise InputError(f"{path}: cannot read it ({e.strerror})")
+    except ValueError as e:
+        raise InputError(f"{path}: not JSON ({e})")
+    if not isinstance(doc, dict) or doc.get("format") != "rigid calibration":
+        raise InputError(f"{path}: not a rigid calibration file")
+    return doc
+
+
+def final_stage_likelihood(rows):
+    """{label: (headings, log-likelihoods)} of the fitted design's variants, headings ascending:
+    the last stage's, and with edge extension (stages after 2, on stage 2's headings) stage 2's
+    and every later one's."""
+    last = max(int(r["stage"]) for r in rows)
+    first = min(last, 2)
+    lines = {}
+    for r in rows:
+        if int(r["stage"]) >= first:
+            lines.setdefault(r["label"], []).append((float(r["heading_deg"]), float(r["log_likelihood"])))
+    which = f"stage {last}" if first == last else f"stages {first}-{last}"
+    return which, {k: tuple(np.array(v) for v in zip(*sorted(pts))) for k, pts in lines.items()}
+
+
+def reliability_points(table):
+    """(mean P, frequency, lower error, upper error, tests) of a reliability table's non-empty bins."""
+    full = [b for b in table if b["tests"] > 0]
+    mean = np.array([b["mean_p"] for b in full])
+    freq = np.array([b["frequency"] for b in full])
+    lo = np.array([b["frequency_interval"][0] for b in full])
+    hi = np.array([b["frequency_interval"][1] for b in full])
+    return mean, freq, freq - lo, hi - freq, [b["tests"] for b in full]
+
+
+def calibration_title(doc):
+    heading = doc.get("parameters", {}).get("heading_deg", {}).get("value")
+    import os
+    scan = os.path.basename(str(doc.get("scan", "?")))
+    text = "Calibration of " + scan + ": " + str(doc.get("physics", "physics not stated"))
+    if heading is not None:
+        text += f", heading {heading:.1f} deg"
+    return text
+
+
+def calibration_figure(doc, likelihood_rows):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, (a_lik, a_motion, a_rel) = plt.subplots(1, 3, figsize=(15, 4.8))
+    # (a) likelihood over heading, one line per physics variant of the final stage
+    stage, lines = final_stage_likelihood(likelihood_rows)
+    best = max(ll.max() for _, ll in lines.values())
+    for k, (label, (h, ll)) in enumerate(sorted(lines.items())):
+        a_lik.plot(h, ll, "o-", ms=3, lw=1.2, color=f"C{k % 10}", label=label)
+    a_lik.axhline(best - 1.92, color="0.4", ls=":", lw=1, label="95 % region: best - 1.92")
+    a_lik.set_xlabel("heading of the table's axis in the scan's frame (deg)")
+    a_lik.set_ylabel("log-likelihood (best spread and lapse)")
+    a_lik.set_title(f"{stage}: likelihood by variant and heading", fontsize=9)
+    a_lik.legend(fontsize=6, loc="upper center", bbox_to_anchor=(0.5, -0.2))  # below: it cannot cover a line
+    a_lik.grid(alpha=0.3)
+    # (b) held-out scores of each recorded motion
+    cv = doc.get("cross_validated", {})
+    by = cv.get("by_motion", []) if isinstance(cv, dict) else []
+    if by:
+        x = np.arange(len(by))
+        a_motion.bar(x, [m["brier"] for m in by], color="C1", alpha=0.7, label="Brier score (0 best)")
+        a_motion.plot(x, [m["accuracy"] for m in by], "ko", ms=4, label="accuracy")
+        a_motion.set_xticks(x)
+        a_motion.set_xticklabels([f"{m['record']} ({m['overturned']}/{m['tests']})" for m in by], rotation=75,
+                                 fontsize=6)
+        a_motion.set_ylim(0, 1.05)
+        a_motion.legend(fontsize=7, loc="upper right")
+        a_motion.set_title(f"left-out motion's own tests: Brier {cv['brier']:.3f}, log loss {cv['log_loss']:.3f} "
+                           f"overall", fontsize=9)
+    else:
+        a_motion.text(0.5, 0.5, "cross-validation not available\n(fewer than 3 recorded motions)",
+                      ha="center", va="center", transform=a_motion.transAxes)
+        a_motion.set_title("cross-validated score by recorded motion", fontsize=9)
+    a_motion.grid(alpha=0.3, axis="y")
+    # (c) reliability: predicted P against the observed share, 95 % Wilson intervals
+    a_rel.plot([0, 1], [0, 1], color="0.5", lw=1, ls="--", label="perfectly reliable")
+    for key, color, marker, name in (("in_sample", "C0", "s", "in sample"),
+                                     ("cross_validated", "C3", "o", "cross-validated")):
+        part = doc.get(key, {})
+        if not isinstance(part, dict) or "reliability" not in part:
+            continue
+        mean, freq, elo, ehi, n = reliability_points(part["reliability"])
+        a_rel.errorbar(mean, freq, yerr=[elo, ehi], fmt=marker, color=color, ms=4, capsize=2, lw=1,
+                       label=f"{name} (Brier {part['brier']:.3f}, log loss {part['log_loss']:.3f})")
+        if key == "cross_validated":
+            for xm, ym, count in zip(mean, freq, n):
+                a_rel.annotate(str(count), (xm, ym), textcoords="offset points", xytext=(4, -8), fontsize=6)
+    a_rel.set_xlim(-0.02, 1.02)
+    a_rel.set_ylim(-0.02, 1.02)
+    a_rel.set_xlabel("predicted P(overturn) (bin mean)")
+    a_rel.set_ylabel("observed share overturned")
+    a_rel.set_title("reliability (numbers: tests per bin)", fontsize=9)
+    a_rel.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.2))
+    a_rel.grid(alpha=0.3)
+    fig.suptitle(calibration_title(doc), fontsize=10)
+    fig.tight_layout(rect=(0, 0, 1, 0.95))
+    return fig
+
+
+def calibration_figure_command(argv=None):
+    ap = argparse.ArgumentParser(prog="rigid shaketable calibrate (figure)")
+    ap.add_argument("calibration")
+    ap.add_argument("--likelihood", required=True)
+    ap.add_argument("--out", required=True)
+    ap.add_argument("--format", default="png", choices=["png", "pdf", "svg"])
+    args = ap.parse_args(argv)
+    doc = read_calibration_json(args.calibration)
+    rows = read_csv(args.likelihood, LIKELIHOOD_COLUMNS)
+    if not rows:
+        raise InputError(f"{args.likelihood}: no rows")
+    import matplotlib.pyplot as plt
+    fig = calibration_figure(doc, rows)
+    cube_files.save_figure(fig, args.out, "--out", [args.calibration, args.likelihood], dpi=150)
+    plt.close(fig)
+    print(f"wrote {args.out} (the calibration's figure)")
+    return 0
+
+
+def calibration_main(argv=None):
+    try:
+        return calibration_figure_command(argv)
     except (InputError, cube_files.OutputError) as e:
         sys.stderr.write(f"rigid: error: {e}\n")
         return 2
