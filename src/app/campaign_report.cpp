@@ -16,6 +16,48 @@
 namespace rigid::app {
 namespace {
 
+namespace fs = std::filesystem;
+
+// A scene that `rigid model import` wrote (NAME.toml with NAME.import.json beside it): a scanned
+// rock, whose default rigid contact is not a measured physics.
+bool is_imported_scan(const std::string& scene) {
+  fs::path report(scene);
+  report.replace_extension(".import.json");
+  std::error_code ec;
+  return fs::is_regular_file(report, ec);
+}
+
+// Where the object's physics comes from, one line: its calibration, or for a scanned rock on the
+// default physics that it has none and how it could take one.
+void print_physics_note(const io::Cube& cube) {
+  if (cube.calibration) {
+    const io::CubeCalibration& c = *cube.calibration;
+    std::string weights;
+    for (double w : c.weights) {
+      char text[32];
+      std::snprintf(text, sizeof text, "%.3g", w);
+      weights += (weights.empty() ? "" : ", ") + std::string(text);
+    }
+    std::printf("physics: calibrated, %s (%zu member scenes, weights %s; headings random as for any field rock)\n",
+                c.path.c_str(), c.weights.size(), weights.c_str());
+    return;
+  }
+  for (std::size_t o = 0; o < cube.objects.size(); ++o) {
+    const io::ObjectCube& oc = cube.objects[o];
+    if (oc.variant > 0 || !is_imported_scan(oc.scene)) continue;
+    fs::path beside(oc.scene);
+    beside.replace_extension(".calibration.json");
+    std::error_code ec;
+    const std::string how = fs::is_regular_file(beside, ec)
+                                ? "calibration = \"" + beside.string() + "\" (beside it)"
+                                : "calibration = \".../NAME.calibration.json\" from `rigid shaketable calibrate` "
+                                  "(its shake-table tests) or `rigid shaketable transfer CALIBRATION.json " +
+                                      oc.scene + " --out DIR/NAME` (another rock's)";
+    std::printf("note: %s is a scanned rock on uncalibrated default physics; its [[object]] can take %s\n",
+                oc.name.c_str(), how.c_str());
+  }
+}
+
 std::string format_duration(double s) {
   if (!std::isfinite(s) || s < 0) return "--:--";
   const long t = std::lround(s);
@@ -123,6 +165,7 @@ void print_summary(const io::Cube& cube, const std::string& output) {
     }
     std::printf("\n");
   }
+  print_physics_note(cube);
 }
 
 void print_failures(const io::Cube& cube) {

@@ -74,6 +74,9 @@ Inputs collect_inputs(const job::Job& job, const scenario::Model& model) {
   in.job.push_back({"(settings)", io::sha256_hex(job::job_settings_text(job))});
   in.job.push_back({job.path, io::file_sha256(job.path)});
   if (!job.record_list.empty()) in.job.push_back({job.record_list, io::file_sha256(job.record_list)});
+  // the calibration's weights and members are not in the job's text: a replaced or recalibrated
+  // file must not be resumed into the same cube
+  if (job.calibration) in.job.push_back({job.calibration->path, io::file_sha256(job.calibration->path)});
   for (std::size_t o = 0; o < job.objects.size(); ++o)
     in.objects.push_back(io::digest_files(model.scene(int(o)).files));
   for (const auto& r : job.records) {
@@ -142,6 +145,10 @@ io::Cube make_cube(const CampaignContext& context, const Plan& plan) {
   cube.software_version = RIGID_VERSION " (" RIGID_GIT_HASH ")";
   cube.seed = job.seed;
   cube.variants = variant_table(job.variants);
+  if (job.calibration) {
+    const io::JobCalibration& c = *job.calibration;
+    cube.calibration = io::CubeCalibration{c.path, c.sha256, c.weights, c.summary_json};
+  }
   cube.physics_json = io::physics_json(model.scene(0), job.run, job.accuracy,
                                        job.stop_after);  // object 0's, as before per-object records
   const std::vector<std::int8_t> outcome = plan.final_outcomes();

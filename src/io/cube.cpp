@@ -327,6 +327,9 @@ std::string cube_problem(const Cube& cube) {
   for (const ObjectCube& o : cube.objects) {
     if (std::string p = object_problem(cube, o); !p.empty()) return p;
   }
+  if (cube.calibration && cube.calibration->weights.size() != std::size_t(cube.variants.count))
+    return "calibration_weights: " + std::to_string(cube.calibration->weights.size()) + " weights for " +
+           std::to_string(cube.variants.count) + " variants";
   if (cube.variants.count > 0) return variant_order_problem(cube);
   if (std::string p = no_variant_problem(cube); !p.empty()) return p;
   return unique_names_problem(cube.objects, 1);

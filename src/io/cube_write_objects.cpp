@@ -322,6 +322,12 @@ void write_variant_object(Writer& w, const Cube& c, std::size_t base) {
   w.attribute(g, "scene", variants.front().scene);
   w.attribute(g, "index", static_cast<std::int32_t>(base));
   w.attribute(g, "variants", static_cast<std::int32_t>(V));
+  if (c.calibration) {
+    w.attribute(g, "calibration", c.calibration->path);
+    w.attribute(g, "calibration_sha256", c.calibration->sha256);
+    w.attribute(g, "calibration_weights", c.calibration->weights);
+    w.attribute(g, "calibration_summary", c.calibration->summary_json);
+  }
   const ObjectScales scales = write_coordinates(w, g, c, V);
   write_variant_values(w, g, variants, scales);
   write_cells(w, g, c, stacked_cells(c, variants), scales);

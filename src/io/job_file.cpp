@@ -18,6 +18,9 @@
 #include "lab_toml.hpp"
 #include "rigid/core/error.hpp"
 #include "rigid/io/at2.hpp"
+#include "rigid/io/calibration_document.hpp"
+#include "rigid/io/calibration_ensemble.hpp"
+#include "rigid/io/json.hpp"
 #include "rigid/io/record_list.hpp"
 #include "toml_values.hpp"
 
@@ -207,7 +210,76 @@ void read_campaign(const toml::table& root, JobFile& job) {
   job.grace_s = optional_number(*c, "grace_s", job.grace_s, path);
 }
 
-void read_objects(const toml::table& root, const fs::path& base, JobFile& job) {
+// The calibration of an [[object]] (calibration = "FILE", relative to the job file) read into
+// job.calibration; returns the scene the object simulates (its `scene`, which must be the
+// calibration's own, else the calibration's scene beside the file) and fills `member_scenes`.
+std::string read_object_calibration(const std::string& calibration, const std::string& scene, long line,
+                                    const fs::path& base, JobFile& job, std::vector<std::string>& member_scenes) {
+  const std::string& path = job.path;
+  if (job.calibration)
+    throw InputError(path, line,
+                     "a job takes one calibrated [[object]] (another is at line " +
+                         std::to_string(job.calibration->line) +
+                         "): run each calibrated rock as a campaign of its own");
+  const std::string file = (base / calibration).lexically_normal().string();
+  std::error_code ec;
+  if (!fs::exists(file, ec)) throw InputError(path, line, "calibration file not found: " + file);
+  CalibrationEnsemble ensemble;
+  Json document;
+  try {
+    ensemble = read_calibration_ensemble(file);
+    document = read_calibration_document(file);
+  } catch (const InputError& e) {  // name the [[object]] that takes it as well as the file
+    throw InputError(path, line, std::string("calibration ") + e.what());
+  }
+  if (!document.contains("scene") || !document["scene"].is_string())
+    throw InputError(path, line, "calibration " + file + " names no scene (\"scene\": the calibrated scene beside it)");
+  const std::string own =
+      (fs::path(file).parent_path() / document["scene"].get<std::string>()).lexically_normal().string();
+  if (!scene.empty()) {
+    const std::string given = (base / scene).lexically_normal().string();
+    if (fs::weakly_canonical(given, ec) != fs::weakly_canonical(own, ec))
+      throw InputError(path, line,
+                       "scene " + given + " is not the calibration's scene " + own +
+                           ": leave scene out, or calibrate (or transfer) this scene");
+  }
+  JobCalibration c;
+  c.path = file;
+  c.sha256 = ensemble.json_sha256;
+  c.weights = ensemble.scene_weights();
+  c.summary_json = json_line(calibration_summary(document));
+  c.line = line;
+  job.calibration = c;
+  member_scenes = ensemble.scenes;
+  return own;
+}
+
+// A calibrated object's members are the job's variant axis (key `scene`, method "calibration"):
+// the object must be the job's only one, and the job has no [sweep] or [[variant]] of its own.
+void calibration_variants(const std::vector<std::string>& member_scenes, JobFile& job) {
+  const long line = job.calibration->line;
+  if (job.objects.size() != 1)
+    throw InputError(job.path, line,
+                     "a calibrated [[object]] must be the job's only object (its calibration's members are the "
+                     "job's variants): run the other objects as a campaign of their own");
+  if (job.variants.count() > 0)
+    throw InputError(job.path, job.variant_lines.empty() ? line : job.variant_lines.front(),
+                     "[sweep] and [[variant]] do not combine with a calibrated [[object]] (line " +
+                         std::to_string(line) + "): its calibration's members are the job's variants");
+  scenario::VariantSpace space;
+  space.method = "calibration";
+  space.keys = {scenario::VariantKey::scene};
+  for (const std::string& s : member_scenes) {
+    scenario::VariantValue v;
+    v.text = s;
+    space.variants.push_back({v});
+  }
+  job.variants = space;
+  job.variant_lines = {line};
+}
+
+void read_objects(const toml::table& root, const fs::path& base, JobFile& job,
+                  std::vector<std::string>& member_scenes) {
   const std::string& path = job.path;
   const auto* objects = root["object"].as_array();
   if (!objects || objects->empty()) throw InputError(path, 0, "the job needs at least one [[object]]");
@@ -215,10 +287,25 @@ void read_objects(const toml::table& root, const fs::path& base, JobFile& job) {
   for (const auto& node : *objects) {
     const auto* t = node.as_table();
     if (!t) throw InputError(path, line_of(node), "each [[object]] must be a table");
-    reject_unknown(*t, {"name", "scene", "state", "optional"}, path, "[[object]]");
+    reject_unknown(*t, {"name", "scene", "state", "optional", "calibration"}, path, "[[object]]");
     JobFileObject o;
-    const std::string scene = optional_string(*t, "scene", "", path);
-    if (scene.empty()) throw InputError(path, line_of(node), "[[object]] needs scene = \"FILE\"");
+    std::string scene = optional_string(*t, "scene", "", path);
+    const std::string calibration = optional_string(*t, "calibration", "", path);
+    if (!calibration.empty()) {
+      if (optional_bool(*t, "optional", false, path) && !fs::exists(base / calibration)) {
+        const std::string left_out =
+            "[[object]] at line " + std::to_string(line_of(node)) + " left out: its calibration ";
+        job.notes.push_back(left_out + (base / calibration).lexically_normal().string() +
+                            " does not exist (optional = true)");
+        job.text +=
+            "\n# " + left_out + "\"" + calibration + "\" (relative to the job file) does not exist (optional = true)\n";
+        continue;
+      }
+      const std::string own = read_object_calibration(calibration, scene, line_of(node), base, job, member_scenes);
+      if (scene.empty()) scene = fs::relative(own, base.empty() ? fs::path(".") : base).string();
+    }
+    if (scene.empty())
+      throw InputError(path, line_of(node), "[[object]] needs scene = \"FILE\" (or calibration = \"FILE\")");
     o.scene = (base / scene).lexically_normal().string();
     // an optional object is a generated scene (e.g. a scan imported from data outside the
     // repository): left out with a note when absent; the note enters the job's text, so a resume
@@ -420,8 +507,10 @@ JobFile read_job_file(const std::string& path) {
   const fs::path base = fs::path(path).parent_path();
   reject_unknown(root, {"campaign", "lab", "object", "record", "records", "run", "sweep", "variant"}, path, "the job");
   read_campaign(root, job);
-  read_objects(root, base, job);
+  std::vector<std::string> member_scenes;
+  read_objects(root, base, job, member_scenes);
   job.variants = read_variants(root, path, base, job.seed, job.objects.size(), job.variant_lines);
+  if (job.calibration) calibration_variants(member_scenes, job);
   read_records(root, base, job);
   job.run = read_run(root, path);
   return job;

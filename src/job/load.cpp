@@ -60,6 +60,7 @@ Job load_job(const std::string& path) {
   job.grace_s = file.grace_s;
   job.objects = expand_variants(file.objects, file.variants);
   job.variants = std::move(file.variants);
+  job.calibration = std::move(file.calibration);
   job.variant_lines = std::move(file.variant_lines);
   job.records = std::move(file.records);
   job.record_list = std::move(file.record_list);

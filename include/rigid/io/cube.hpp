@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -95,6 +96,17 @@ struct ObjectCube {
   std::vector<std::int32_t> unconverged_steps;
 };
 
+/// The calibration a calibrated object's physics comes from (job file `calibration = ...`),
+/// written as attributes of its group: calibration, calibration_sha256, calibration_weights (one
+/// per variant) and calibration_summary (JSON: the document's rigid_version, created, scene,
+/// physics in words, chosen parameters and scores).
+struct CubeCalibration {
+  std::string path;
+  std::string sha256;
+  std::vector<double> weights;
+  std::string summary_json;
+};
+
 /// Everything written to the file.
 struct Cube {
   std::vector<RecordMeta> records;
@@ -102,6 +114,9 @@ struct Cube {
   int rotations = 2;             ///< rotations per (record, scale)
   /// The variant axis; variants.count == 0 when the job has none.
   VariantTable variants;
+  /// With a calibrated object (the cube's only one, its variants the calibration's member
+  /// scenes): where its physics comes from. Not read back by read_cube.
+  std::optional<CubeCalibration> calibration;
   /// Without variants one per object, in job order. With variants variants.count per base object,
   /// consecutive and in variant order (variant 0..count-1, same name and scene): the campaign's
   /// internal object o * count + v is base object o in variant v.

@@ -26,6 +26,18 @@ struct JobFileObject {
   std::string state;  ///< saved equilibrium state (resolved path), may be empty
 };
 
+/// An object whose physics comes from a shake-table calibration ([[object]] calibration = "FILE"):
+/// the ensemble's distinct member scenes are the job's variants (key `scene`), each weighted by
+/// its members' share of the weight. The members' headings and lapse are the lab's and are not
+/// used: a field rock's heading is unknown, so its rotations stay random as for any object.
+struct JobCalibration {
+  std::string path;             ///< the calibration file (resolved path)
+  std::string sha256;           ///< its SHA-256 as read: one of the job's input digests
+  std::vector<double> weights;  ///< each variant's weight (io::CalibrationEnsemble::scene_weights)
+  std::string summary_json;     ///< io::calibration_summary of the document, compact JSON
+  long line = 0;                ///< the [[object]]'s line in the job file
+};
+
 /// One record (a ground-motion set) of a campaign.
 struct JobRecord {
   std::string name;  ///< unique record name
@@ -84,6 +96,9 @@ struct JobFile {
   motion::LabFormat lab_format;        ///< the [lab] table
   RunTable run;
   std::vector<std::string> notes;  ///< what was left out, one line each
+  /// The calibrated object's calibration (a job has at most one, and then no other object and no
+  /// [sweep] or [[variant]]: its members are the variant axis)
+  std::optional<JobCalibration> calibration;
 };
 
 /// Reads a job file. Scene, state and record-list paths are relative to the job file; the

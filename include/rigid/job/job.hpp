@@ -46,8 +46,12 @@ struct Job {
   /// What the campaign simulates: every [[object]] in every variant, object-major (index
   /// base * variants + variant), so the plan, stop rule, journal and cube work per variant.
   std::vector<JobObject> objects;
-  /// The [sweep] or [[variant]] tables: count() == 0 when the job has none.
+  /// The [sweep] or [[variant]] tables, or a calibrated object's members: count() == 0 when the
+  /// job has none.
   scenario::VariantSpace variants;
+  /// The calibrated object's calibration (then the job's only object; its variants are the
+  /// calibration's member scenes, weighted): nothing when no object takes one.
+  std::optional<io::JobCalibration> calibration;
   /// Line of the [sweep] table or of each [[variant]] (one entry for a sweep): where errors about
   /// a variant that a scene cannot take point.
   std::vector<long> variant_lines;

@@ -5,33 +5,20 @@
 #include <string>
 #include <vector>
 
+#include "rigid/io/calibration_ensemble.hpp"
 #include "rigid/io/job_file.hpp"
 #include "rigid/shaketable/lab.hpp"
 
 namespace rigid::shaketable {
 
-/// Each member is one physics variant (a scene) seen over a window of headings, with a weight and
-/// the lapse rate the fit found. Without a calibration file: the scene alone at heading 0, weight
-/// 1, no lapse.
-struct Ensemble {
-  struct Member {
-    int variant = 0;             ///< index into scenes
-    std::vector<int> rotations;  ///< indices into rotations_deg
-    double weight = 1, lapse = 0;
-  };
-  std::string json;                   ///< the calibration file read ("" when none)
-  std::string json_sha256;            ///< its SHA-256 ("" when none): what a transfer or a cube records
-  std::string physics;                ///< the calibrated physics in words (the file's "physics"; "" when none)
-  std::vector<std::string> scenes;    ///< absolute paths, one per variant (the scene itself without a file)
-  std::vector<double> rotations_deg;  ///< every member's headings, sorted, as turns of the motion
-  std::vector<Member> members;
+/// A calibration's ensemble (io::CalibrationEnsemble, read by io: one owner of the document's
+/// format) with what the shake-table predictions make of it. Without a calibration file: the scene
+/// alone at heading 0, weight 1, no lapse.
+struct Ensemble : io::CalibrationEnsemble {
   /// The weighted mean over members of calibration::member_probability (the share of the
   /// member's headings that overturned, `overturned(variant, rotation)`, with its lapse). The
   /// lapse is the lab's, not the rock's: `with_lapse` false leaves it out (a fragility).
   double probability(const std::function<bool(int, int)>& overturned, bool with_lapse = true) const;
-  /// Each scene's share of the members' weight (sums to 1), one per scene: what a field campaign
-  /// weights its physics variants by (headings there are random, so members of one scene merge).
-  std::vector<double> scene_weights() const;
 };
 
 /// The ensemble of a calibration file (read_calibration_document: whole, unedited, this format

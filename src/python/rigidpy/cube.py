@@ -2,6 +2,7 @@
 axes, the records and every object's cells, checksums verified, the derived datasets recomputed
 from the cells and stored ones that disagree refused. Everything in this package that reads a
 cube reads it through Cube."""
+import json
 import math
 import os
 import sys
@@ -69,6 +70,24 @@ class VariantTable:
                 raise KeyError(f"variants/{name} of {len(values)} values for {self.count} variants")
             self.parameters.append((name, _text(ds.attrs.get("units", "")), values))
             self.descriptions[name] = _text(ds.attrs.get("description", ""))
+
+
+class Calibration:
+    """Where a calibrated object's physics comes from (job file `calibration = ...`; attributes
+    of its group, docs/cube.md): the calibration file, its SHA-256, each variant's weight (the
+    members' share, summing to 1) and the summary (the document's rigid_version, created, scene,
+    chosen `parameters` and the scores present, as a dict)."""
+
+    def __init__(self, attrs, count):
+        self.path = _text(attrs["calibration"])
+        self.sha256 = _text(attrs.get("calibration_sha256", ""))
+        self.weights = np.asarray(attrs.get("calibration_weights", np.full(count, 1.0 / count)), float).ravel()
+        try:
+            self.summary = json.loads(_text(attrs.get("calibration_summary", "{}")))
+        except ValueError:
+            self.summary = {}
+        if len(self.weights) != count or not np.all(self.weights > 0):
+            raise KeyError(f"calibration_weights of {len(self.weights)} positive values for {count} variants")
 
 
 def _text(v):
@@ -142,6 +161,7 @@ class Cube:
                 self.root_attrs = {k: f.attrs[k] for k in f.attrs}
                 self.variants = VariantTable(f["variants"]) if "variants" in f else None
                 groups = f["objects"]
+                self.calibrations = {}  # object name -> Calibration, for a calibrated object
                 items = []
                 for name in groups:
                     g = groups[name]
@@ -153,6 +173,8 @@ class Cube:
                     if int(attrs.get("variants", -1)) != self.variants.count:
                         raise InputError(f"{path}: object {name}: attribute variants = {attrs.get('variants')}, "
                                          f"but the cube has {self.variants.count} variants")
+                    if "calibration" in attrs:
+                        self.calibrations[name] = Calibration(attrs, self.variants.count)
                     for v in range(self.variants.count):
                         items.append(((index, v), self._object_data(name, g, variant_attrs(g, attrs, v), v)))
             except KeyError as e:
@@ -257,6 +279,14 @@ class Cube:
         for n in names or []:
             self.object(n)  # an unknown name: InputError naming the cube
         return [o for o in chosen if variant is None or o.variant == variant]
+
+    def variant_weights(self, name):
+        """The weight of each variant of object `name` in its pooled fragility: its calibration's
+        (members' share of the weight) for a calibrated object, else equal weights."""
+        if name in self.calibrations:
+            return self.calibrations[name].weights
+        n = self.variants.count if self.variants is not None else 1
+        return np.full(n, 1.0 / n)
 
     def bin_of_records(self):
         return bins_of_records(self.edges, self.pgv_pga)

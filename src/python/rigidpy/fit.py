@@ -410,27 +410,38 @@ def lognormal_probability(pga_g, theta_g, beta):
     return ndtr(np.log(a / theta_g) / beta)
 
 
-def mixture_probability(pga_g, lognormals):
-    """The equally weighted mixture mean_v P_v(a) of lognormals [(theta_g, beta)]: the fragility of
-    a rock whose parameters are one of the variants, each as likely (variants are samples of the
-    epistemic distribution), i.e. the pooled fragility."""
-    return np.mean([lognormal_probability(pga_g, t, b) for t, b in lognormals], axis=0)
+def mixture_probability(pga_g, lognormals, weights=None):
+    """The mixture sum_v w_v P_v(a) of lognormals [(theta_g, beta)]: the fragility of a rock whose
+    parameters are one of the variants, each as likely (variants are samples of the epistemic
+    distribution: equal weights, the default), or as likely as a calibration says (its members'
+    weights), i.e. the pooled fragility."""
+    return np.average([lognormal_probability(pga_g, t, b) for t, b in lognormals], axis=0, weights=weights)
 
 
-def mixture_median(lognormals):
+def weighted_percentile(values, weights, q):
+    """Percentiles q (0-100) of values drawn with probabilities `weights`: the inverse of the
+    piecewise-linear CDF through the midpoints of each value's weight (equal weights give
+    the Hazen plotting positions)."""
+    order = np.argsort(values)
+    v, w = np.asarray(values, float)[order], np.asarray(weights, float)[order]
+    cdf = (np.cumsum(w) - 0.5 * w) / w.sum()
+    return np.interp(np.asarray(q, float) / 100.0, cdf, v)
+
+
+def mixture_median(lognormals, weights=None):
     """The PGA where the mixture is 1/2 (bisection on ln PGA: the mixture is monotone)."""
     lo = math.log(min(t for t, _ in lognormals)) - 9 * max(b for _, b in lognormals) - 1e-9
     hi = math.log(max(t for t, _ in lognormals)) + 9 * max(b for _, b in lognormals) + 1e-9
     for _ in range(200):
         mid = 0.5 * (lo + hi)
-        if mixture_probability(math.exp(mid), lognormals) < 0.5:
+        if mixture_probability(math.exp(mid), lognormals, weights) < 0.5:
             lo = mid
         else:
             hi = mid
     return math.exp(0.5 * (lo + hi))
 
 
-def moment_matched_lognormal(lognormals):
+def moment_matched_lognormal(lognormals, weights=None):
     """The lognormal with the mixture's mean and variance of ln C (C the toppling PGA): mean_v ln
     theta_v and, by the law of total variance, mean_v beta_v^2 + var_v ln theta_v (population
     variance: the variants are the whole equally weighted mixture). It is the composite fragility
@@ -439,26 +450,40 @@ def moment_matched_lognormal(lognormals):
     no grid or clipping to choose, and takes steps (beta 0) as they are."""
     ln_theta = np.log([t for t, _ in lognormals])
     beta2 = np.array([b for _, b in lognormals]) ** 2
+    if weights is not None:  # a calibration's members: the same moments under their weights
+        w = np.asarray(weights, float) / np.sum(weights)
+        mean = float(w @ ln_theta)
+        return float(math.exp(mean)), float(math.sqrt(w @ beta2 + w @ (ln_theta - mean) ** 2))
     return float(np.exp(ln_theta.mean())), float(math.sqrt(beta2.mean() + ln_theta.var()))
 
 
 EPISTEMIC_PERCENTILES = (5, 50, 95)
 
 
-def pooled_fragility(lognormals, pga_g):
+def pooled_fragility(lognormals, pga_g, weights=None):
     """The pooled (mixture) fragility of variants [(theta_g, beta)] and the epistemic spread: its
     median, the moment-matched lognormal, the 5/50/95th percentiles over variants of theta and
-    beta, and on the grid `pga_g` the mixture and the 5-95 % band of P_v(a) over variants."""
+    beta, and on the grid `pga_g` the mixture and the 5-95 % band of P_v(a) over variants. With
+    `weights` (a calibration's members) each variant counts by its weight in all of them."""
     thetas = np.array([t for t, _ in lognormals])
     betas = np.array([b for _, b in lognormals])
-    theta_m, beta_m = moment_matched_lognormal(lognormals)
+    theta_m, beta_m = moment_matched_lognormal(lognormals, weights)
     curves = np.array([lognormal_probability(pga_g, t, b) for t, b in lognormals])  # [V, N]
-    lo, mid, hi = np.percentile(curves, EPISTEMIC_PERCENTILES, axis=0)
-    return {"n_variants": int(len(lognormals)), "median_g": mixture_median(lognormals),
+    if weights is None:
+        def percentiles(x, axis=None):
+            return np.percentile(x, EPISTEMIC_PERCENTILES, axis=axis)
+    else:
+        def percentiles(x, axis=None):
+            if axis is None:
+                return weighted_percentile(x, weights, EPISTEMIC_PERCENTILES)
+            return np.array([weighted_percentile(col, weights, EPISTEMIC_PERCENTILES) for col in x.T]).T
+    lo, mid, hi = percentiles(curves, axis=0)
+    return {"n_variants": int(len(lognormals)), "median_g": mixture_median(lognormals, weights),
             "lognormal_theta_g": theta_m, "lognormal_beta": beta_m,
             "lognormal_method": "moment-matched: ln C mean and variance of the mixture (law of total variance)",
-            "theta_percentiles_g": [float(v) for v in np.percentile(thetas, EPISTEMIC_PERCENTILES)],
-            "beta_percentiles": [float(v) for v in np.percentile(betas, EPISTEMIC_PERCENTILES)],
+            "theta_percentiles_g": [float(v) for v in percentiles(thetas)],
+            "beta_percentiles": [float(v) for v in percentiles(betas)],
             "percentiles": list(EPISTEMIC_PERCENTILES),
-            "pga_g": np.asarray(pga_g, float), "mixture_probability": curves.mean(axis=0),
+            "pga_g": np.asarray(pga_g, float),
+            "mixture_probability": np.average(curves, axis=0, weights=weights),
             "band_lower": lo, "band_median": mid, "band_upper": hi}

@@ -66,8 +66,13 @@ def print_variant_tables(cube, fits, analyses, args):
             print(f"object {a.name}: no variant has a fragility: nothing pooled")
             continue
         p = a.pooled
-        print(f"object {a.name}, pooled over {p['n_variants']} of {len(a.fits)} variants (equally weighted mixture "
-              f"P(a) = mean_v P_v(a), at PGV/PGA {a.pgv_pga_s:.3f} s):")
+        if a.calibration is None:
+            print(f"object {a.name}, pooled over {p['n_variants']} of {len(a.fits)} variants (equally weighted mixture "
+                  f"P(a) = mean_v P_v(a), at PGV/PGA {a.pgv_pga_s:.3f} s):")
+        else:
+            print(f"object {a.name}: calibrated physics from {a.calibration.path} ({len(a.calibration.weights)} member "
+                  f"scenes, weights {', '.join(f'{w:.3g}' for w in a.calibration.weights)}); pooled over "
+                  f"{p['n_variants']} of them (mixture P(a) = sum_v w_v P_v(a), at PGV/PGA {a.pgv_pga_s:.3f} s):")
         print(f"  median of the mixture {p['median_g']:.4f} g; moment-matched lognormal theta "
               f"{p['lognormal_theta_g']:.4f} g, beta {p['lognormal_beta']:.4f}")
         tp, bp = p["theta_percentiles_g"], p["beta_percentiles"]

@@ -153,8 +153,12 @@ def write_variant_groups(g, cube, fits, analyses):
         if a.pooled is not None:
             p = a.pooled
             pg = og.create_group("pooled")
-            pg.attrs["description"] = ("equally weighted mixture of the variants' lognormals, P(a) = mean_v P_v(a), "
-                                       "and the epistemic spread over variants")
+            pg.attrs["description"] = (("equally weighted mixture of the variants' lognormals, P(a) = mean_v P_v(a), "
+                                        if a.calibration is None else
+                                        "mixture of the variants' lognormals by their calibration weights, P(a) = "
+                                        "sum_v w_v P_v(a) (w_v renormalised over the variants pooled), ")
+                                       + "and the epistemic spread over variants")
+            pg.attrs["weights"] = a.weights_text()
             pg.attrs["n_variants"] = np.int32(p["n_variants"])
             pg.attrs["median_g"] = p["median_g"]
             pg.attrs["lognormal_theta_g"], pg.attrs["lognormal_beta"] = p["lognormal_theta_g"], p["lognormal_beta"]

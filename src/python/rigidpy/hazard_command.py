@@ -40,9 +40,12 @@ class RockFragility:
     """A rock's fragility as a hazard integral needs it: `mixture`, the fitted fragility as a
     weighted mixture of lognormals [(weight, theta_g, beta)] (one per PGV/PGA point, or per variant),
     and its uncertainty as an ensemble of `members` [(weight, mixture)], weights summing to 1.
-    Today the members are the bootstrap replicates over records (`replicates`), equally weighted,
-    or the fitted mixture alone when there are none; a calibration ensemble's members with their
-    own weights fit the same slot (pass `members`)."""
+    The members are the bootstrap replicates over records (`replicates`), equally weighted, or the
+    fitted mixture alone when there are none. For a calibrated object (variants = a calibration's
+    member scenes) the mixture and every replicate already mix the members by the calibration's
+    weights (pooled_fragility), so the members stay the replicates: the calibration's physics is
+    integrated over, the records resampled. Another ensemble with its own weights fits the same
+    slot (pass `members`)."""
 
     def __init__(self, label, mixture, replicates, source, members=None):
         self.label = label
@@ -138,8 +141,15 @@ def pooled_fragility(args, cube, objs):
         per_variant.append((f, source, mix))
     if not per_variant:
         raise InputError(f"{args.cube}: object {objs[0].name}: no variant has a fragility ({fits[0].vector.get('reason')})")
-    n = len(per_variant)
-    mixture = [(w / n, t, b) for _, _, mix in per_variant for w, t, b in mix]
+    # each variant by its weight: equal, or a calibrated object's members' (renormalised over the
+    # variants that have a fragility, and in each replicate over those that fit in it)
+    weight = cube.variant_weights(objs[0].name)
+
+    def weight_of(f):
+        return float(weight[f.obj.variant]) if f.obj.variant is not None else 1.0
+
+    total = sum(weight_of(f) for f, _, _ in per_variant)
+    mixture = [(weight_of(f) / total * w, t, b) for f, _, mix in per_variant for w, t, b in mix]
     # replicate i of the pooled fragility; a variant without vector bootstrap (a threshold or the
     # scalar fit) is held fixed, and one whose fit does not exist in resample i (few records: the
     # resample's outcomes are separated) sits that replicate out, the others reweighted; with many
@@ -153,14 +163,18 @@ def pooled_fragility(args, cube, objs):
             if src == "vector fit":
                 t, b = f.vector["replicate_theta_g"][i], f.vector["replicate_beta"][i]
                 if np.all(np.isfinite(t)):
-                    members.append([(w, t[j], b[j]) for j, (w, _) in enumerate(points)])
+                    members.append((weight_of(f), [(w, t[j], b[j]) for j, (w, _) in enumerate(points)]))
             else:
-                members.append(mix)
+                members.append((weight_of(f), mix))
         if members:
-            replicates.append([(w / len(members), th, be) for m in members for w, th, be in m])
+            in_replicate = sum(wm for wm, _ in members)
+            replicates.append([(wm / in_replicate * w, th, be) for wm, m in members for w, th, be in m])
+    calibration = cube.calibrations.get(objs[0].name)
+    pooled_how = ("variants pooled" if calibration is None else
+                  f"the {len(calibration.weights)} member scenes of the calibration {calibration.path} mixed by weight")
     rock = RockFragility(f"{objs[0].name} (pooled)", mixture, replicates,
-                         "bootstrap over records, variants pooled" if replicates else
-                         "the pooled fragility alone (no bootstrap replicate)")
+                         f"bootstrap over records, {pooled_how}" if replicates else
+                         f"the pooled fragility alone (no bootstrap replicate; {pooled_how})")
     return rock, fits, per_variant, points, used
 
 
@@ -260,6 +274,15 @@ def hazard_pooled(args, cube, curve, objs):
     rates = [hc.mixture_rate(curve, mix)[0] for _, _, mix in per_variant]
     survivals = [hc.survival(r, args.age) for r in rates]
     lo_pct, hi_pct = ff.EPISTEMIC_PERCENTILES[0], ff.EPISTEMIC_PERCENTILES[-1]
+    calibration = cube.calibrations.get(objs[0].name)
+    if calibration is None:
+        def epistemic_range(values):
+            return [float(v) for v in np.percentile(values, [lo_pct, hi_pct])]
+    else:  # a calibration's members count by their weights here as in the mixture
+        member_weights = [float(calibration.weights[f.obj.variant]) for f, _, _ in per_variant]
+
+        def epistemic_range(values):
+            return [float(v) for v in ff.weighted_percentile(values, member_weights, [lo_pct, hi_pct])]
     reps = [hc.mixture_rate(curve, m)[0] for m in rock.replicates]
     n_records = len(used)
     record_s = cube.pgv_pga[sorted(used)]
@@ -282,16 +305,19 @@ def hazard_pooled(args, cube, curve, objs):
                                     for (f, src, mix), r, sv in zip(per_variant, rates, survivals)],
               "n_records": n_records,
               "annual_toppling_rate": lam, "annual_toppling_rate_interval": [lam_lo, lam_hi],
-              "annual_toppling_rate_epistemic_range": [float(v) for v in np.percentile(rates, [lo_pct, hi_pct])],
+              "annual_toppling_rate_epistemic_range": epistemic_range(rates),
               "share_of_rate_beyond_curve": extended,
               "survival_probability": surv,
               "survival_probability_interval": [hc.survival(lam_hi, args.age), hc.survival(lam_lo, args.age)],
-              "survival_probability_epistemic_range": [float(v) for v in np.percentile(survivals, [lo_pct, hi_pct])],
+              "survival_probability_epistemic_range": epistemic_range(survivals),
               "epistemic_percentiles": [lo_pct, hi_pct],
               "confidence": args.confidence,
               "ruled_out": surv < 1 - args.confidence,
               "rate_factor_to_rule_out": rate_factor, "pga_factor_to_rule_out": pga_factor,
-              "interval_level": args.level, "bootstrap_replicates": args.bootstrap}
+              "interval_level": args.level, "bootstrap_replicates": args.bootstrap,
+              "calibration": None if calibration is None else {
+                  "path": calibration.path, "sha256": calibration.sha256, "members": len(calibration.weights),
+                  "weights": [float(w) for w in calibration.weights]}}
     no_replicates = {"replicate_theta_g": np.empty((0, len(points))), "replicate_beta": np.empty((0, len(points)))}
     emit_hazard(args, result, lambda: plot_hazard(args.plot, curve, mixture, no_replicates, points,
                                                   dict(result, object=f"{objs[0].name} (pooled)"),
@@ -308,7 +334,11 @@ def print_hazard(r):
     if r.get("pooled"):
         thresholds = sum(v["source"] == THRESHOLD_SOURCE for v in r["variant_fragility"])
         scalars = sum(v["source"] == SCALAR_SOURCE for v in r["variant_fragility"])
-        print(f"  fragility: pooled over {r['variants_pooled']} of {r['variants']} variants (equally weighted mixture of "
+        cal = r.get("calibration")
+        how = ("equally weighted mixture of" if cal is None else
+               f"the member scenes of the calibration {cal['path']} ({cal['members']} members), weights "
+               f"{', '.join(f'{w:.3g}' for w in cal['weights'])}, mixing")
+        print(f"  fragility: pooled over {r['variants_pooled']} of {r['variants']} variants ({how} "
               f"their vector fits" + (f"; {scalars} scalar fit(s) over all records" if scalars else "") +
               (f"; {thresholds} empirical threshold(s), steps" if thresholds else "") + ")")
     elif len(r["fragility"]) == 1:

@@ -170,6 +170,14 @@ class VariantAnalysis:
         self.pgv_pga_s = fits[0].pgv_pga_s
         self.lognormals = [variant_lognormal(f) for f in fits]
         usable = [(d["theta_g"], d["beta"]) for d in self.lognormals if math.isfinite(d["theta_g"])]
+        # a calibrated object's variants are its calibration's members, pooled by their weights
+        # (those with a fragility, renormalised); other variants count equally
+        self.calibration = cube.calibrations.get(self.name)
+        all_weights = cube.variant_weights(self.name)
+        weights = None
+        if self.calibration is not None:
+            weights = [float(all_weights[f.obj.variant]) for f, d in zip(fits, self.lognormals)
+                       if math.isfinite(d["theta_g"])]
         self.n_threshold = sum(d["source"] == THRESHOLD_SOURCE for d in self.lognormals)
         self.without = [f.obj.variant for f, d in zip(fits, self.lognormals) if d["source"] == "none"]
         self.pooled = None
@@ -178,7 +186,7 @@ class VariantAnalysis:
             spread = max([b for _, b in usable] + [0.1])
             grid = np.geomspace(min([t for t, _ in usable] + [lo_g]) * math.exp(-3 * spread),
                                 max([t for t, _ in usable] + [hi_g]) * math.exp(3 * spread), 200)
-            self.pooled = ff.pooled_fragility(usable, grid)
+            self.pooled = ff.pooled_fragility(usable, grid, weights)
         index = int(fits[0].obj.attrs.get("index", 0))
         rng = np.random.default_rng([args.seed, index, 0, 1])
         theta = np.array([d["theta_g"] for d in self.lognormals])
@@ -202,6 +210,12 @@ class VariantAnalysis:
                 out.append((key, units, "derived", values))
         return out
 
+    def weights_text(self):
+        if self.calibration is None:
+            return "variants equally weighted"
+        return (f"each variant by its weight in the calibration {self.calibration.path} "
+                f"({len(self.calibration.weights)} member scenes)")
+
     def document(self):
         """JSON of the analysis (arrays as lists)."""
         return {"object": self.name, "variants": len(self.fits), "pgv_pga_s": self.pgv_pga_s,
@@ -209,7 +223,12 @@ class VariantAnalysis:
                                       for f, d in zip(self.fits, self.lognormals)],
                 "variants_with_empirical_threshold": self.n_threshold,
                 "variants_without_fragility": self.without,
-                "pooled": None if self.pooled is None else dict(self.pooled, weights="variants equally weighted"),
+                "pooled": None if self.pooled is None else dict(self.pooled, weights=self.weights_text()),
+                "calibration": None if self.calibration is None else {
+                    "path": self.calibration.path, "sha256": self.calibration.sha256,
+                    "members": len(self.calibration.weights),
+                    "weights": [float(w) for w in self.calibration.weights],
+                    "summary": self.calibration.summary},
                 "sensitivity": self.sensitivity,
                 "sensitivity_method": SENSITIVITY_METHOD}
 

@@ -89,7 +89,9 @@ def variant_maps(cube, variants, args, counts):
         spread = max([b for _, b in lognormals] + [0.1])
         grid = np.geomspace(min(t for t, _ in lognormals) * math.exp(-3 * spread),
                             max(t for t, _ in lognormals) * math.exp(3 * spread), 400)
-        pooled = fragility_fit.pooled_fragility(lognormals, grid)
+        # a calibrated object's members by the calibration's weights, other variants equally
+        weights = ([float(cube.variant_weights(name)[k]) for k, _ in curves] if name in cube.calibrations else None)
+        pooled = fragility_fit.pooled_fragility(lognormals, grid, weights)
         plot_variant_band(cube, name, curves, pooled, pgv_pga_s, base + "_variants." + args.format)
         entry["pooled"] = {k: pooled[k] for k in ("n_variants", "median_g", "lognormal_theta_g", "lognormal_beta",
                                                   "lognormal_method", "theta_percentiles_g", "beta_percentiles")}
@@ -104,10 +106,16 @@ def variant_maps(cube, variants, args, counts):
     stack = np.array([o.fragility for o in variants])
     defined = np.isfinite(stack).sum(axis=0)
     frag = np.where(defined > 0, np.nansum(stack, axis=0) / np.maximum(defined, 1), np.nan)
+    if name in cube.calibrations:  # the members' weighted mean, over the members with a value there
+        w = np.array([float(cube.variant_weights(name)[o.variant]) for o in variants])
+        w = np.where(np.isfinite(stack), w.reshape((-1,) + (1,) * (stack.ndim - 1)), 0.0)
+        total = w.sum(axis=0)
+        frag = np.where(total > 0, np.nansum(stack * w, axis=0) / np.where(total > 0, total, 1), np.nan)
     pooled_obj = ObjectData(f"{name} (pooled over {len(variants)} variants)", {}, None, None, frag,
                             np.min([o.count for o in variants], axis=0))
     plot_map(cube, pooled_obj, None, Normalisation(None, "", None, ""),
-             {"reason": f"each cell the mean over variants of its records' mean; the variants' fits are in "
+             {"reason": f"each cell the {'calibration-weighted ' if name in cube.calibrations else ''}mean over "
+                       f"variants of its records' mean; the variants' fits are in "
                        f"{os.path.basename(base)}_variants.{args.format}"},
              base + "_pooled_map." + args.format, counts)
     entry["files"].append(base + "_pooled_map." + args.format)

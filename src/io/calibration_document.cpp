@@ -1,4 +1,4 @@
-#include "rigid/shaketable/calibration_document.hpp"
+#include "rigid/io/calibration_document.hpp"
 
 #include <cstdlib>
 #include <ctime>
@@ -17,7 +17,7 @@
 #define RIGID_GIT_HASH "unknown"
 #endif
 
-namespace rigid::shaketable {
+namespace rigid::io {
 namespace {
 
 // SOURCE_DATE_EPOCH (reproducible-builds.org) fixes the date when set; else now.
@@ -35,17 +35,17 @@ std::string created_utc() {
   return text;
 }
 
-std::string checksum_of(io::Json document) {
+std::string checksum_of(Json document) {
   document.erase("sha256");
-  return io::sha256_hex(io::json_line(document));
+  return sha256_hex(json_line(document));
 }
 
 }  // namespace
 
 std::string rigid_version() { return RIGID_VERSION " (" RIGID_GIT_HASH ")"; }
 
-void write_calibration_document(const std::string& path, const io::Json& body, const std::string& command_line) {
-  io::Json doc;
+void write_calibration_document(const std::string& path, const Json& body, const std::string& command_line) {
+  Json doc;
   doc["format"] = kCalibrationFormat;
   doc["format_version"] = kCalibrationFormatVersion;
   doc["rigid_version"] = rigid_version();
@@ -53,18 +53,18 @@ void write_calibration_document(const std::string& path, const io::Json& body, c
   doc["command_line"] = command_line;
   for (const auto& [key, value] : body.items()) doc[key] = value;
   doc["sha256"] = checksum_of(doc);
-  io::write_output_file(path, [&](std::ostream& out) { out << doc.dump(2) << "\n"; });
+  write_output_file(path, [&](std::ostream& out) { out << doc.dump(2) << "\n"; });
 }
 
-io::Json read_calibration_document(const std::string& path) {
+Json read_calibration_document(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
     throw InputError(path, 0, std::filesystem::exists(path, ec) ? "is not a regular file" : "no such calibration file");
-  io::Json doc;
+  Json doc;
   try {
     std::ifstream in(path);
-    doc = io::Json::parse(in);
-  } catch (const io::Json::parse_error& e) {
+    doc = Json::parse(in);
+  } catch (const Json::parse_error& e) {
     throw InputError(path, 0, std::string("is not a whole calibration file (truncated or not JSON): ") + e.what());
   }
   if (!doc.is_object() || !doc.contains("format") || doc["format"] != kCalibrationFormat)
@@ -99,4 +99,4 @@ std::string command_line_text(int argc, const char* const* argv) {
   return line;
 }
 
-}  // namespace rigid::shaketable
+}  // namespace rigid::io
