@@ -73,22 +73,23 @@ std::string format_duration(double s) {
 // One report: cells settled out of all cells (a denominator fixed for the whole run; a cell the
 // stop rule infers counts as settled), the simulation rate since this run started and the time
 // left at that rate for the cells still to simulate.
-void print_progress(const campaign::ProgressReport& p, bool bar) {
+void print_progress(const campaign::ProgressReport& p, bool bar, const std::string& label) {
+  const std::string lead = label.empty() ? "" : label + ": ";
   const double rate = p.elapsed_s > 0 ? double(p.done - p.done_at_start) / p.elapsed_s : 0.0;
   const double eta = p.remaining == 0 ? 0.0 : rate > 0 ? double(p.remaining) / rate : NAN;
   const double share = p.total > 0 ? double(p.settled) / double(p.total) : 1.0;
   if (bar) {
     const int width = 30;
     const int filled = std::clamp(int(width * share), 0, width);
-    std::fprintf(stderr, "\r[%s%s] %ld/%ld cells (%.0f %%)  %.2f sim/s  ETA %s  failures %ld   ",
+    std::fprintf(stderr, "\r%s[%s%s] %ld/%ld cells (%.0f %%)  %.2f sim/s  ETA %s  failures %ld   ", lead.c_str(),
                  std::string(std::size_t(filled), '#').c_str(), std::string(std::size_t(width - filled), '.').c_str(),
                  p.settled, p.total, 100 * share, rate, format_duration(eta).c_str(), p.failures);
     if (p.final) std::fprintf(stderr, "\n");
   } else {
     campaign::log_status(
-        "{}/{} cells settled ({:.0f} %; inferred cells count as settled), {} left to simulate, "
+        "{}{}/{} cells settled ({:.0f} %; inferred cells count as settled), {} left to simulate, "
         "{:.2f} sim/s, ETA {}, failures {}",
-        p.settled, p.total, 100 * share, p.remaining, rate, format_duration(eta), p.failures);
+        lead, p.settled, p.total, 100 * share, p.remaining, rate, format_duration(eta), p.failures);
   }
   std::fflush(stderr);
 }
@@ -134,11 +135,12 @@ void print_object_costs(const job::Job& job, const job::CostEstimate& e) {
 
 }  // namespace
 
-void attach_progress(campaign::CampaignOptions& options, const std::string& mode, double log_interval) {
+void attach_progress(campaign::CampaignOptions& options, const std::string& mode, double log_interval,
+                     const std::string& label) {
   if (mode == "none") return;
   const bool bar = mode == "bar" || (mode == "auto" && person_watches_stderr());
   options.progress_interval = bar ? 0.25 : log_interval;
-  options.on_progress = [bar](const campaign::ProgressReport& p) { print_progress(p, bar); };
+  options.on_progress = [bar, label](const campaign::ProgressReport& p) { print_progress(p, bar, label); };
 }
 
 void print_summary(const io::Cube& cube, const std::string& output) {

@@ -9,8 +9,10 @@
 namespace rigid::app {
 
 /// A progress printer for CampaignOptions::on_progress: mode auto (a bar on a terminal, log lines
-/// otherwise), bar, log or none. Sets options.on_progress and options.progress_interval.
-void attach_progress(campaign::CampaignOptions& options, const std::string& mode, double log_interval);
+/// otherwise), bar, log or none. Sets options.on_progress and options.progress_interval. A `label`
+/// (e.g. "shaketable: stage 3 (extend K_N down to 2.5e5)") leads each line.
+void attach_progress(campaign::CampaignOptions& options, const std::string& mode, double log_interval,
+                     const std::string& label = "");
 
 /// The overturning probability per object and scale (mean over records), at most 16 columns.
 void print_summary(const io::Cube& cube, const std::string& output);

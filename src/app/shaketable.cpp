@@ -37,7 +37,9 @@ rigid::shaketable::Callbacks command_callbacks(const std::string& progress) {
     std::printf("%s\n", line.c_str());
     std::fflush(stdout);
   };
-  c.on_campaign = [progress](campaign::CampaignOptions& options) { attach_progress(options, progress, 10); };
+  c.on_campaign = [progress](campaign::CampaignOptions& options, const std::string& what) {
+    attach_progress(options, progress, 10, what);
+  };
   c.import_scan = [](const scan::ImportOptions& o) { import_and_report(o); };
   return c;
 }

@@ -35,6 +35,8 @@ void print_summary(const rigid::shaketable::CalibrationSummary& s) {
     std::printf("cross-validated: not available (fewer than %d recorded motions)\n",
                 calibration::kMinCrossValidationGroups);
   }
+  for (const auto& p : s.parameters)
+    std::printf("  %s %.3g: %s\n", p.name.c_str(), p.value, rigid::shaketable::status_text(p.status));
   std::printf("wrote %s, %s (%.0f s)\n", s.scene.c_str(), s.json.c_str(), s.wall_s);
 }
 
@@ -111,6 +113,10 @@ void add_shaketable_calibrate(CLI::App& parent) {
       ->capture_default_str();
   cmd->add_option("--friction", o.friction, "Friction coefficients (the first in stage 1, all in stage 2)")
       ->delimiter(',')
+      ->capture_default_str();
+  cmd->add_option("--extend-stages", o.extend_stages,
+                  "Edge extension: at most this many stages after stage 2 that try the values beyond the best where "
+                  "it sits at an edge of the design (0: none)")
       ->capture_default_str();
   cmd->add_option("--headings", o.headings, "Stage 1: headings on a full ring")->capture_default_str();
   cmd->add_option("--keep", o.keep, "Stage 2: the best stage-1 variants refined")->capture_default_str();

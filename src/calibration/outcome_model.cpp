@@ -117,6 +117,23 @@ OutcomeGrid select_variants(const OutcomeGrid& grid, const std::vector<int>& var
   return out;
 }
 
+OutcomeGrid join_variants(const OutcomeGrid& a, const OutcomeGrid& b) {
+  std::vector<double> headings;
+  for (int h = 0; h < a.headings(); ++h) headings.push_back(a.heading_deg(h));
+  bool same_headings = a.headings() == b.headings();
+  for (int h = 0; same_headings && h < a.headings(); ++h) same_headings = a.heading_deg(h) == b.heading_deg(h);
+  if (a.tests() != b.tests() || !same_headings)
+    throw std::invalid_argument("outcome grids of other tests or headings cannot be joined");
+  OutcomeGrid out(a.variants() + b.variants(), a.tests(), headings);
+  for (int t = 0; t < a.tests(); ++t) {
+    for (int h = 0; h < a.headings(); ++h) {
+      for (int v = 0; v < a.variants(); ++v) out.set(v, t, h, a.overturned(v, t, h));
+      for (int v = 0; v < b.variants(); ++v) out.set(a.variants() + v, t, h, b.overturned(v, t, h));
+    }
+  }
+  return out;
+}
+
 std::vector<Member> leading_members(std::vector<Member> members, double weight, int max_variants) {
   std::sort(members.begin(), members.end(), [](const Member& a, const Member& b) {
     if (a.weight != b.weight) return a.weight > b.weight;

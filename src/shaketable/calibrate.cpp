@@ -9,12 +9,14 @@
 #include <sstream>
 
 #include "calibration_file.hpp"
+#include "rigid/analysis/rocking_parameters.hpp"
 #include "rigid/core/error.hpp"
 #include "rigid/core/types.hpp"
 #include "rigid/io/output_file.hpp"
 #include "rigid/io/provenance.hpp"
 #include "rigid/io/scene_file.hpp"
 #include "rigid/io/scene_writer.hpp"
+#include "rigid/scenario/accuracy.hpp"
 #include "rigid/scenario/scene.hpp"
 #include "rigid/shaketable/ensemble.hpp"
 #include "rigid/shaketable/settle.hpp"
@@ -76,6 +78,7 @@ void check_settings(const CalibrationSettings& o) {
   for (double mu : o.friction) {
     if (!(mu > 0 && mu <= 10)) throw InputError("", 0, "--friction: values must be in (0, 10]");
   }
+  if (o.extend_stages < 0 || o.extend_stages > 20) throw InputError("", 0, "--extend-stages must be 0 to 20");
   if (o.headings < 4 || o.headings > 72) throw InputError("", 0, "--headings must be 4 to 72");
   if (o.keep < 1 || o.keep > 10) throw InputError("", 0, "--keep must be 1 to 10");
   if (!(o.refine_step_deg > 0 && o.refine_step_deg < 360.0 / o.headings))
@@ -108,7 +111,7 @@ std::string calibration_manifest(const CalibrationSettings& s, const io::LabTest
   list("friction", s.friction);
   m << "headings: " << s.headings << "\nkeep: " << s.keep << "\nrefine step (deg): " << s.refine_step_deg
     << "\ntilt rule (deg): " << s.tilt_deg << "\nmax vertices: " << s.max_vertices
-    << "\npedestal margin (m): " << s.pedestal_margin << "\n";
+    << "\npedestal margin (m): " << s.pedestal_margin << "\nextend stages: " << s.extend_stages << "\n";
   // the tests by what the campaigns run (number, motion, recording's contents), their outcomes apart
   std::string listed, outcomes;
   for (const io::LabTest& t : tests.tests) {
@@ -177,8 +180,31 @@ Calibrator::Calibrator(CalibrationSettings settings, Callbacks callbacks)
   if (!callbacks_.import_scan) callbacks_.import_scan = [](const scan::ImportOptions& o) { scan::import_scan(o); };
 }
 
+std::string first_stage_purpose(const CalibrationSettings& s) {
+  return "stage 1 (every base model x contact law on a ring of " + std::to_string(s.headings) + " headings)";
+}
+
+std::string second_stage_purpose() { return "stage 2 (the best of stage 1 x impact law x friction, finer headings)"; }
+
+PhysicalLimits design_limits(const std::vector<std::string>& base_scenes) {
+  PhysicalLimits limits;
+  for (const std::string& path : base_scenes) {
+    const scenario::Scene scene = io::load_scene(path);
+    const auto rocking = analysis::rocking_parameters(scene);
+    if (!rocking)
+      throw InputError(path, 0, "has no single free block standing on its pedestal (no rocking parameters)");
+    // the campaigns run at the default accuracy preset: its safety sets their automatic step
+    const double safety = scenario::find_accuracy_preset(scenario::kDefaultAccuracy)->safety;
+    const Range k = stiffness_limits(scene.bodies, rocking->radius * std::sin(rocking->alpha), safety);
+    limits.normal_stiffness.low = std::max(limits.normal_stiffness.low, k.low);
+    limits.normal_stiffness.high = std::min(limits.normal_stiffness.high, k.high);
+  }
+  return limits;
+}
+
 campaign::CampaignOptions Calibrator::stage_options(int stage, const std::vector<Physics>& physics,
-                                                    const std::vector<double>& headings) const {
+                                                    const std::vector<double>& headings,
+                                                    const std::string& purpose) const {
   const CalibrationSettings& o = settings_;
   io::JobFile job = designed_job(physics.front().base_scene, lab_);
   job.variants = physics_variants(physics);
@@ -186,14 +212,14 @@ campaign::CampaignOptions Calibrator::stage_options(int stage, const std::vector
   job.rotation_angles_deg = headings;
   const std::string path = (fs::path(work_) / ("stage" + std::to_string(stage) + ".toml")).string();
   io::write_job_file(path, job,
-                     "stage " + std::to_string(stage) + " of rigid shaketable calibrate " + o.scan + " --tests " +
-                         o.tests + "\n(written by the command; run again to resume)");
+                     purpose + " of rigid shaketable calibrate " + o.scan + " --tests " + o.tests +
+                         "\n(written by the command; run again to resume)");
   campaign::CampaignOptions options;
   options.job = path;
   options.output = (fs::path(work_) / ("stage" + std::to_string(stage) + ".h5")).string();
-  if (callbacks_.on_campaign) callbacks_.on_campaign(options);
-  callbacks_.tell(format("shaketable: stage %d: %zu physics variants x %zu headings x %zu tests = %zu runs (%s)", stage,
-                         physics.size(), headings.size(), windows_.size(),
+  if (callbacks_.on_campaign) callbacks_.on_campaign(options, "shaketable: " + purpose);
+  callbacks_.tell(format("shaketable: %s: %zu physics variants x %zu headings x %zu tests = %zu runs (%s)",
+                         purpose.c_str(), physics.size(), headings.size(), windows_.size(),
                          physics.size() * headings.size() * windows_.size(), path.c_str()));
   return options;
 }
@@ -240,7 +266,8 @@ campaign::CampaignOptions Calibrator::prepare() {
     in.tilt_deg = o.tilt_deg;
     callbacks_.tell(format("shaketable: base model %s (--flatten-base %g m)", name.c_str(), in.flatten_base));
     callbacks_.import_scan(in);
-    bases[flatten_m] = fs::absolute(fs::path(work_) / name / (name + ".toml")).lexically_normal().string();
+    bases_[flatten_m] = bases[flatten_m] =
+        fs::absolute(fs::path(work_) / name / (name + ".toml")).lexically_normal().string();
   }
   // the window's level (window_level_g): the design's contact laws decide, not the bases' scenes
   const bool rigid_only = std::all_of(o.contact_models.begin(), o.contact_models.end(),
@@ -256,11 +283,20 @@ campaign::CampaignOptions Calibrator::prepare() {
              "%s of the weakest base's static toppling acceleration%s) keep %.0f s of motion",
              tests_.tests.size(), groups.size(), overturned, level_g, rigid_only ? "half" : "a tenth",
              rigid_only ? "" : ": penalty contact rocks the rock below it", kept));
-  stage1_ = first_stage_physics(bases, o);
-  for (Physics& p : stage1_) p.base_scene = settled_scene(o.scan, p.base_scene, p, work_);
-  headings1_ = heading_ring(o.headings);
-  stage_ = 1;
-  return stage_options(1, stage1_, headings1_);
+  std::vector<std::string> base_scenes;
+  for (const auto& [_, scene] : bases) base_scenes.push_back(scene);
+  limits_ = design_limits(base_scenes);
+  callbacks_.tell(
+      format("shaketable: edge extension (--extend-stages %d): K_N within [%.3g, %.3g] N/m^1.5, D [%g, %g] "
+             "s/m, e [%g, %g], mu [%g, %g], lapse [%g, %g] (docs/physics.md)",
+             o.extend_stages, limits_.normal_stiffness.low, limits_.normal_stiffness.high, limits_.damping.low,
+             limits_.damping.high, limits_.restitution.low, limits_.restitution.high, limits_.friction.low,
+             limits_.friction.high, limits_.lapse.low, limits_.lapse.high));
+  Stage first{first_stage_purpose(o), first_stage_physics(bases, o), heading_ring(o.headings), {}};
+  for (Physics& p : first.physics) p.base_scene = settled_scene(o.scan, p.base_scene, p, work_);
+  stages_.push_back(std::move(first));
+  const Stage& s = stages_.back();
+  return stage_options(1, s.physics, s.headings, s.purpose);
 }
 
 void Calibrator::claim_work_folder(const std::string& manifest) {
@@ -298,21 +334,48 @@ void Calibrator::claim_work_folder(const std::string& manifest) {
 }
 
 std::optional<campaign::CampaignOptions> Calibrator::next(const campaign::CampaignResult* previous) {
-  if (stage_ == 0) return prepare();
-  if (stage_ == 1) {
-    grid1_ = outcome_grid(*previous->cube, headings1_);
-    SecondStage second = second_stage_design(*grid1_, observed_, stage1_, settings_);
+  if (done_) return std::nullopt;
+  if (stages_.empty()) return prepare();
+  Stage& last = stages_.back();
+  last.grid = outcome_grid(*previous->cube, last.headings);
+  if (stages_.size() == 1) {
+    SecondStage second = second_stage_design(*last.grid, observed_, last.physics, settings_);
     for (const std::string& line : second.kept) callbacks_.tell("shaketable: " + line);
-    stage2_ = std::move(second.physics);
-    headings2_ = std::move(second.headings_deg);
-    stage_ = 2;
-    return stage_options(2, stage2_, headings2_);
+    stages_.push_back({second_stage_purpose(), std::move(second.physics), std::move(second.headings_deg), {}});
+    const Stage& s = stages_.back();
+    return stage_options(2, s.physics, s.headings, s.purpose);
   }
-  if (stage_ == 2) {
-    grid2_ = outcome_grid(*previous->cube, headings2_);
-    stage_ = 3;
+  return extend(*previous);
+}
+
+std::optional<campaign::CampaignOptions> Calibrator::extend(const campaign::CampaignResult&) {
+  const Stage& last = stages_.back();
+  fitted_ = fitted_ ? calibration::join_variants(*fitted_, *last.grid) : *last.grid;
+  fitted_physics_.insert(fitted_physics_.end(), last.physics.begin(), last.physics.end());
+  const LapseExtension lapse = extend_lapses(*fitted_, observed_, {}, limits_.lapse);
+  search_ = lapse.search;
+  const int extended = int(stages_.size()) - 2;
+  const ExtensionStage ext = extension_stage(*fitted_, observed_, fitted_physics_, stages_.front().physics, search_,
+                                             limits_, extended < settings_.extend_stages);
+  parameters_ = ext.parameters;
+  parameters_.push_back(lapse.report);
+  if (ext.physics.empty()) {
+    for (const ParameterReport& r : parameters_) {
+      std::string tried;
+      for (double v : r.tried) tried += format("%s%.3g", tried.empty() ? "" : ", ", v);
+      callbacks_.tell(
+          format("shaketable: %s = %.3g of [%s]: %s", r.name.c_str(), r.value, tried.c_str(), status_text(r.status)));
+    }
+    done_ = true;
+    return std::nullopt;
   }
-  return std::nullopt;
+  Stage next{stage_purpose(int(stages_.size()) + 1, ext.moves), ext.physics, last.headings, {}};
+  for (Physics& p : next.physics) {
+    if (p.base_scene.empty()) p.base_scene = settled_scene(settings_.scan, bases_.at(p.flatten_m), p, work_);
+  }
+  stages_.push_back(std::move(next));
+  const Stage& s = stages_.back();
+  return stage_options(int(stages_.size()), s.physics, s.headings, s.purpose);
 }
 
 CalibrationSummary Calibrator::finish() const {
@@ -323,8 +386,16 @@ CalibrationSummary Calibrator::finish() const {
   report.command_line = settings_.command_line;
   report.observed = observed_;
   report.group = group_;
+  for (const Stage& s : stages_) {
+    report.stages.emplace_back(&*s.grid, s.physics);
+    report.stage_purposes.push_back(s.purpose);
+  }
+  report.fitted = &*fitted_;
+  report.fitted_physics = fitted_physics_;
+  report.search = search_;
+  report.parameters = parameters_;
+  report.limits = limits_;
   for (const io::LabTest& t : tests_.tests) report.records.push_back(t.record);
-  report.stages = {{&*grid1_, stage1_}, {&*grid2_, stage2_}};
   report.lab_format_file = lab_.format_file;
   report.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   return write_calibration(report);

@@ -122,7 +122,7 @@ void write_likelihood_table(const std::string& path, const CalibrationReport& r)
     for (std::size_t stage = 0; stage < r.stages.size(); ++stage) {
       const OutcomeGrid& grid = *r.stages[stage].first;
       std::map<std::pair<int, int>, Candidate> best;  // (variant, heading): ranked best first
-      for (const Candidate& c : calibration::rank_candidates(grid, r.observed, all, {}))
+      for (const Candidate& c : calibration::rank_candidates(grid, r.observed, all, r.search))
         best.emplace(std::make_pair(c.variant, c.heading), c);
       for (const auto& [key, c] : best) {
         csv.field(int(stage + 1)).field(key.first).field(r.stages[stage].second[std::size_t(key.first)].label());
@@ -141,19 +141,19 @@ double turn_between(double a, double b) {
 // Each variant of a stage on its own: its best heading, spread and lapse, scored in and out of
 // sample (the heading refitted without the held-out record).
 io::Json variants_table(const OutcomeGrid& grid, const std::vector<Physics>& physics, const std::vector<int>& y,
-                        const std::vector<int>& group) {
+                        const calibration::SearchSettings& search, const std::vector<int>& group) {
   io::Json rows = io::Json::array();
   const std::vector<bool> all(y.size(), true);
   for (int v = 0; v < grid.variants(); ++v) {
     const OutcomeGrid one = calibration::select_variants(grid, {v});
-    const std::vector<Candidate> ranked = calibration::rank_candidates(one, y, all, {});
+    const std::vector<Candidate> ranked = calibration::rank_candidates(one, y, all, search);
     const Candidate& best = ranked.front();
     std::vector<double> p_in(y.size());
     for (std::size_t t = 0; t < y.size(); ++t) p_in[t] = calibration::overturn_probability(one, best, int(t));
     const Scores in = calibration::score(p_in, y);
     const bool cv_possible = calibration::cross_validation_possible(group);
     const Scores cv =
-        cv_possible ? calibration::score(calibration::cross_validated_probability(one, y, group, {}), y) : Scores{};
+        cv_possible ? calibration::score(calibration::cross_validated_probability(one, y, group, search), y) : Scores{};
     io::Json row = physics_json(physics[std::size_t(v)]);
     row["label"] = physics[std::size_t(v)].label();
     row["heading_deg"] = grid.heading_deg(best.heading);
@@ -171,14 +171,31 @@ io::Json variants_table(const OutcomeGrid& grid, const std::vector<Physics>& phy
   return rows;
 }
 
+// Each numeric parameter's place in the design (design_extension.hpp): the values tried along
+// the best's line, its physical limits and whether the best is interior.
+void add_design_status(io::Json& params, const CalibrationReport& r) {
+  const std::map<std::string, std::pair<std::string, Range>> keys{
+      {"K_N", {"normal_stiffness_n_m1_5", r.limits.normal_stiffness}},
+      {"D", {"damping_s_m", r.limits.damping}},
+      {"e", {"restitution", r.limits.restitution}},
+      {"mu", {"friction", r.limits.friction}},
+      {"lapse", {"lapse", r.limits.lapse}}};
+  for (const ParameterReport& p : r.parameters) {
+    const auto& [key, range] = keys.at(p.name);
+    params[key]["status"] = status_text(p.status);
+    params[key]["values_tried"] = p.tried;
+    params[key]["physical_limits"] = {range.low, range.high};
+  }
+}
+
 }  // namespace
 
 CalibrationSummary write_calibration(const CalibrationReport& r) {
-  const OutcomeGrid& grid = *r.stages.back().first;
-  const std::vector<Physics>& physics = r.stages.back().second;
+  const OutcomeGrid& grid = *r.fitted;
+  const std::vector<Physics>& physics = r.fitted_physics;
   const std::vector<int>& y = r.observed;
   const std::vector<bool> all(y.size(), true);
-  const std::vector<Candidate> ranked = calibration::rank_candidates(grid, y, all, {});
+  const std::vector<Candidate> ranked = calibration::rank_candidates(grid, y, all, r.search);
   const std::vector<Member> region = calibration::confidence_set(ranked);
   const std::vector<Member> members = calibration::leading_members(region);
   const Candidate& best = ranked.front();
@@ -189,7 +206,7 @@ CalibrationSummary write_calibration(const CalibrationReport& r) {
   std::optional<Scores> cv;
   std::vector<double> p_cv;
   if (calibration::cross_validation_possible(r.group)) {
-    p_cv = calibration::cross_validated_probability(grid, y, r.group, {});
+    p_cv = calibration::cross_validated_probability(grid, y, r.group, r.search);
     cv = calibration::score(p_cv, y);
   }
 
@@ -274,7 +291,9 @@ CalibrationSummary write_calibration(const CalibrationReport& r) {
   params["heading_deg"] = {{"value", heading}, {"interval", {heading + turn_lo, heading + turn_hi}}};
   params["heading_spread_deg"] = {{"value", best.spread_deg}, {"interval", {0.0, spread_hi}}};
   params["lapse"] = {{"value", best.lapse}, {"interval", {lapse_lo, lapse_hi}}};
-  params["base"] = {{"value", chosen.base}, {"in_region", bases}};
+  params["base"] = {{"value", chosen.base},
+                    {"in_region", bases},
+                    {"status", "not extended (each depth is another model of the scanned base: --flatten-base)"}};
   params["contact"] = {{"value", contact::contact_method_name(chosen.law.method)}, {"in_region", contacts}};
   if (chosen.penalty()) {
     params["normal_stiffness_n_m1_5"] = {{"value", chosen.law.normal_stiffness}, {"in_region", stiffness}};
@@ -283,6 +302,7 @@ CalibrationSummary write_calibration(const CalibrationReport& r) {
     params["restitution"] = {{"value", chosen.law.restitution}, {"in_region", restitution}};
   }
   params["friction"] = {{"value", chosen.law.friction}, {"in_region", friction}};
+  add_design_status(params, r);
   j["parameters"] = params;
   j["log_likelihood"] = best.log_likelihood;
   j["region_size"] = long(region.size());
@@ -297,12 +317,15 @@ CalibrationSummary write_calibration(const CalibrationReport& r) {
   }
   j["ensemble"] = ensemble;
   io::Json stages = io::Json::array();
-  for (const auto& [g, phys] : r.stages) {
+  for (std::size_t k = 0; k < r.stages.size(); ++k) {
+    const auto& [g, phys] = r.stages[k];
     io::Json s;
+    s["stage"] = long(k + 1);
+    s["purpose"] = r.stage_purposes[k];
     io::Json headings = io::Json::array();
     for (int h = 0; h < g->headings(); ++h) headings.push_back(g->heading_deg(h));
     s["headings_deg"] = headings;
-    s["parameter_sets"] = variants_table(*g, phys, y, r.group);
+    s["parameter_sets"] = variants_table(*g, phys, y, r.search, r.group);
     stages.push_back(s);
   }
   j["stages"] = stages;
@@ -325,6 +348,7 @@ CalibrationSummary write_calibration(const CalibrationReport& r) {
   summary.json = json_path;
   summary.likelihood_table = likelihood_path;
   summary.wall_s = r.wall_s;
+  summary.parameters = r.parameters;
   return summary;
 }
 

@@ -16,8 +16,16 @@ struct CalibrationReport {
   std::string command_line;  ///< what the document says made it
   std::vector<int> observed, group;
   std::vector<std::string> records;  ///< each test's recorded motion (group names it)
-  /// each stage's outcome grid and the physics of its variants; the last one is fitted
+  /// each stage's outcome grid and the physics of its variants, and what the stage did
   std::vector<std::pair<const calibration::OutcomeGrid*, std::vector<Physics>>> stages;
+  std::vector<std::string> stage_purposes;
+  /// what is fitted: stage 2 and the extension stages joined, and the candidates searched
+  const calibration::OutcomeGrid* fitted = nullptr;
+  std::vector<Physics> fitted_physics;
+  calibration::SearchSettings search;
+  /// the law's numeric parameters and the lapse: values tried along the best's line, status
+  std::vector<ParameterReport> parameters;
+  PhysicalLimits limits;
   double wall_s = 0;
 };
 

@@ -23,9 +23,11 @@ double Ensemble::probability(const std::function<bool(int, int)>& overturned, bo
     int over = 0;
     for (int r : m.rotations) over += overturned(m.variant, r) ? 1 : 0;
     const double share = double(over) / double(m.rotations.size());
-    p += m.weight / total * calibration::member_probability(share, with_lapse ? m.lapse : 0.0);
+    p += m.weight * calibration::member_probability(share, with_lapse ? m.lapse : 0.0);
   }
-  return p;
+  // normalised once at the end: members that all say 1 give exactly 1 (the same sum over the same
+  // weights), which per-member shares w / total need not
+  return p / total;
 }
 
 Ensemble load_calibration(const std::string& json) {

@@ -117,7 +117,7 @@ std::optional<campaign::CampaignOptions> FragilityDesign::next(const campaign::C
   io::write_job_file(options.job, job,
                      "rigid shaketable fragility " + o.scene + " --tests " + o.tests +
                          "\n(written by the command; run again to resume)");
-  if (callbacks_.on_campaign) callbacks_.on_campaign(options);
+  if (callbacks_.on_campaign) callbacks_.on_campaign(options, "shaketable fragility");
   char line[400];
   std::snprintf(line, sizeof line,
                 "shaketable fragility: %zu motions (the median test of each by PGA) x %zu PGAs (%.3g-%.3g g) x %zu "

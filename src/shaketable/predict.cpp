@@ -41,7 +41,7 @@ std::optional<campaign::CampaignOptions> Predictor::next(const campaign::Campaig
   io::write_job_file(options.job, job,
                      "rigid shaketable predict " + o.scene + " --tests " + o.tests +
                          "\n(written by the command; run again to resume)");
-  if (callbacks_.on_campaign) callbacks_.on_campaign(options);
+  if (callbacks_.on_campaign) callbacks_.on_campaign(options, "shaketable predict");
   char line[256];
   std::snprintf(line, sizeof line, "shaketable: %zu tests x %zu ensemble scenes x %zu headings = %zu runs%s",
                 tests_.tests.size(), e.scenes.size(), e.rotations_deg.size(),

@@ -37,6 +37,25 @@ TEST(OutcomeModel, LikelihoodIsTheHandSum) {
   EXPECT_NEAR(log_likelihood(grid, c, y, {false, false, true}), std::log(0.9), 1e-12);
 }
 
+TEST(OutcomeModel, JoinedGridsKeepEachCellAndRefuseOtherHeadings) {
+  OutcomeGrid a(1, 2, {0, 10}), b(2, 2, {0, 10});
+  a.set(0, 1, 0, true);
+  b.set(1, 0, 1, true);
+  const OutcomeGrid joined = join_variants(a, b);
+  ASSERT_EQ(joined.variants(), 3);
+  int overturned = 0;
+  for (int v = 0; v < 3; ++v) {
+    for (int t = 0; t < 2; ++t) {
+      for (int h = 0; h < 2; ++h) overturned += joined.overturned(v, t, h) ? 1 : 0;
+    }
+  }
+  EXPECT_EQ(overturned, 2);
+  EXPECT_TRUE(joined.overturned(0, 1, 0));  // a's variant 0
+  EXPECT_TRUE(joined.overturned(2, 0, 1));  // b's variant 1, after a's one
+  EXPECT_THROW(join_variants(a, OutcomeGrid(1, 2, {0, 20})), std::invalid_argument);
+  EXPECT_THROW(join_variants(a, OutcomeGrid(1, 3, {0, 10})), std::invalid_argument);
+}
+
 TEST(OutcomeModel, ScoresOfAKnownConfusionMatrix) {
   // tp 2, fn 1, fp 1, tn 4
   const std::vector<double> p{0.9, 0.6, 0.2, 0.7, 0.1, 0.0, 0.4, 0.3};

@@ -219,6 +219,14 @@ def test_calibrate_predict_and_fragility(rigid, tmp):
               cal["in_sample"]["accuracy"])
         assert cal["cross_validated"]["tests"] == len(rows), "cross-validation covers every test"
         assert len(cal["stages"]) == 2 and len(cal["stages"][0]["parameter_sets"]) == 1, "both stages reported"
+        # one value given for restitution and friction: not dimensions of the design, so no extension stage
+        for name in ("restitution", "friction"):
+            p = cal["parameters"][name]
+            assert p["status"] == "fixed (one value given)" and p["values_tried"] == [p["value"]], (
+                "%s given one value is fixed: %s" % (name, p))
+        assert cal["parameters"]["lapse"]["status"] in ("interior", "at a physical limit"), cal["parameters"]["lapse"]
+        assert [s["stage"] for s in cal["stages"]] == [1, 2] and cal["stages"][1]["purpose"].startswith("stage 2 ("), (
+            "each stage says what it did")
         check_probability_quality(cal, rows, tmp)
         rr = run(rigid, "run", out + ".toml", "--lab", os.path.join(tmp, "motions", "Test001.txt.gz"))
         assert rr.returncode == 0, "the calibrated scene runs (%s)" % rr.stderr.strip()[:200]

@@ -45,6 +45,10 @@ class OutcomeGrid {
 /// The grid of a subset of its variants (in the order given).
 OutcomeGrid select_variants(const OutcomeGrid& grid, const std::vector<int>& variants);
 
+/// The variants of `a` followed by those of `b`, on the same tests and headings (a design extended
+/// by a stage on the same heading list). Throws std::invalid_argument when they differ.
+OutcomeGrid join_variants(const OutcomeGrid& a, const OutcomeGrid& b);
+
 /// One candidate model of the real tests.
 struct Candidate {
   int variant = 0;            ///< physics variant (index in the design)
@@ -111,8 +115,9 @@ bool cross_validation_possible(const std::vector<int>& group);
 
 /// Log loss clips each probability to [kLogLossClip, 1 - kLogLossClip]: a prediction of exactly 0
 /// or 1 that is wrong would otherwise cost an infinite loss, and one such test would decide the
-/// whole score. The clip caps a test's loss at ln(1000) = 6.91. Calibrated ensembles never reach
-/// it: their lapse keeps every P in [lapse/2, 1 - lapse/2].
+/// whole score. The clip caps a test's loss at ln(1000) = 6.91. Calibrated ensembles reach it only
+/// with a lapse of 0 (their lapse keeps every P in [lapse/2, 1 - lapse/2]), which edge extension
+/// chooses only where the model explains every test it was fitted to.
 inline constexpr double kLogLossClip = 1e-3;
 
 /// Scores of probabilities against outcomes; predicted = p >= 0.5. Brier and log loss are proper

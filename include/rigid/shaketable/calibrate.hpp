@@ -2,10 +2,11 @@
 /// `rigid shaketable calibrate` as a workflow: fits a scanned rock's uncertain physics (its
 /// heading on the table, the model of its rough base, the contact law and its compliance,
 /// restitution, friction) to observed shake-table outcomes by maximum likelihood, over campaigns
-/// it designs in two stages: (1) every base model and contact law at a coarse ring of headings,
+/// it designs in stages: (1) every base model and contact law at a coarse ring of headings,
 /// (2) the best of those, crossed with the impact law and friction, at a finer ring around their
-/// best headings. The campaigns are ordinary campaigns (MPI, checkpoints, resume); the caller runs
-/// each one `next` returns (docs/validation-shaketable.md).
+/// best headings, (3...) edge extension: the values beside the best wherever it sits at an edge of
+/// the design (design_extension.hpp), on stage 2's headings. The campaigns are ordinary campaigns (MPI, checkpoints,
+/// resume); the caller runs each one `next` returns (docs/validation-shaketable.md).
 #include <chrono>
 #include <map>
 #include <memory>
@@ -16,6 +17,7 @@
 #include "rigid/calibration/outcome_model.hpp"
 #include "rigid/campaign/driver.hpp"
 #include "rigid/campaign/output_lock.hpp"
+#include "rigid/shaketable/design_extension.hpp"
 #include "rigid/shaketable/lab.hpp"
 #include "rigid/shaketable/physics.hpp"
 #include "rigid/shaketable/workflow.hpp"
@@ -48,6 +50,9 @@ struct CalibrationSettings {
   double tilt_deg = 30;          ///< overturned = tilted beyond this angle
   int max_vertices = 64;         ///< the rock's hull
   double pedestal_margin = 0.5;  ///< the table: overhang of the box under the rock (unit: m)
+  /// Edge extension: at most this many stages after stage 2 (each a campaign of a few variants on
+  /// stage 2's headings); 0 = none, the edges are then marked "at edge (budget)"
+  int extend_stages = 3;
   /// Start over: the work folder of an earlier calibration into the same OUT is removed first (it
   /// is otherwise resumed, and refused when its inputs or settings differ)
   bool restart = false;
@@ -88,6 +93,15 @@ struct SecondStage {
 SecondStage second_stage_design(const calibration::OutcomeGrid& grid, const std::vector<int>& observed,
                                 const std::vector<Physics>& stage1, const CalibrationSettings& s);
 
+/// What each stage of a calibration does, for its progress lines, job file and JSON:
+/// "stage 1 (every base model x contact law on a ring of 12 headings)".
+std::string first_stage_purpose(const CalibrationSettings& s);
+std::string second_stage_purpose();
+
+/// The stiffness limits of every base model's scene together (the strictest of each), with the
+/// other parameters' fixed limits: what edge extension stops at.
+PhysicalLimits design_limits(const std::vector<std::string>& base_scenes);
+
 /// What a finished calibration found, for the command to print.
 struct CalibrationSummary {
   std::string label;  ///< the chosen physics
@@ -98,6 +112,7 @@ struct CalibrationSummary {
   std::string scene, json;
   std::string likelihood_table;  ///< what the calibration figure draws beside the JSON
   double wall_s = 0;
+  std::vector<ParameterReport> parameters;  ///< the law's numeric parameters and the lapse, with their status
 };
 
 /// The calibration's stages: `next` returns each designed campaign in turn (nothing when done),
@@ -115,7 +130,15 @@ class Calibrator {
   /// starts it anew with --restart): all before the first write.
   void claim_work_folder(const std::string& manifest);
   campaign::CampaignOptions stage_options(int stage, const std::vector<Physics>& physics,
-                                          const std::vector<double>& headings) const;
+                                          const std::vector<double>& headings, const std::string& purpose) const;
+  /// After stage 2 and each extension stage: the next extension stage, or nothing when done.
+  std::optional<campaign::CampaignOptions> extend(const campaign::CampaignResult& previous);
+  struct Stage {
+    std::string purpose;
+    std::vector<Physics> physics;
+    std::vector<double> headings;
+    std::optional<calibration::OutcomeGrid> grid;
+  };
   CalibrationSettings settings_;
   Callbacks callbacks_;
   io::LabTestList tests_;
@@ -123,10 +146,15 @@ class Calibrator {
   std::vector<io::JobRecord> windows_;
   LabInput lab_;
   std::string work_;
-  std::vector<Physics> stage1_, stage2_;
-  std::vector<double> headings1_, headings2_;
-  std::optional<calibration::OutcomeGrid> grid1_, grid2_;
-  int stage_ = 0;
+  std::map<double, std::string> bases_;  ///< each base model's scene before settling, by depth
+  PhysicalLimits limits_;
+  std::vector<Stage> stages_;
+  /// what is fitted: stage 2 and the extension stages joined (one heading list)
+  std::optional<calibration::OutcomeGrid> fitted_;
+  std::vector<Physics> fitted_physics_;
+  calibration::SearchSettings search_;
+  std::vector<ParameterReport> parameters_;
+  bool done_ = false;
   std::unique_ptr<campaign::OutputLock> lock_;  ///< OUT.lock, held for the whole calibration
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };

@@ -358,13 +358,17 @@ def read_calibration_json(path):
 
 
 def final_stage_likelihood(rows):
-    """{label: (headings, log-likelihoods)} of the last stage's variants, headings ascending."""
+    """{label: (headings, log-likelihoods)} of the fitted design's variants, headings ascending:
+    the last stage's, and with edge extension (stages after 2, on stage 2's headings) stage 2's
+    and every later one's."""
     last = max(int(r["stage"]) for r in rows)
+    first = min(last, 2)
     lines = {}
     for r in rows:
-        if int(r["stage"]) == last:
+        if int(r["stage"]) >= first:
             lines.setdefault(r["label"], []).append((float(r["heading_deg"]), float(r["log_likelihood"])))
-    return last, {k: tuple(np.array(v) for v in zip(*sorted(pts))) for k, pts in lines.items()}
+    which = f"stage {last}" if first == last else f"stages {first}-{last}"
+    return which, {k: tuple(np.array(v) for v in zip(*sorted(pts))) for k, pts in lines.items()}
 
 
 def reliability_points(table):
@@ -400,7 +404,7 @@ def calibration_figure(doc, likelihood_rows):
     a_lik.axhline(best - 1.92, color="0.4", ls=":", lw=1, label="95 % region: best - 1.92")
     a_lik.set_xlabel("heading of the table's axis in the scan's frame (deg)")
     a_lik.set_ylabel("log-likelihood (best spread and lapse)")
-    a_lik.set_title(f"stage {stage}: likelihood by variant and heading", fontsize=9)
+    a_lik.set_title(f"{stage}: likelihood by variant and heading", fontsize=9)
     a_lik.legend(fontsize=6, loc="upper center", bbox_to_anchor=(0.5, -0.2))  # below: it cannot cover a line
     a_lik.grid(alpha=0.3)
     # (b) held-out scores of each recorded motion
