@@ -5,7 +5,9 @@
 #include <optional>
 
 #include "commands.hpp"
+#include "number_checks.hpp"
 #include "output_options.hpp"
+#include "rigid/core/error.hpp"
 #include "rigid/shaketable/calibration_document.hpp"
 #include "rigid/shaketable/transfer.hpp"
 #include "shaketable.hpp"
@@ -15,7 +17,7 @@ namespace {
 
 struct TransferFlags {
   rigid::shaketable::TransferSettings settings;
-  double heading_deg = 0;
+  std::string heading;
 };
 
 void print_summary(const rigid::shaketable::TransferSummary& s) {
@@ -46,17 +48,25 @@ void add_shaketable_transfer(CLI::App& parent) {
   cmd->add_option("--headings", o.headings,
                   "Headings on a full ring: the new rock's heading on the table, unknown, is each of them alike")
       ->capture_default_str();
-  CLI::Option* heading = cmd->add_option("--heading", f->heading_deg,
-                                         "The new rock's heading on the table when known (deg, in the scan's frame, "
-                                         "as calibrate reports it): the scene is turned to it");
+  cmd->add_option("--heading", f->heading,
+                  "The new rock's heading on the table when known (deg, in the scan's frame, as calibrate reports it: "
+                  "the scene is turned to it), or weakest: its weakest rocking direction, either way along the axis "
+                  "(a lab that tests a rock's most fragile direction)");
   cmd->add_option("--heading-spread", o.heading_spread_deg,
-                  "With --heading: the ring's headings within this angle of it count alike (deg)")
+                  "With --heading: the ring's headings within this angle of it (of its axis, for weakest) count alike "
+                  "(deg)")
       ->capture_default_str();
   cmd->add_flag("--restart", o.restart,
                 "Start over: remove the work folder OUT.transfer/ of an earlier transfer into the same OUT (a rerun "
                 "otherwise resumes it, and is refused when the calibration, the scan or the import flags changed)");
-  cmd->callback([f, heading] {
-    if (heading->count() > 0) f->settings.heading_deg = f->heading_deg;
+  cmd->callback([f] {
+    if (f->heading == "weakest") {
+      f->settings.heading_weakest = true;
+    } else if (!f->heading.empty()) {
+      const std::optional<double> deg = whole_number(f->heading);
+      if (!deg) throw InputError("", 0, "--heading: '" + f->heading + "' is neither an angle (deg) nor weakest");
+      f->settings.heading_deg = *deg;
+    }
     f->settings.command_line = rigid::shaketable::command_line_text(campaign_argc(), campaign_argv());
     // rank 0 works (no campaign: imports and settling take seconds); other ranks wait for it
     std::optional<rigid::shaketable::TransferSummary> summary;

@@ -188,6 +188,23 @@ void add_design_status(io::Json& params, const CalibrationReport& r) {
   }
 }
 
+// Every stage's campaign: its number, purpose, headings and each parameter set on its own.
+io::Json stages_json(const CalibrationReport& r) {
+  io::Json stages = io::Json::array();
+  for (std::size_t k = 0; k < r.stages.size(); ++k) {
+    const auto& [g, phys] = r.stages[k];
+    io::Json s;
+    s["stage"] = long(k + 1);
+    s["purpose"] = r.stage_purposes[k];
+    io::Json headings = io::Json::array();
+    for (int h = 0; h < g->headings(); ++h) headings.push_back(g->heading_deg(h));
+    s["headings_deg"] = headings;
+    s["parameter_sets"] = variants_table(*g, phys, r.observed, r.search, r.group);
+    stages.push_back(s);
+  }
+  return stages;
+}
+
 }  // namespace
 
 CalibrationSummary write_calibration(const CalibrationReport& r) {
@@ -316,19 +333,7 @@ CalibrationSummary write_calibration(const CalibrationReport& r) {
                                            " recorded motions: leaving one out leaves too little to fit"}};
   }
   j["ensemble"] = ensemble;
-  io::Json stages = io::Json::array();
-  for (std::size_t k = 0; k < r.stages.size(); ++k) {
-    const auto& [g, phys] = r.stages[k];
-    io::Json s;
-    s["stage"] = long(k + 1);
-    s["purpose"] = r.stage_purposes[k];
-    io::Json headings = io::Json::array();
-    for (int h = 0; h < g->headings(); ++h) headings.push_back(g->heading_deg(h));
-    s["headings_deg"] = headings;
-    s["parameter_sets"] = variants_table(*g, phys, y, r.search, r.group);
-    stages.push_back(s);
-  }
-  j["stages"] = stages;
+  j["stages"] = stages_json(r);
   j["wall_s"] = r.wall_s;
   const std::string json_path = r.out + ".calibration.json";
   write_calibration_document(json_path, j, r.command_line);

@@ -118,7 +118,7 @@ const char* status_text(EdgeStatus s) {
     case EdgeStatus::at_physical_limit:
       return "at a physical limit";
     case EdgeStatus::not_identified:
-      return "not identified (its values fit equally)";
+      return "not identified (another value within the 95 % region)";
     case EdgeStatus::fixed:
       break;
   }
@@ -185,11 +185,13 @@ ExtensionStage extension_stage(const OutcomeGrid& fitted, const std::vector<int>
       report.tried.push_back(x);
       below = below || (x < value && !same(x, value));
       above = above || (x > value && !same(x, value));
-      if (!same(x, value) && fit[v] >= fit[std::size_t(out.best_variant)]) flat = true;
+      if (!same(x, value) && fit[v] >= fit[std::size_t(out.best_variant)] - calibration::kRegionLogLikelihoodDrop)
+        flat = true;
     }
     std::sort(report.tried.begin(), report.tried.end());
     report.tried.erase(std::unique(report.tried.begin(), report.tried.end(), same), report.tried.end());
-    // values that fit exactly as well say the outcomes do not depend on it: nothing to extend
+    // a value on the best's line inside the 95 % likelihood-ratio region: the outcomes cannot tell
+    // it from the best, so the edge points nowhere and extending would only chase noise
     if (flat) report.status = EdgeStatus::not_identified;
     // a parameter the user gave one value is not a dimension of the design
     const bool fixed = anywhere.size() < 2;

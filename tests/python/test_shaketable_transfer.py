@@ -208,3 +208,35 @@ def test_a_rerun_resumes_and_changed_inputs_are_refused(rigid, lab):
     assert ok and "calibration:" in lines[0], lines
     r = run(rigid, *other, "--restart", cwd=tmp)
     assert r.returncode == 0, r.stderr
+
+
+def write_turned_box(path, turn_deg, half_x=0.1, half_y=0.25, h=0.9):
+    """A box 2 half_x by 2 half_y by h, turned turn_deg about the vertical."""
+    c, s = math.cos(math.radians(turn_deg)), math.sin(math.radians(turn_deg))
+    corners = [(x, y, z) for z in (0.0, h) for x, y in ((-half_x, -half_y), (half_x, -half_y), (half_x, half_y),
+                                                        (-half_x, half_y))]
+    v = [(c * x - s * y, s * x + c * y, z) for x, y, z in corners]
+    quads = [(3, 2, 1, 0), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)]
+    with open(path, "w") as f:
+        for p in v:
+            f.write("v %.9f %.9f %.9f\n" % p)
+        for a, b, q, d in quads:
+            f.write("f %d %d %d\nf %d %d %d\n" % (a + 1, b + 1, q + 1, a + 1, q + 1, d + 1))
+
+
+def test_weakest_heading_is_the_narrow_axis_either_way(rigid, lab):
+    # oracle: a box tips most easily across its narrow side, so the table's axis along the box's
+    # short (x) side, turned 30 deg, is a heading of 30 deg; the window takes the axis both ways
+    tmp = lab[0]
+    write_turned_box(os.path.join(tmp, "box.obj"), 30.0)
+    r = run(rigid, "shaketable", "transfer", "cal/tall.calibration.json", "box.obj", "--out", "weak/box",
+            "--heading", "weakest", "--heading-spread", "30", *IMPORT, cwd=tmp)
+    assert r.returncode == 0, r.stderr
+    with open(os.path.join(tmp, "weak", "box.calibration.json")) as f:
+        t = json.load(f)["transfer"]
+    assert abs(t["heading_deg"] - 30.0) <= 0.5 and not t["heading_known"], t
+    assert t["rotations_deg"] == [-150.0, -30.0, 0.0, 30.0, 150.0, 180.0], t["rotations_deg"]
+    r = run(rigid, "shaketable", "transfer", "cal/tall.calibration.json", "box.obj", "--out", "weak2/box",
+            "--heading", "weakest", "--heading-spread", "90", *IMPORT, cwd=tmp)
+    ok, lines = one_line(r)
+    assert ok and "--heading-spread" in lines[0], lines

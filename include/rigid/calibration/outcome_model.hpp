@@ -90,7 +90,10 @@ struct Member {
   Candidate candidate;
   double weight = 0;
 };
-std::vector<Member> confidence_set(const std::vector<Candidate>& ranked, double log_likelihood_drop = 1.92);
+/// Half the chi-square 95 % quantile of one degree of freedom: the likelihood-ratio region's depth.
+inline constexpr double kRegionLogLikelihoodDrop = 1.92;
+std::vector<Member> confidence_set(const std::vector<Candidate>& ranked,
+                                   double log_likelihood_drop = kRegionLogLikelihoodDrop);
 
 /// The members that carry most of the weight, for predictions that must simulate each member's
 /// variant: the heaviest first until `weight` is covered or another variant would exceed

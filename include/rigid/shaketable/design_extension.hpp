@@ -27,7 +27,7 @@ struct Range {
   double low = 0, high = 0;
 };
 
-/// Where extension stops: docs/physics.md, "Limits of a calibration's design", gives each reason.
+/// Where extension stops: docs/physics.md §14 gives each reason.
 struct PhysicalLimits {
   Range normal_stiffness{1e5, 1e13};  ///< per rock: stiffness_limits (unit: N/m^1.5)
   /// D >= 0; at 15 s/m a 0.1 m/s rocking impact is already fully plastic (Hunt & Crossley 1975)
@@ -60,7 +60,7 @@ Range stiffness_limits(const std::vector<dynamics::BodyDef>& bodies, double base
 
 /// One parameter's place in the design.
 enum class EdgeStatus { interior, at_edge_budget, at_physical_limit, not_identified, fixed };
-/// "interior", "at edge (budget)", "at a physical limit", "not identified (its values fit equally)",
+/// "interior", "at edge (budget)", "at a physical limit", "not identified (another value within the 95 % region)",
 /// "fixed (one value given)"
 const char* status_text(EdgeStatus s);
 
@@ -83,8 +83,9 @@ struct ExtensionStage {
 /// the best candidate's parameter set under `search`, and for each of its law's parameters the
 /// values beside it along its line: the nearest value tried anywhere (`earlier`: e.g. stage 1)
 /// on that side, else one step beyond the edge (K_N: the design's own ratio, else 2; the others:
-/// the design's own step, else a default), clamped to `limits`. A parameter whose inward neighbour
-/// fits exactly as well as the best (same log-likelihood) is not identified and not extended; one
+/// the design's own step, else a default), clamped to `limits`. A parameter with another value on
+/// the best's line within the 95 % likelihood-ratio region (calibration::kRegionLogLikelihoodDrop)
+/// is not identified and not extended; one
 /// given a single value (in all stages, with this contact model) is fixed by the user. With
 /// `budget_left` false nothing is proposed and edges are marked "at edge (budget)".
 ExtensionStage extension_stage(const calibration::OutcomeGrid& fitted, const std::vector<int>& observed,

@@ -26,7 +26,11 @@ struct TransferSettings {
   CalibrationSettings scan_import;
   int headings = 12;                  ///< the ring of headings (unit: count)
   std::optional<double> heading_deg;  ///< the new rock's heading on the table, when known
-  double heading_spread_deg = 0;      ///< with heading_deg: the ring's headings within this of it
+  /// The heading is the rock's weakest rocking direction (weakest_heading_deg), either way along
+  /// the table's axis: a lab that mounts a rock to test its most fragile direction
+  bool heading_weakest = false;
+  /// with heading_deg (heading_weakest): the ring's headings within this of it (of its axis)
+  double heading_spread_deg = 0;
   /// Start over: the work folder OUT.transfer/ of an earlier transfer into the same OUT is removed
   /// first (it is otherwise resumed, and refused when its inputs differ)
   bool restart = false;
@@ -49,8 +53,16 @@ std::vector<CarriedMember> carried_members(const io::Json& calibration, const st
 
 /// The headings the new rock is seen at, as turns of the motion relative to the written scene
 /// (unit: deg): the whole ring of `headings` without a known heading, else the ring's offsets
-/// within the spread (the scene is then turned to the known heading).
+/// within the spread (the scene is then turned to the known heading); with heading_weakest, the
+/// offsets within the spread of 0 or of 180 deg (a one-axis table pushes the rock both ways, and
+/// which way it faced is not known).
 std::vector<double> transfer_rotations(const TransferSettings& s);
+
+/// The rock's weakest rocking direction as a heading of a one-axis table (unit: deg in the scene's
+/// frame, in [0, 180)): analysis::RockingParameters::azimuth, the direction of the support edge it
+/// topples over most easily, modulo 180. Throws InputError naming the scene when the rock does
+/// not rest on its base (no rocking parameters).
+double weakest_heading_deg(const std::string& scene);
 
 /// What a transfer wrote, for the command to print.
 struct TransferSummary {
