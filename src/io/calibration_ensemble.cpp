@@ -1,6 +1,7 @@
 #include "rigid/io/calibration_ensemble.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <map>
 #include <set>
@@ -16,13 +17,13 @@ namespace fs = std::filesystem;
 
 std::string absolute(const std::string& p) { return fs::absolute(p).lexically_normal().string(); }
 
+}  // namespace
+
 double member_number(const Json& j, const char* key, const std::string& file) {
-  if (!j.contains(key) || !j[key].is_number())
-    throw InputError(file, 0, std::string("ensemble member without a number '") + key + "'");
+  if (!j.contains(key) || !j[key].is_number() || !std::isfinite(j[key].get<double>()))
+    throw InputError(file, 0, std::string("ensemble member without a finite number '") + key + "'");
   return j[key].get<double>();
 }
-
-}  // namespace
 
 std::vector<double> CalibrationEnsemble::scene_weights() const {
   std::vector<double> w(scenes.size(), 0.0);

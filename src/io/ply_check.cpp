@@ -357,6 +357,11 @@ double ascii_number(std::string_view word, bool integer, const Element& e, std::
   } else {
     const auto [stop, ec] = std::from_chars(word.data(), end, v);
     if (ec == std::errc() && stop == end) return v;
+    // 1e999 reads as a number too large for a double: say so as for inf
+    if (ec == std::errc::result_out_of_range && stop == end)
+      throw InputError(name, line,
+                       record_name(e, r) + ": '" + std::string(word.substr(0, 32)) +
+                           "' is not a finite number (beyond the range of a double)");
   }
   if (word.empty()) throw InputError(name, line, record_name(e, r) + ": the line ends before the record does");
   throw InputError(name, line,

@@ -39,21 +39,6 @@ io::Json scores_json(const Scores& s) {
   return j;
 }
 
-io::Json physics_json(const Physics& p) {
-  io::Json j;
-  j["base"] = p.base;
-  j["flatten_base_m"] = p.flatten_m;
-  j["contact"] = contact::contact_method_name(p.law.method);
-  if (p.penalty()) {
-    j["normal_stiffness_n_m1_5"] = p.law.normal_stiffness;
-    j["damping_s_m"] = p.law.damping;
-  } else {
-    j["restitution"] = p.law.restitution;
-  }
-  j["friction"] = p.law.friction;
-  return j;
-}
-
 // Predicted P in ten bins against the observed share: how far the probabilities can be taken at
 // their word.
 io::Json reliability_json(const std::vector<double>& p, const std::vector<int>& y) {

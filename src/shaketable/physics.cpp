@@ -1,6 +1,11 @@
 #include "rigid/shaketable/physics.hpp"
 
+#include <cmath>
 #include <cstdio>
+
+#include "rigid/core/error.hpp"
+#include "rigid/io/calibration_ensemble.hpp"
+#include "rigid/shaketable/calibrate.hpp"
 
 namespace rigid::shaketable {
 
@@ -51,6 +56,45 @@ scenario::VariantSpace physics_variants(const std::vector<Physics>& physics) {
     space.variants.push_back({{p.law.friction, "", {}}, {p.law.restitution, "", {}}, {p.law.damping, "", {}}, scene});
   }
   return space;
+}
+
+io::Json physics_json(const Physics& p) {
+  io::Json j;
+  j["base"] = p.base;
+  j["flatten_base_m"] = p.flatten_m;
+  j["contact"] = contact::contact_method_name(p.law.method);
+  if (p.penalty()) {
+    j["normal_stiffness_n_m1_5"] = p.law.normal_stiffness;
+    j["damping_s_m"] = p.law.damping;
+  } else {
+    j["restitution"] = p.law.restitution;
+  }
+  j["friction"] = p.law.friction;
+  return j;
+}
+
+Physics physics_from_json(const io::Json& m, const std::string& file) {
+  Physics p;
+  if (!m.contains("contact") || !m["contact"].is_string() ||
+      !contact::parse_contact_method(m["contact"].get<std::string>(), p.law.method))
+    throw InputError(file, 0, "ensemble member without a contact law it names");
+  p.flatten_m = io::member_number(m, "flatten_base_m", file);
+  if (!(p.flatten_m >= 0 && p.flatten_m < 0.1))
+    throw InputError(file, 0, "ensemble member with flatten_base_m outside [0, 0.1) m");
+  p.base = base_name(p.flatten_m);
+  if (p.penalty()) {
+    p.law.normal_stiffness = io::member_number(m, "normal_stiffness_n_m1_5", file);
+    p.law.damping = io::member_number(m, "damping_s_m", file);
+    if (!(p.law.normal_stiffness > 0) || !(p.law.damping >= 0))
+      throw InputError(file, 0, "ensemble member with a stiffness <= 0 or a negative damping");
+  } else {
+    p.law.restitution = io::member_number(m, "restitution", file);
+    if (!(p.law.restitution >= 0 && p.law.restitution <= 1))
+      throw InputError(file, 0, "ensemble member with a restitution outside [0, 1]");
+  }
+  p.law.friction = io::member_number(m, "friction", file);
+  if (!(p.law.friction > 0)) throw InputError(file, 0, "ensemble member with a friction <= 0");
+  return p;
 }
 
 }  // namespace rigid::shaketable

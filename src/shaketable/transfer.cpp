@@ -13,6 +13,7 @@
 #include "rigid/campaign/output_lock.hpp"
 #include "rigid/core/error.hpp"
 #include "rigid/core/types.hpp"
+#include "rigid/io/calibration_ensemble.hpp"
 #include "rigid/io/output_file.hpp"
 #include "rigid/io/provenance.hpp"
 #include "rigid/io/scene_file.hpp"
@@ -31,57 +32,11 @@ std::string format(const char* fmt, auto... args) {
   return text;
 }
 
-double member_number(const io::Json& m, const char* key, const std::string& file) {
-  if (!m.contains(key) || !m[key].is_number() || !std::isfinite(m[key].get<double>()))
-    throw InputError(file, 0, std::string("ensemble member without a finite number '") + key + "'");
-  return m[key].get<double>();
-}
-
-// The member's physics as calibration_file.cpp writes it (its fields of the law only).
-Physics member_physics(const io::Json& m, const std::string& file) {
-  Physics p;
-  if (!m.contains("contact") || !m["contact"].is_string() ||
-      !contact::parse_contact_method(m["contact"].get<std::string>(), p.law.method))
-    throw InputError(file, 0, "ensemble member without a contact law it names");
-  p.flatten_m = member_number(m, "flatten_base_m", file);
-  if (!(p.flatten_m >= 0 && p.flatten_m < 0.1))
-    throw InputError(file, 0, "ensemble member with flatten_base_m outside [0, 0.1) m");
-  p.base = base_name(p.flatten_m);
-  if (p.penalty()) {
-    p.law.normal_stiffness = member_number(m, "normal_stiffness_n_m1_5", file);
-    p.law.damping = member_number(m, "damping_s_m", file);
-    if (!(p.law.normal_stiffness > 0) || !(p.law.damping >= 0))
-      throw InputError(file, 0, "ensemble member with a stiffness <= 0 or a negative damping");
-  } else {
-    p.law.restitution = member_number(m, "restitution", file);
-    if (!(p.law.restitution >= 0 && p.law.restitution <= 1))
-      throw InputError(file, 0, "ensemble member with a restitution outside [0, 1]");
-  }
-  p.law.friction = member_number(m, "friction", file);
-  if (!(p.law.friction > 0)) throw InputError(file, 0, "ensemble member with a friction <= 0");
-  return p;
-}
-
 // What makes two members' physics the same: every value the law uses, to the last bit.
 std::string physics_key(const Physics& p) {
   return format("%.17g %s %.17g %.17g %.17g %.17g", p.flatten_m, contact::contact_method_name(p.law.method),
                 p.penalty() ? p.law.normal_stiffness : 0.0, p.penalty() ? p.law.damping : 0.0,
                 p.penalty() ? 0.0 : p.law.restitution, p.law.friction);
-}
-
-io::Json physics_fields(const Physics& p) {
-  io::Json j;
-  j["base"] = p.base;
-  j["flatten_base_m"] = p.flatten_m;
-  j["contact"] = contact::contact_method_name(p.law.method);
-  if (p.penalty()) {
-    j["normal_stiffness_n_m1_5"] = p.law.normal_stiffness;
-    j["damping_s_m"] = p.law.damping;
-  } else {
-    j["restitution"] = p.law.restitution;
-  }
-  j["friction"] = p.law.friction;
-  return j;
 }
 
 std::string read_text(const fs::path& file) {
@@ -211,8 +166,8 @@ std::vector<CarriedMember> carried_members(const io::Json& calibration, const st
   std::map<std::pair<std::string, double>, std::size_t> index;
   for (const io::Json& m : calibration["ensemble"]) {
     if (!m.is_object()) throw InputError(file, 0, "ensemble member that is not an object");
-    const Physics p = member_physics(m, file);
-    const double weight = member_number(m, "weight", file), lapse = member_number(m, "lapse", file);
+    const Physics p = physics_from_json(m, file);
+    const double weight = io::member_number(m, "weight", file), lapse = io::member_number(m, "lapse", file);
     if (!(weight > 0) || !(lapse >= 0 && lapse <= 1))
       throw InputError(file, 0, "ensemble member with a weight <= 0 or a lapse outside [0, 1]");
     const auto [it, added] = index.emplace(std::make_pair(physics_key(p), lapse), out.size());
@@ -315,7 +270,7 @@ TransferSummary transfer_calibration(const TransferSettings& given_settings, con
       io::write_derived_scene(settled.at(settled_name(p)), (out.parent_path() / file).string(), changes);
       scene_of[key] = file;
     }
-    io::Json j = physics_fields(p);
+    io::Json j = physics_json(p);
     j["scene"] = scene_of[key];
     j["weight"] = m.weight;
     j["lapse"] = m.lapse;

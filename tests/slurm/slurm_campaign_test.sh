@@ -129,11 +129,17 @@ release() {
   held=()
 }
 # let run N of the campaign work PROGRESS s, hold it and check it still runs. Its start is seen
-# in /proc, not in the job log: mpirun relays the ranks' output, and a starved mpirun or Slurm
-# call must not delay the hold.
+# in /proc and its journal, not in the job log: mpirun relays the ranks' output, and a starved
+# mpirun or Slurm call must not delay the hold.
+# The ranks being up is not the campaign at work: under load their start (MPI, reading the job
+# and the checkpoint) took over 3 s on one CI run, and the interruption then hit a run that had
+# not begun. The journal, written as results arrive and read here by its time stamp, says it has.
+journal_written_since_ranks_up() { [[ -n $(find "$work/out.h5.journal" -newer "$work/ranks_up.mark" 2>/dev/null) ]]; }
 work_then_hold() {
   wait_until 60 "the ranks of campaign run #$1" ranks_up || exit
+  touch "$work/ranks_up.mark"
   note "campaign run #$1: ranks up"
+  wait_until 120 "campaign run #$1 to record results in its journal" journal_written_since_ranks_up || exit
   sleep "$progress"
   hold
   if ((${#held[@]} == 0)) || run_ended "$1"; then

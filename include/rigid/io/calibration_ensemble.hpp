@@ -33,6 +33,9 @@ struct CalibrationEnsemble {
 /// does not exist.
 CalibrationEnsemble read_calibration_ensemble(const std::string& calibration_json);
 
+/// An ensemble member's field `key` as a finite number. Throws InputError naming `file` otherwise.
+double member_number(const Json& member, const char* key, const std::string& file);
+
 /// What a cube records of a calibration: the envelope's rigid_version and created, its scene, the
 /// physics in words, the chosen physics (`parameters`) and the scores present (in_sample,
 /// cross_validated), as one JSON object.

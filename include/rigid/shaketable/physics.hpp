@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "rigid/contact/contact.hpp"
+#include "rigid/io/json.hpp"
 #include "rigid/scenario/variant.hpp"
 
 namespace rigid::shaketable {
@@ -37,5 +38,13 @@ struct Physics {
 const std::vector<scenario::VariantKey>& physics_variant_keys();
 /// A design's physics as the [[variant]] list of its job, in physics_variant_keys' order.
 scenario::VariantSpace physics_variants(const std::vector<Physics>& physics);
+
+/// A physics as the calibration documents state it (an ensemble member's or a parameter set's law
+/// fields): base, flatten_base_m, contact, normal_stiffness_n_m1_5 and damping_s_m (penalty) or
+/// restitution (rigid), friction.
+io::Json physics_json(const Physics& p);
+/// physics_json read back (base_scene empty). Throws InputError naming `file` for a missing,
+/// unknown or out-of-range field.
+Physics physics_from_json(const io::Json& j, const std::string& file);
 
 }  // namespace rigid::shaketable
