@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <memory>
 
+#include "old_spellings.hpp"
 #include "output_options.hpp"
 #include "python_script.hpp"
 #include "rigid/core/error.hpp"
@@ -51,9 +52,11 @@ void add_shaketable_fragility(CLI::App& parent) {
       ->capture_default_str()
       ->check(CLI::Range(0, 100000));
   cmd->add_option("--seed", f->seed, "Seed of the bootstrap")->capture_default_str()->check(CLI::Range(0L, 1L << 62));
-  cmd->add_option("--format", o.figure_format, "Figure format: png, pdf or svg")
-      ->capture_default_str()
-      ->check(CLI::IsMember({"png", "pdf", "svg"}));
+  CLI::Option* figure_format =
+      cmd->add_option("--figure-format", o.figure_format, "The figure OUT.fragility.FORMAT: png, pdf or svg")
+          ->capture_default_str()
+          ->check(CLI::IsMember({"png", "pdf", "svg"}));
+  add_old_spelling(*cmd, *figure_format, {"--format", "", {}});  // calibrate's spelling, one for both
   shaketable::add_recording_options(*cmd, o.lab_format, f->progress);
   cmd->callback([f] {
     const rigid::shaketable::FragilitySettings& o = f->settings;
