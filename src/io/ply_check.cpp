@@ -98,6 +98,10 @@ Header read_header(std::string_view bytes, const std::string& name) {
       continue;
     }
     if (line.find('\0') != std::string_view::npos) throw InputError(name, line_no, "a NUL byte in the PLY header");
+    // a carriage return may end a line (CRLF) but not split one: the importer reads "float\ry"
+    // as one word where this check reads two, and the two then disagree on the body's layout
+    if (const std::size_t cr = line.find('\r'); cr != std::string_view::npos && cr + 1 != line.size())
+      throw InputError(name, line_no, "a carriage return inside a PLY header line");
     if (w.empty() || w[0] == "comment" || w[0] == "obj_info") continue;
     if (w[0] == "end_header") {
       if (!has_format) throw InputError(name, line_no, "the PLY header has no format line");

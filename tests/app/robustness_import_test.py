@@ -103,6 +103,12 @@ def make_ply_inputs(d):
     bad.append(("two format lines", write_bytes(d, "two_formats.ply", two_formats), [":3:", "second format line"]))
     late = ascii_ply().replace(b"format ascii 1.0\n", b"").replace(b"end_header", b"format ascii 1.0\nend_header")
     bad.append(("format line after the elements", write_bytes(d, "late_format.ply", late), ["before the elements"]))
+    # found by the PLY fuzzer: "property float\ry" is two words to the check and one to assimp,
+    # whose post-processing then crashed on the body laid out by the other reading
+    cr = binary_ply(endian=">").replace(b"property float y\n", b"property float\ry\n")
+    bad.append(("carriage return inside a header line", write_bytes(d, "cr_inside.ply", cr),
+                [":6:", "carriage return"]))
+    write_bytes(d, "cube_crlf.ply", ascii_ply().replace(b"\n", b"\r\n"))  # CRLF line ends stay valid
     return bad
 
 
@@ -171,7 +177,8 @@ def cases(d, bad_plys):
     imp = lambda scan, *extra, sub="imported": ["model", "import", scan, "--out", out(sub)] + list(extra)
     result = [("import a binary PLY cube", imp("cube.ply"), "ok", []),
               ("import a big-endian PLY cube", imp("cube_be.ply"), "ok", []),
-              ("import an ASCII PLY cube", imp("cube_ascii.ply"), "ok", [])]
+              ("import an ASCII PLY cube", imp("cube_ascii.ply"), "ok", []),
+              ("import an ASCII PLY cube with CRLF line ends", imp("cube_crlf.ply"), "ok", [])]
     for name, path, fragments in bad_plys:
         result.append(("PLY: " + name, imp(path, sub="fail_" + path), e, [path] + fragments))
         result.append(("PLY as --pedestal: " + name, imp("cube.obj", "--pedestal", path, sub="fail_ped_" + path), e,
