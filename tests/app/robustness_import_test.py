@@ -108,6 +108,11 @@ def make_ply_inputs(d):
     cr = binary_ply(endian=">").replace(b"property float y\n", b"property float\ry\n")
     bad.append(("carriage return inside a header line", write_bytes(d, "cr_inside.ply", cr),
                 [":6:", "carriage return"]))
+    # found by the PLY fuzzer too: a blank line after end_header, skipped by assimp before a
+    # binary body (which then aborted) and read as the body's first byte by the check
+    blank = binary_ply(endian=">").replace(b"end_header\n", b"end_header\n\n")
+    bad.append(("blank line before a binary body", write_bytes(d, "blank_body.ply", blank),
+                [":11:", "binary body begins"]))
     write_bytes(d, "cube_crlf.ply", ascii_ply().replace(b"\n", b"\r\n"))  # CRLF line ends stay valid
     return bad
 
