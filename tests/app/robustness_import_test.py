@@ -113,6 +113,9 @@ def make_ply_inputs(d):
     blank = binary_ply(endian=">").replace(b"end_header\n", b"end_header\n\n")
     bad.append(("blank line before a binary body", write_bytes(d, "blank_body.ply", blank),
                 [":11:", "binary body begins"]))
+    blank_lines = binary_ply(endian=">").replace(b"property float y\n", b"property float y\n\n\n")
+    bad.append(("empty lines in the header", write_bytes(d, "blank_header.ply", blank_lines),
+                [":7:", "empty line"]))
     write_bytes(d, "cube_crlf.ply", ascii_ply().replace(b"\n", b"\r\n"))  # CRLF line ends stay valid
     return bad
 
