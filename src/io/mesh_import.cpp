@@ -111,7 +111,8 @@ void check_finite_vertices(const geometry::TriangleSoup& soup, std::string_view 
 
 geometry::TriangleSoup read_mesh_from_memory(std::string_view bytes, const std::string& name) {
   const std::string hint = format_hint(bytes, name);
-  if (hint == "ply") check_ply(bytes, name);
+  // a PLY is read from its checked canonical form (ply_check.hpp says why)
+  const std::string canonical_ply = hint == "ply" ? check_ply(bytes, name) : std::string();
   if (hint != "ply" && hint != "obj" && hint != "stl") {
     throw InputError(name, 0, "cannot read it as a mesh: its name ends in neither .obj, .ply nor .stl");
   }
@@ -119,7 +120,8 @@ geometry::TriangleSoup read_mesh_from_memory(std::string_view bytes, const std::
   Assimp::Importer importer;
   // triangulate polygons; nothing that would weld, repair or drop facets: the geometry checks
   // must see the file's defects to name them
-  const aiScene* scene = importer.ReadFileFromMemory(bytes.data(), bytes.size(), aiProcess_Triangulate, hint.c_str());
+  const std::string_view read = hint == "ply" ? std::string_view(canonical_ply) : bytes;
+  const aiScene* scene = importer.ReadFileFromMemory(read.data(), read.size(), aiProcess_Triangulate, hint.c_str());
   if (scene == nullptr || scene->mRootNode == nullptr) {
     throw InputError(name, 0, "cannot read it as an OBJ, PLY or STL mesh: " + one_line(importer.GetErrorString()));
   }

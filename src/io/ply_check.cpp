@@ -23,6 +23,7 @@ struct Property {
   int count_size = 0;  // list: bytes of the item count
   bool count_signed = false;
   bool count_integer = false;
+  std::string type, count_type;  // the header's words, for the canonical header
 };
 
 struct Element {
@@ -30,7 +31,8 @@ struct Element {
   std::uint64_t count = 0;
   long line = 0;
   std::vector<Property> properties;
-  int corners = -1;  // face: index of the vertex_indices list among the properties
+  int corners = -1;            // face: index of the vertex_indices list among the properties
+  int axis[3] = {-1, -1, -1};  // vertex: indices of x, y, z among the properties
 };
 
 // PLY's scalar types: bytes, integer?, signed?; size 0 for an unknown name
@@ -169,6 +171,8 @@ Header read_header(std::string_view bytes, const std::string& name) {
         p.integer = item.integer;
         p.is_signed = item.is_signed;
         p.name = w[4];
+        p.count_type = w[2];
+        p.type = w[3];
       } else if (w.size() == 3) {
         const ScalarType t = scalar_type(w[1]);
         if (t.size == 0) throw InputError(name, line_no, "unknown property type '" + w[1] + "'");
@@ -176,6 +180,7 @@ Header read_header(std::string_view bytes, const std::string& name) {
         p.integer = t.integer;
         p.is_signed = t.is_signed;
         p.name = w[2];
+        p.type = w[1];
       } else {
         throw InputError(name, line_no, "property line must be 'property TYPE NAME' or 'property list TYPE TYPE NAME'");
       }
@@ -196,11 +201,12 @@ void check_elements(Header& h, const std::string& name, std::uint64_t& vertices)
     if (e.name == "vertex") {
       has_vertex = true;
       vertices = e.count;
-      for (const char* axis : {"x", "y", "z"}) {
-        bool found = false;
-        for (const auto& p : e.properties) found = found || (p.name == axis && !p.list);
-        if (!found)
-          throw InputError(name, e.line, std::string("element 'vertex' has no scalar property '") + axis + "'");
+      for (int a = 0; a < 3; ++a) {
+        const std::string axis(1, "xyz"[a]);
+        for (std::size_t k = 0; k < e.properties.size(); ++k) {
+          if (e.properties[k].name == axis && !e.properties[k].list) e.axis[a] = int(k);
+        }
+        if (e.axis[a] < 0) throw InputError(name, e.line, "element 'vertex' has no scalar property '" + axis + "'");
       }
     } else if (e.name == "face") {
       has_face = true;
@@ -298,10 +304,13 @@ void check_corner(double index, std::uint64_t vertices, const Element& e, std::u
   }
 }
 
-void check_binary_body(const Header& h, std::string_view bytes, std::uint64_t vertices, const std::string& name) {
+void check_binary_body(const Header& h, std::string_view bytes, std::uint64_t vertices, const std::string& name,
+                       std::string& canonical) {
   BinaryReader in{bytes, h.body, h.format == Format::big_endian};
   for (const Element& e : h.elements) {
+    const bool vertex = e.name == "vertex";
     for (std::uint64_t r = 0; r < e.count; ++r) {
+      std::string_view xyz[3];
       for (std::size_t k = 0; k < e.properties.size(); ++k) {
         const Property& p = e.properties[k];
         const auto truncated = [&] {
@@ -309,9 +318,13 @@ void check_binary_body(const Header& h, std::string_view bytes, std::uint64_t ve
         };
         if (!p.list) {
           if (!in.has(p.size)) throw truncated();
+          for (int a = 0; a < 3; ++a) {
+            if (vertex && e.axis[a] == int(k)) xyz[a] = bytes.substr(in.pos, std::size_t(p.size));
+          }
           in.pos += p.size;
           continue;
         }
+        const std::size_t list_start = in.pos;
         if (!in.has(p.count_size)) throw truncated();
         const double n = in.value(p.count_size, p.count_integer, p.count_signed);
         if (int(k) == e.corners) check_corner_count(n, e, r, name, 0);
@@ -323,6 +336,10 @@ void check_binary_body(const Header& h, std::string_view bytes, std::uint64_t ve
         }
         for (std::size_t c = 0; c < std::size_t(n); ++c)
           check_corner(in.value(p.size, true, p.is_signed), vertices, e, r, name, 0);
+        canonical.append(bytes.substr(list_start, in.pos - list_start));
+      }
+      if (vertex) {
+        for (const std::string_view& v : xyz) canonical.append(v);
       }
     }
   }
@@ -384,20 +401,29 @@ double ascii_number(std::string_view word, bool integer, const Element& e, std::
                        (integer ? "an integer" : "a number"));
 }
 
-void check_ascii_body(const Header& h, std::string_view bytes, std::uint64_t vertices, const std::string& name) {
+void check_ascii_body(const Header& h, std::string_view bytes, std::uint64_t vertices, const std::string& name,
+                      std::string& canonical) {
   AsciiReader in{bytes, h.body, h.body_line};
   for (const Element& e : h.elements) {
+    const bool vertex = e.name == "vertex";
     for (std::uint64_t r = 0; r < e.count; ++r) {
       if (!in.next_line())
         throw InputError(name, in.line, "the file ends before " + record_name(e, r) + " (truncated)");
       const long line = in.line;
+      std::string_view xyz[3];
       for (std::size_t k = 0; k < e.properties.size(); ++k) {
         const Property& p = e.properties[k];
         if (!p.list) {
-          ascii_number(in.word(), p.integer, e, r, name, line);
+          const std::string_view word = in.word();
+          ascii_number(word, p.integer, e, r, name, line);
+          for (int a = 0; a < 3; ++a) {
+            if (vertex && e.axis[a] == int(k)) xyz[a] = word;
+          }
           continue;
         }
-        const double n = ascii_number(in.word(), true, e, r, name, line);
+        const std::string_view count_word = in.word();
+        const double n = ascii_number(count_word, true, e, r, name, line);
+        if (int(k) == e.corners) canonical.append(count_word);
         if (int(k) == e.corners) check_corner_count(n, e, r, name, line);
         if (n < 0) throw InputError(name, line, record_name(e, r) + ": negative list length");
         // each item needs at least two bytes: more than the rest of the file holds is a wrong count
@@ -407,27 +433,54 @@ void check_ascii_body(const Header& h, std::string_view bytes, std::uint64_t ver
               record_name(e, r) + ": the list is longer than the rest of the file (truncated, or a wrong count)");
         }
         for (std::size_t c = 0; c < std::size_t(n); ++c) {
-          const double v = ascii_number(in.word(), p.integer, e, r, name, line);
-          if (int(k) == e.corners) check_corner(v, vertices, e, r, name, line);
+          const std::string_view word = in.word();
+          const double v = ascii_number(word, p.integer, e, r, name, line);
+          if (int(k) != e.corners) continue;
+          check_corner(v, vertices, e, r, name, line);
+          canonical.append(" ").append(word);
         }
+        if (int(k) == e.corners) canonical.append("\n");
       }
       if (!in.word().empty())
         throw InputError(name, line, record_name(e, r) + ": more values than the header declares");
+      if (vertex) canonical.append(xyz[0]).append(" ").append(xyz[1]).append(" ").append(xyz[2]).append("\n");
     }
   }
 }
 
+// The header of the canonical file: the format, the vertices' x, y, z and the faces' corner list
+// with the types the file gave them, nothing else.
+std::string canonical_header(const Header& h) {
+  static const char* formats[] = {"ascii", "binary_little_endian", "binary_big_endian"};
+  std::string out = std::string("ply\nformat ") + formats[int(h.format)] + " 1.0\n";
+  for (const Element& e : h.elements) {
+    if (e.name == "vertex") {
+      out += "element vertex " + std::to_string(e.count) + "\n";
+      for (int a = 0; a < 3; ++a)
+        out += "property " + e.properties[std::size_t(e.axis[a])].type + " " + "xyz"[a] + "\n";
+    } else if (e.name == "face") {
+      const Property& p = e.properties[std::size_t(e.corners)];
+      out += "element face " + std::to_string(e.count) + "\nproperty list " + p.count_type + " " + p.type +
+             " vertex_indices\n";
+    }
+  }
+  return out + "end_header\n";
+}
+
 }  // namespace
 
-void check_ply(std::string_view bytes, const std::string& name) {
+std::string check_ply(std::string_view bytes, const std::string& name) {
   Header h = read_header(bytes, name);
   std::uint64_t vertices = 0;
   check_elements(h, name, vertices);
   check_counts_fit(h, bytes.size() - h.body, name);
+  // the body in the file's element order, each record cut to what the canonical header declares
+  std::string body;
   if (h.format == Format::ascii)
-    check_ascii_body(h, bytes, vertices, name);
+    check_ascii_body(h, bytes, vertices, name, body);
   else
-    check_binary_body(h, bytes, vertices, name);
+    check_binary_body(h, bytes, vertices, name, body);
+  return canonical_header(h) + body;
 }
 
 }  // namespace rigid::io

@@ -14,7 +14,11 @@ namespace rigid::io {
 /// counts fit in the file's size, and whose body holds every record the header declares, each
 /// face with at least three corners, every corner an index of a declared vertex. Line numbers are
 /// given for the header and for ASCII bodies. Works in one pass over the bytes, allocating nothing
-/// in proportion to the declared counts.
-void check_ply(std::string_view bytes, const std::string& name);
+/// in proportion to the declared counts. Returns the canonical file the importer then reads: the
+/// same format, a header of only the vertices' x, y, z and the faces' corner list (their own
+/// types, no comments), and each record cut to those fields, copied byte for byte. Whatever else
+/// the file holds (colours, normals, other elements, unusual spacing) the importer never sees: on
+/// such inputs the check and assimp's reader disagreed, and assimp crashed (fuzzer finds).
+std::string check_ply(std::string_view bytes, const std::string& name);
 
 }  // namespace rigid::io
