@@ -1,4 +1,5 @@
 #include "rigid/shaketable/calibrate.hpp"
+#include "text.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -25,12 +26,6 @@ namespace rigid::shaketable {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string format(const char* fmt, auto... args) {
-  char text[512];
-  std::snprintf(text, sizeof text, fmt, args...);
-  return text;
-}
 
 double wrap360(double deg) {
   double h = std::fmod(deg, 360.0);
@@ -120,6 +115,20 @@ std::string calibration_manifest(const CalibrationSettings& s, const io::LabTest
   }
   m << "tests: " << io::sha256_hex(listed) << "\noutcomes: " << io::sha256_hex(outcomes) << "\n";
   return m.str();
+}
+
+scan::ImportOptions base_model_import(const CalibrationSettings& s, const std::string& scan, double flatten_m,
+                                      const std::string& out) {
+  scan::ImportOptions in;
+  in.scan = scan;
+  in.out = out;
+  in.scale = s.scale;
+  in.up = s.up;
+  in.max_vertices = s.max_vertices;
+  in.pedestal_margin = s.pedestal_margin;
+  in.flatten_base = flatten_m;
+  in.tilt_deg = s.tilt_deg;
+  return in;
 }
 
 std::string base_name(double flatten_m) { return format("flat_%gmm", flatten_m * 1e3); }
@@ -255,15 +264,7 @@ campaign::CampaignOptions Calibrator::prepare() {
   std::map<double, std::string> bases;
   for (double flatten_m : o.flatten_base_m) {
     const std::string name = base_name(flatten_m);
-    scan::ImportOptions in;
-    in.scan = o.scan;
-    in.out = (fs::path(work_) / name / name).string();
-    in.scale = o.scale;
-    in.up = o.up;
-    in.max_vertices = o.max_vertices;
-    in.pedestal_margin = o.pedestal_margin;
-    in.flatten_base = flatten_m;
-    in.tilt_deg = o.tilt_deg;
+    const scan::ImportOptions in = base_model_import(o, o.scan, flatten_m, (fs::path(work_) / name / name).string());
     callbacks_.tell(format("shaketable: base model %s (--flatten-base %g m)", name.c_str(), in.flatten_base));
     callbacks_.import_scan(in);
     bases_[flatten_m] = bases[flatten_m] =

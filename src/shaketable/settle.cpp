@@ -1,4 +1,5 @@
 #include "rigid/shaketable/settle.hpp"
+#include "text.hpp"
 
 #include <cstdio>
 #include <filesystem>
@@ -13,12 +14,6 @@ namespace rigid::shaketable {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string format(const char* fmt, auto... args) {
-  char text[512];
-  std::snprintf(text, sizeof text, fmt, args...);
-  return text;
-}
 
 }  // namespace
 

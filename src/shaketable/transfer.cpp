@@ -1,4 +1,5 @@
 #include "rigid/shaketable/transfer.hpp"
+#include "text.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -25,12 +26,6 @@ namespace rigid::shaketable {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string format(const char* fmt, auto... args) {
-  char text[512];
-  std::snprintf(text, sizeof text, fmt, args...);
-  return text;
-}
 
 // What makes two members' physics the same: every value the law uses, to the last bit.
 std::string physics_key(const Physics& p) {
@@ -99,7 +94,6 @@ ImportedScenes import_and_settle(const TransferSettings& s, const std::string& w
   std::map<double, std::string>& base_scene = out.base;
   std::map<std::string, std::string>& settled = out.settled;
   std::error_code ec;
-  const CalibrationSettings& how = s.scan_import;
   for (const CarriedMember& m : members) {
     const Physics& p = m.physics;
     if (!base_scene.count(p.flatten_m)) {
@@ -108,15 +102,8 @@ ImportedScenes import_and_settle(const TransferSettings& s, const std::string& w
       if (fs::exists(folder / "imported")) {
         callbacks.tell(format("shaketable: base model %s: imported by an earlier run", p.base.c_str()));
       } else {
-        scan::ImportOptions in;
-        in.scan = s.scan;
-        in.out = (folder / p.base).string();
-        in.scale = how.scale;
-        in.up = how.up;
-        in.max_vertices = how.max_vertices;
-        in.pedestal_margin = how.pedestal_margin;
-        in.flatten_base = p.flatten_m;
-        in.tilt_deg = how.tilt_deg;
+        const scan::ImportOptions in =
+            base_model_import(s.scan_import, s.scan, p.flatten_m, (folder / p.base).string());
         callbacks.tell(format("shaketable: base model %s (--flatten-base %g m)", p.base.c_str(), p.flatten_m));
         fs::create_directories(folder, ec);
         callbacks.import_scan(in);

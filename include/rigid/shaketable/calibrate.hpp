@@ -72,6 +72,12 @@ std::string calibration_manifest(const CalibrationSettings& s, const io::LabTest
 /// [1e5, 1e13] N/m^1.5. Nothing for any other text.
 std::optional<ContactChoice> parse_contact_choice(const std::string& text);
 
+/// The import of `scan` as one base model (its base cut flat `flatten_m` above its lowest point)
+/// into the scene prefix `out`, with the import settings of `s` (scale, up, hull, pedestal, tilt
+/// rule): what calibrate and transfer import alike.
+scan::ImportOptions base_model_import(const CalibrationSettings& s, const std::string& scan, double flatten_m,
+                                      const std::string& out);
+
 /// "flat_5mm": a base model's name from its depth.
 std::string base_name(double flatten_m);
 
