@@ -62,7 +62,8 @@ def planted_outcomes(rng, pgv_pga, mu0, mu1, sigma, extras=True):
 
 
 def write_cube(path, pgv_pga, objects, root_attrs=None, wall_s=None):
-    """objects: list of (name, outcome [R,S,A], attrs dict); wall_s: each cell's wall time, when given."""
+    """objects: list of (name, outcome [R,S,A], attrs dict[, cell datasets dict, e.g. max_tilt_deg,
+    unconverged_steps]); wall_s: each cell's wall time, when given."""
     str_t = h5py.string_dtype("utf-8")
     names = [f"rec{r:03d}" for r in range(len(pgv_pga))]
     with h5py.File(path, "w") as f:
@@ -81,7 +82,7 @@ def write_cube(path, pgv_pga, objects, root_attrs=None, wall_s=None):
         rec.create_dataset("pgv_pga_s", data=np.asarray(pgv_pga, float))
         rec.create_dataset("gmroti_pga_g", data=np.full(len(pgv_pga), 0.3))
         objs = f.create_group("objects")
-        for i, (name, outcome, attrs) in enumerate(objects):
+        for i, (name, outcome, attrs, *cells) in enumerate(objects):
             g = objs.create_group(name)
             g.attrs["index"] = np.int32(i)
             g.attrs["scene"] = f"{name}.toml"
@@ -94,6 +95,8 @@ def write_cube(path, pgv_pga, objects, root_attrs=None, wall_s=None):
             g.create_dataset("fragility_count", data=count)
             if wall_s is not None:
                 g.create_dataset("wall_s", data=np.full(outcome.shape, float(wall_s)))
+            for key, values in (cells[0] if cells else {}).items():
+                g.create_dataset(key, data=values)
         cube_checksums.seal(f)
 
 

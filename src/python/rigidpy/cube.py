@@ -126,8 +126,9 @@ class Cube:
     (schema 1) and with a variant axis (schema 2, layout at the top of src/io/cube.cpp), where each
     (object, variant) becomes one ObjectData, in object then variant order."""
 
-    def __init__(self, path, wall_times=False):
+    def __init__(self, path, wall_times=False, peaks=False):
         self._wall_times = wall_times  # also read each object's wall_s (outcome_agreement)
+        self._peaks = peaks  # also read each object's max_tilt_deg and max_slip_m (outcome_agreement)
         if not os.path.isfile(path):
             raise InputError(f"{path}: no such file")
         try:
@@ -213,6 +214,9 @@ class Cube:
                           np.asarray(cnt, int), variant, steps)
         if self._wall_times:
             data.wall_s = np.asarray(read("wall_s"), float)
+        if self._peaks:
+            data.max_tilt_deg = np.asarray(read("max_tilt_deg"), float)
+            data.max_slip_m = np.asarray(read("max_slip_m"), float)
         return data
 
     def _lay_on_record_pgas(self):
@@ -236,8 +240,9 @@ class Cube:
         for o in self.objects:
             o.outcome = spread(o.outcome, NOT_RUN)
             o.unconverged_steps = spread(o.unconverged_steps, NOT_RECORDED)
-            if hasattr(o, "wall_s"):
-                o.wall_s = spread(o.wall_s, np.nan)
+            for key in ("wall_s", "max_tilt_deg", "max_slip_m"):
+                if hasattr(o, key):
+                    setattr(o, key, spread(getattr(o, key), np.nan))
             o.padding = spread(np.zeros(o.outcome[:, :1].shape, bool), True)
             o.probability = np.asarray(probability_from_outcome(o.outcome), float)
             frag, cnt = fragility_from_probability(o.probability, self.pgv_pga, self.edges)
