@@ -13,17 +13,19 @@ dispersion) and writes its tables:
 Sets: `hard` (jobs/convergence/*.toml but quick.toml: slender, stacked, compound, sliding, long
 free rocking and 3-10 g scenes, over 1,000 cells), `shipped` (jobs/demo.toml and
 jobs/uncertainty_demo.toml), `quick` (jobs/convergence/quick.toml, a few dozen cells, for CI).
-OUT holds JOB.default.h5, JOB.reference.h5 (an existing cube of the same job resumes, so a finished
-set re-runs only the comparison), study.md, study.csv, flips.csv and timings.csv (wall time of each
-campaign). --default-args / --reference-args add flags to those campaigns (e.g. a solver tolerance
+OUT holds JOB.default.h5, JOB.reference.h5 (written anew each time: a cube of the same job from an
+older engine would otherwise count as done; --resume continues an interrupted study), study.md,
+study.csv, flips.csv and timings.csv (wall time of each campaign). --default-args / --reference-args add flags to those campaigns (e.g. a solver tolerance
 once `rigid campaign` has one). Exit status: 0, 1 when a campaign failed or --check found a target
 missed, 2 bad input.
 
 `--write-scenes` (re)writes the hard set's scenes in models/convergence/ (boxes: ASCII STL meshes
 and TOML scenes resting flush, exactly at equilibrium, so they need no saved state).
 
-The scanned rock of ../shared/scans (SP1) is imported as `bash setup.sh demo` imports it, when the
-scan is there and models/scans/sp1_rock is not; jobs name it `optional`.
+The scanned rock of ../shared/scans (SP1) is imported where the jobs look for it (SCAN_IMPORTS: the
+demo's hull, as `bash setup.sh demo` imports it, and the hard set's compound body), when the scan is
+there and the import is not; jobs name it `optional`, and a job of absent optional objects only is
+left out.
 """
 import argparse
 import csv
@@ -33,6 +35,7 @@ import shlex
 import subprocess
 import sys
 import time
+import tomllib
 
 SOURCE_DIR = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
 SETTINGS = ("default", "reference")
@@ -115,14 +118,29 @@ def write_scenes(root):
 # The campaigns and the comparison
 
 
-def import_scan(rigid):
-    """The SP1 scan, imported as setup.sh demo imports it, when it is there and not yet imported."""
+# The scanned rock's imports: the demo's (setup.sh demo: its convex hull as contact shape) and the
+# hard set's compound body (the scan's convex decomposition)
+SCAN_IMPORTS = {"sp1_rock": [], "sp1_rock_compound": ["--contact-shape", "decompose"]}
+
+
+def import_scans(rigid):
+    """The SP1 scan of ../shared/scans, imported where a job looks for it, unless already there."""
     scan = os.path.join(SOURCE_DIR, "..", "shared", "scans", "sp1_rock.obj")
-    scene = os.path.join(SOURCE_DIR, "models", "scans", "sp1_rock", "sp1_rock.toml")
-    if os.path.isfile(scene) or not os.path.isfile(scan):
-        return
-    subprocess.run([rigid, "model", "import", scan, "--out", scene[:-len(".toml")], "--flatten-base", "0.005"],
-                   cwd=SOURCE_DIR, check=True, stdout=subprocess.DEVNULL)
+    for name, flags in SCAN_IMPORTS.items():
+        prefix = os.path.join(SOURCE_DIR, "models", "scans", name, name)
+        if os.path.isfile(prefix + ".toml") or not os.path.isfile(scan):
+            continue
+        subprocess.run([rigid, "model", "import", scan, "--out", prefix, "--flatten-base", "0.005", *flags],
+                       cwd=SOURCE_DIR, check=True, stdout=subprocess.DEVNULL)
+
+
+def has_objects(job):
+    """False for a job whose every object is optional and absent (the scan job without ../shared)."""
+    with open(job, "rb") as f:
+        objects = tomllib.load(f).get("object", [])
+    here = os.path.dirname(job)
+    return any(not o.get("optional", False) or os.path.isfile(os.path.join(here, o.get("scene", "")))
+               for o in objects)
 
 
 def campaign(args, job, setting, out):
@@ -153,6 +171,8 @@ def main(argv):
     p.add_argument("--default-args", default="", help="extra flags of the default campaigns")
     p.add_argument("--reference-args", default="", help="extra flags of the reference campaigns")
     p.add_argument("--check", action="store_true", help="exit 1 unless the study's targets hold")
+    p.add_argument("--resume", action="store_true",
+                   help="resume the cubes already in OUT (after an interruption) instead of starting anew")
     p.add_argument("--write-scenes", action="store_true", help="write models/convergence/ and exit")
     args = p.parse_args(argv)
     if args.write_scenes:
@@ -168,14 +188,20 @@ def main(argv):
     out = os.path.abspath(args.out or os.path.join(SOURCE_DIR, "out", "convergence" + ("_quick" if args.set == "quick"
                                                                                          else "")))
     os.makedirs(out, exist_ok=True)
-    import_scan(args.rigid)
+    import_scans(args.rigid)
     env_ok = True
     pairs, timings = [], []
     start = time.monotonic()
     for job in jobs_of(args.set):
         name = os.path.splitext(os.path.basename(job))[0]
+        if not has_objects(job):
+            print(f"  {os.path.basename(job)}: left out (its optional objects are absent)")
+            continue
         cubes = {s: os.path.join(out, f"{name}.{s}.h5") for s in SETTINGS}
         for s in SETTINGS:
+            if not args.resume:  # a cube of the same job from an older engine would count as done
+                for stale in glob.glob(glob.escape(cubes[s]) + "*"):
+                    os.remove(stale)
             status, wall = campaign(args, job, s, cubes[s])
             timings.append((name, s, f"{wall:.1f}", status))
             env_ok &= status == 0

@@ -173,6 +173,8 @@ def test_fitted_median_and_dispersion_against_a_second_method(planted):
         assert rows[name]["beta_reference"] == pytest.approx(beta_r, rel=1e-5)
         assert rows[name]["theta_change"] == pytest.approx(theta_c / theta_r - 1, abs=1e-5)
         assert rows[name]["beta_change"] == pytest.approx(beta_c / beta_r - 1, abs=1e-5)
+        low, high = rows[name]["theta_change_interval"]
+        assert low <= rows[name]["theta_change"] <= high
 
 
 def test_targets_and_outputs(planted, tmp_path):
@@ -196,7 +198,10 @@ def test_targets_and_outputs(planted, tmp_path):
     # against itself: no flip, no change, every target met
     same = compare("--pair", planted["paths"]["ref"], planted["paths"]["ref"], "--json", "--check")
     assert same.returncode == 0, same.stderr
-    assert json.loads(same.stdout)["total"]["flipped"] == 0
+    same_rows = json.loads(same.stdout)
+    assert same_rows["total"]["flipped"] == 0
+    for r in same_rows["rows"]:  # the paired bootstrap of a cube against itself changes nothing
+        assert r["theta_change"] == 0 and r["theta_change_interval"] == [0, 0] and r["beta_change_interval"] == [0, 0]
 
 
 def test_the_flip_target_is_checked(planted):

@@ -156,17 +156,50 @@ def read_cells(path):
     return out
 
 
-def lognormal(cells):
-    """(theta_g, beta) of the scalar lognormal fit to an object's simulated cells (every record,
-    variants pooled), NaN when there is no finite estimate."""
-    outcome = cells["outcome"].reshape((-1,) + cells["outcome"].shape[2:])
-    data = fit.Cells(outcome, cells["scales"], cells["pgv_pga"])
-    result = fit.lognormal_fit(*fit.scalar_rows(data, data.records_with_cells()))
+def fit_cells(cells):
+    """An object's cells as rigidpy.fit sees them, variants pooled as records ([V*R, S, A])."""
+    return fit.Cells(cells["outcome"].reshape((-1,) + cells["outcome"].shape[2:]), cells["scales"], cells["pgv_pga"])
+
+
+def lognormal(data, records, weights=None):
+    """(theta_g, beta) of the scalar lognormal fit to the simulated cells of `records` (weighted by
+    bootstrap counts), NaN when there is no finite estimate."""
+    result = fit.lognormal_fit(*fit.scalar_rows(data, records, weights))
     return (result["theta_g"], result["beta"]) if result else (math.nan, math.nan)
 
 
 def relative(candidate, reference):
     return candidate / reference - 1 if reference and math.isfinite(reference) else math.nan
+
+
+# Paired bootstrap of the fits' changes: records drawn with replacement, the same draw for both
+# cubes, so the interval is that of the change itself (the records' sampling noise largely cancels).
+BOOTSTRAP_REPLICATES = 200
+BOOTSTRAP_SEED = 33
+INTERVAL_LEVEL = 0.9
+
+
+def fit_changes(ref, cand):
+    """Fitted theta and beta of both cubes of one object, their relative changes and the changes'
+    paired-bootstrap 90 % intervals (NaN where no fit)."""
+    data_r, data_c = fit_cells(ref), fit_cells(cand)
+    records = np.intersect1d(data_r.records_with_cells(), data_c.records_with_cells())
+    (theta_r, beta_r), (theta_c, beta_c) = lognormal(data_r, records), lognormal(data_c, records)
+    out = dict(theta_default=theta_c, theta_reference=theta_r, theta_change=relative(theta_c, theta_r),
+               beta_default=beta_c, beta_reference=beta_r, beta_change=relative(beta_c, beta_r))
+    draws = {"theta": [], "beta": []}
+    if math.isfinite(theta_r) and math.isfinite(theta_c) and len(records) >= fit.MIN_RECORDS_FOR_INTERVAL:
+        rng = np.random.default_rng(BOOTSTRAP_SEED)
+        for counts in fit.bootstrap_counts(rng, len(records), BOOTSTRAP_REPLICATES):
+            (tr, br), (tc, bc) = lognormal(data_r, records, counts), lognormal(data_c, records, counts)
+            draws["theta"].append(relative(tc, tr))
+            draws["beta"].append(relative(bc, br))
+    for key in ("theta", "beta"):
+        values = [v for v in draws[key] if math.isfinite(v)]
+        tail = 50 * (1 - INTERVAL_LEVEL)
+        out[f"{key}_change_interval"] = [float(v) for v in np.percentile(values, [tail, 100 - tail])] \
+            if values else [math.nan, math.nan]
+    return out
 
 
 def convergence(ref, cand, label):
@@ -188,16 +221,13 @@ def convergence(ref, cand, label):
             margin = survivor_tilt / r["critical"]
         some_survivor = sim & ~(over_r & over_c)
         bins = np.digitize(margin, MARGIN_EDGES[1:-1])
-        theta_r, beta_r = lognormal(r)
-        theta_c, beta_c = lognormal(c)
         row = dict(job=label, object=name, simulated=int(sim.sum()), flipped=int(flipped.sum()),
                    up=int((flipped & over_c).sum()), down=int((flipped & over_r).sum()),
                    ran_default=int(np.isin(c["outcome"], RAN).sum()), ran_reference=int(np.isin(r["outcome"], RAN).sum()),
                    capped_default=int((c["steps"] > 0).sum()), capped_reference=int((r["steps"] > 0).sum()),
                    capped_steps_default=int(c["steps"][c["steps"] > 0].sum()),
                    capped_steps_reference=int(r["steps"][r["steps"] > 0].sum()),
-                   theta_default=theta_c, theta_reference=theta_r, theta_change=relative(theta_c, theta_r),
-                   beta_default=beta_c, beta_reference=beta_r, beta_change=relative(beta_c, beta_r),
+                   **fit_changes(r, c),
                    survived_by_margin=[int((some_survivor & ~np.isnan(margin) & (bins == b)).sum())
                                        for b in range(len(MARGIN_EDGES) - 1)],
                    flipped_by_margin=[int((flipped & ~np.isnan(margin) & (bins == b)).sum())
@@ -248,15 +278,16 @@ def missed_targets(rows):
         for key in ("theta", "beta"):
             change = r[f"{key}_change"]
             if math.isfinite(change) and abs(change) > TARGETS[key]:
-                missed.append(f"{r['job']}/{r['object']}: {key} changes by {100 * change:+.2f} % "
+                missed.append(f"{r['job']}/{r['object']}: {key} changes by {_change(r, key)} "
                               f"(target within {100 * TARGETS[key]:g} %)")
     return missed
 
 
 STUDY_COLUMNS = ("job", "object", "simulated", "flipped", "flipped_share", "up", "down", "ran_default",
                  "capped_default", "capped_default_share", "capped_steps_default", "ran_reference", "capped_reference",
-                 "capped_steps_reference", "theta_default", "theta_reference", "theta_change", "beta_default",
-                 "beta_reference", "beta_change")
+                 "capped_steps_reference", "theta_default", "theta_reference", "theta_change", "theta_change_low",
+                 "theta_change_high", "beta_default", "beta_reference", "beta_change", "beta_change_low",
+                 "beta_change_high")
 FLIP_COLUMNS = ("job", "object", "variant", "record", "scale_g", "rotation", "reference", "default",
                 "tilt_reference_deg", "tilt_default_deg", "critical_tilt_deg", "margin", "slip_reference_m",
                 "slip_default_m", "capped_default", "capped_reference")
@@ -270,11 +301,24 @@ def _num(v):
     return f"{v:.4g}" if isinstance(v, float) and math.isfinite(v) else ("" if isinstance(v, float) else str(v))
 
 
+def _change(row, key):
+    """The relative change of a fitted parameter with its paired-bootstrap interval."""
+    change = row[f"{key}_change"]
+    if not math.isfinite(change):
+        return "-"
+    low, high = row[f"{key}_change_interval"]
+    interval = f"; {100 * INTERVAL_LEVEL:.0f} %: {100 * low:+.1f} to {100 * high:+.1f} %" if math.isfinite(low) else ""
+    return f"{100 * change:+.1f} %{interval}"
+
+
 def csv_rows(rows):
     table = []
     for r in rows + [total(rows)]:
         share = shares(r)
         full = dict(r, flipped_share=share["flipped"], capped_default_share=share["capped_default"])
+        for key in ("theta", "beta"):
+            low, high = r.get(f"{key}_change_interval", (math.nan, math.nan))
+            full.update({f"{key}_change_low": low, f"{key}_change_high": high})
         table.append([_num(full.get(k, math.nan)) for k in STUDY_COLUMNS])
     return table
 
@@ -282,15 +326,15 @@ def csv_rows(rows):
 def markdown(rows):
     """The study table and the flips by distance from the failure rule, as markdown."""
     lines = ["| job | object | cells simulated in both | flipped (up / down) | capped cells, default | capped steps, "
-             "default | capped cells, reference | median theta (g): default / reference | dispersion beta: "
-             "default / reference |",
+             "default | capped cells, reference | median theta (g): default / reference (change; paired "
+             "bootstrap interval) | dispersion beta: default / reference (change; interval) |",
              "|---|---|---|---|---|---|---|---|---|"]
     for r in rows + [total(rows)]:
         share = shares(r)
         fits = ("largest change " + _pct(r["theta_change"], 1), "largest change " + _pct(r["beta_change"], 1)) \
             if r["job"] == "all" else (
-                f"{_num(r['theta_default'])} / {_num(r['theta_reference'])} ({_pct(r['theta_change'], 1)})",
-                f"{_num(r['beta_default'])} / {_num(r['beta_reference'])} ({_pct(r['beta_change'], 1)})")
+                f"{_num(r['theta_default']) or '-'} / {_num(r['theta_reference']) or '-'} ({_change(r, 'theta')})",
+                f"{_num(r['beta_default']) or '-'} / {_num(r['beta_reference']) or '-'} ({_change(r, 'beta')})")
         bold = "**" if r["job"] == "all" else ""
         lines.append(f"| {bold}{r['job']}{bold} | {r['object']} | {r['simulated']} | {r['flipped']} = "
                      f"{_pct(share['flipped'])} ({r['up']} / {r['down']}) | {r['capped_default']} = "
