@@ -3,7 +3,7 @@
 #   bash setup.sh demo    install, build, run the main job (the demo)
 #   bash setup.sh test    install, build, run every test but the long physics runs (what CI runs)
 #   bash setup.sh long    install, build, run only the long physics runs (ctest -L long, ~3 min
-#                         plus ~15 min of the contact solve's convergence study, docs/accuracy.md;
+#                         plus a few minutes of the contact solve's convergence study, docs/accuracy.md;
 #                         list and reasons in tests/labels.cmake)
 #   bash setup.sh build   install and build only
 #   bash setup.sh sanitize  install, build the engine libraries and a representative subset of
