@@ -3,21 +3,22 @@
 solve"): does a campaign's outcome depend on where the rigid contact solve stops?
 
 Runs every job of a set twice, at the default settings and at `--accuracy reference` (the
-converged oracle), then compares each pair cell by cell with `python3 -m rigidpy.outcome_agreement
---pair` (flips and their distance from the failure rule, capped contact solves, fitted median and
+converged oracle once the converging solver is in; before it, a smaller step with the same solve),
+then compares each pair cell by cell with `python3 -m rigidpy.outcome_agreement --pair` (flips and their distance from the failure rule, capped contact solves, fitted median and
 dispersion) and writes its tables:
 
     /usr/bin/python3 tests/bench/convergence_study.py [--set hard|shipped|quick] [--np 2] [--check]
-        [--rigid build/bin/rigid] [--out out/convergence] [--default-args "..."] [--reference-args "..."]
+        [--rigid build/bin/rigid] [--out DIR] [--default-args "..."] [--reference-args "..."]
 
 Sets: `hard` (jobs/convergence/*.toml but quick.toml: slender, stacked, compound, sliding, long
 free rocking and 3-10 g scenes, over 1,000 cells), `shipped` (jobs/demo.toml and
 jobs/uncertainty_demo.toml), `quick` (jobs/convergence/quick.toml, a few dozen cells, for CI).
-OUT holds JOB.default.h5, JOB.reference.h5 (written anew each time: a cube of the same job from an
-older engine would otherwise count as done; --resume continues an interrupted study), study.md,
-study.csv, flips.csv and timings.csv (wall time of each campaign). --default-args / --reference-args add flags to those campaigns (e.g. a solver tolerance
-once `rigid campaign` has one). Exit status: 0, 1 when a campaign failed or --check found a target
-missed, 2 bad input.
+OUT (default out/convergence, out/convergence_shipped, out/convergence_quick) holds JOB.default.h5
+and JOB.reference.h5 (written anew each time: a cube of the same job from an older engine would
+otherwise count as done; --resume continues an interrupted study), study.md, study.csv, flips.csv
+and timings.csv (wall time of each campaign). --default-args / --reference-args add flags to those
+campaigns (e.g. a solver tolerance once `rigid campaign` has one). Exit status: 0, 1 when a
+campaign failed or --check found a target missed, 2 bad input.
 
 `--write-scenes` (re)writes the hard set's scenes in models/convergence/ (boxes: ASCII STL meshes
 and TOML scenes resting flush, exactly at equilibrium, so they need no saved state).
@@ -166,7 +167,8 @@ def main(argv):
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--set", choices=("hard", "shipped", "quick"), default="hard")
     p.add_argument("--rigid", default=os.path.join(SOURCE_DIR, "build", "bin", "rigid"))
-    p.add_argument("--out", default=None, help="default out/convergence (out/convergence_quick for --set quick)")
+    p.add_argument("--out", default=None,
+                   help="default out/convergence, out/convergence_shipped or out/convergence_quick")
     p.add_argument("--np", type=int, default=2, help="MPI ranks per campaign (1: no mpirun)")
     p.add_argument("--default-args", default="", help="extra flags of the default campaigns")
     p.add_argument("--reference-args", default="", help="extra flags of the reference campaigns")
@@ -185,8 +187,8 @@ def main(argv):
         sys.stderr.write("convergence_study: error: --np must be at least 1\n")
         return 2
     args.rigid = os.path.abspath(args.rigid)
-    out = os.path.abspath(args.out or os.path.join(SOURCE_DIR, "out", "convergence" + ("_quick" if args.set == "quick"
-                                                                                         else "")))
+    out = os.path.abspath(args.out or os.path.join(SOURCE_DIR, "out", "convergence" + ("" if args.set == "hard"
+                                                                                         else "_" + args.set)))
     os.makedirs(out, exist_ok=True)
     import_scans(args.rigid)
     env_ok = True
