@@ -4,8 +4,9 @@ solve"): does a campaign's outcome depend on where the rigid contact solve stops
 
 Runs every job of a set twice, at the default settings and at `--accuracy reference` (the
 converged oracle once the converging solver is in; before it, a smaller step with the same solve),
-then compares each pair cell by cell with `python3 -m rigidpy.outcome_agreement --pair` (flips and their distance from the failure rule, capped contact solves, fitted median and
-dispersion) and writes its tables:
+then compares each pair cell by cell with `python3 -m rigidpy.outcome_agreement --pair` (flips
+and their distance from the failure rule, capped contact solves, fitted median and dispersion) and
+writes its tables:
 
     /usr/bin/python3 tests/bench/convergence_study.py [--set hard|shipped|quick] [--np 2] [--check]
         [--rigid build/bin/rigid] [--out DIR] [--default-args "..."] [--reference-args "..."]
