@@ -8,7 +8,9 @@ against independent oracles on synthetic cubes with planted probit outcomes (tes
    to the lognormal's CDF there; no "inf" or "x 0" factors.
 3. The NRML's maxIML where the lognormal CDF reaches 0.99 (closed form theta exp(beta Phi^-1(0.99))
    from the exported mean and stddev), or the campaign's top scale when higher, or (option) the top
-   scale; id, assetCategory and lossCategory from the options.
+   scale; noDamageLimit = minIML, the lower of the lowest scale and the PGA where P = 1e-4 (OpenQuake
+   would zero the curve between a higher limit and minIML); id, assetCategory and lossCategory from
+   the options (test_openquake_nrml.py reads the exports with OpenQuake itself).
 4. Bins fitted on fewer than 3 records flagged in the table and the CSV; left out of the NRML by
    --nrml-min-records.
 5. Bootstrap intervals reaching beyond the campaign's scales flagged.
@@ -181,6 +183,17 @@ def test_nrml_and_flags(planted):
         ok &= abs(got / want - 1) < 1e-9 and stats.norm.cdf(math.log(got / theta) / beta) >= 0.99 - 1e-9
         beyond += got > top * (1 + 1e-9)
     assert ok and functions, f"maxIML of all {len(functions)} functions = max(theta exp(beta Phi^-1(0.99)), top scale)"
+    low = float(tp.SCALES[tp.SCALES > 0].min())
+    for fn in functions:
+        imls, params = fn.find(f"{NS}imls"), fn.find(f"{NS}params")
+        theta, beta = lognormal_of(float(params.get("mean")), float(params.get("stddev")))
+        limit, lower = float(imls.get("noDamageLimit")), float(imls.get("minIML"))
+        p_low = stats.norm.cdf(math.log(lower / theta) / beta)
+        # OpenQuake sets P = 0 at or below noDamageLimit and evaluates max(PGA, minIML) above it
+        assert 0 < limit <= lower <= low and p_low <= 1e-4 * (1 + 1e-9) and (
+            lower == low or abs(p_low / 1e-4 - 1) < 1e-6), (f"{fn.get('id')}: noDamageLimit {limit:g} <= minIML "
+                                                            f"{lower:g}, the lower of the lowest scale {low:g} g and "
+                                                            f"the PGA where P = 1e-4 (P there {p_low:.3g})")
     assert beyond > 0, f"{beyond} function(s) carried beyond the campaign's top scale {top:g} g to P = 0.99"
     r = run(FRAGILITY, "fragility", cube, "--nrml", xml, "--no-store", "--bootstrap", "20", "--nrml-max-probability", "0")
     tops = {float(fn.find(f"{NS}imls").get("maxIML")) for fn in ET.parse(xml).getroot().iter(f"{NS}fragilityFunction")}

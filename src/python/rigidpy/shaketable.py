@@ -78,7 +78,7 @@ def lab_cells(lab_rows, motion_index):
         m = motion_index[row["record"]]
         n[m, t] = 1
         k[m, t] = float(row["overturned"])
-        pga[t] = float(row["pga_g"])
+        pga[t] = float(row["measured_pga_g"])
     return BinnedCells(k, n, pga)
 
 
@@ -184,8 +184,8 @@ def fragility_command(argv=None):
     args = ap.parse_args(argv)
 
     cube = Cube(args.cube)
-    lab_rows = read_csv(args.lab, ["test_no", "record", "pga_g", "overturned"])
-    motion_rows = read_csv(args.motions, ["record", "pgv_over_pga_s"])
+    lab_rows = read_csv(args.lab, ["test_no", "record", "measured_pga_g", "overturned"])
+    motion_rows = read_csv(args.motions, ["record", "measured_pgv_over_pga_s"])
     if len(motion_rows) != len(cube.records):
         raise InputError(f"{args.motions}: {len(motion_rows)} motions, the cube has {len(cube.records)} records")
     model_rows = read_csv(args.model, ["record_index", "scale_g", "p_overturn", "cells"])
@@ -196,7 +196,7 @@ def fragility_command(argv=None):
     unknown = sorted({row["record"] for row in lab_rows} - set(motion_index))
     if unknown:
         raise InputError(f"{args.lab}: tests of motions the campaign did not run: {', '.join(unknown)}")
-    pgv_pga = np.array([float(row["pgv_over_pga_s"]) for row in motion_rows])
+    pgv_pga = np.array([float(row["measured_pgv_over_pga_s"]) for row in motion_rows])
     edges = bin_edges(args.bins, pgv_pga)
     lab = lab_cells(lab_rows, motion_index)
     model, model_p, simulated = model_cells(cube, model_rows)
