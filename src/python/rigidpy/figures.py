@@ -358,7 +358,7 @@ def plot_records(cube, obj, fit, norm_, path):
 
 def plot_variant_band(cube, name, curves, pooled, pgv_pga_s, path):
     load_matplotlib()
-    fig, ax = plt.subplots(figsize=(11, 5.6), dpi=DPI)
+    fig, ax = plt.subplots(figsize=(DOUBLE_COLUMN_IN, 4.2), dpi=DPI)
     a = pooled["pga_g"]
     for k, (theta, beta, how) in curves:
         ax.plot(a, fragility_fit.lognormal_probability(a, theta, beta), color="0.55", lw=0.7,
@@ -366,68 +366,80 @@ def plot_variant_band(cube, name, curves, pooled, pgv_pga_s, path):
     lo, hi = pooled["percentiles"][0], pooled["percentiles"][-1]
     ax.fill_between(a, pooled["band_lower"], pooled["band_upper"], color="tab:blue", alpha=0.25, lw=0, zorder=1,
                     label=f"{lo}-{hi} % of the variants' P(PGA) (epistemic band)")
-    ax.plot(a, pooled["mixture_probability"], color="black", lw=2.6, zorder=4,
+    ax.plot(a, pooled["mixture_probability"], color="black", lw=2.2, zorder=4,
             label=f"pooled: mean over variants (median {pooled['median_g']:.3g} g)")
     ax.plot([], [], color="0.55", lw=0.7, label="one variant (dotted: empirical threshold, a step)")
     ax.set_xscale("log")
     ax.set_xlim(a[0], a[-1])
     ax.xaxis.set_major_formatter(mticker.FormatStrFormatter("%g"))
-    if a[-1] / a[0] < 100:  # a decade or two: label the minor ticks too, else one label shows
-        ax.xaxis.set_minor_formatter(mticker.FormatStrFormatter("%g"))
-        ax.tick_params(axis="x", which="minor", labelsize=7)
+    if a[-1] / a[0] < 100:  # a decade or two: label some minor ticks too, else one label shows
+        ax.xaxis.set_minor_formatter(mticker.FuncFormatter(
+            lambda v, _: f"{v:g}" if round(v / 10 ** math.floor(math.log10(v) + 1e-9)) in (2, 5) else ""))
     ax.set_ylim(-0.02, 1.02)
     ax.set_xlabel("PGA = target GMRotI50 PGA (g)")
     ax.set_ylabel("P(overturn)")
     ax.grid(True, which="both", color="0.9", lw=0.6)
-    ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8, borderaxespad=0)  # off the curves
-    ax.set_title(f"{name}: fragility of {len(curves)} variants at PGV/PGA {pgv_pga_s:.3g} s\n"
-                 f"{FIT_LABEL}; cube {os.path.basename(cube.path)}", fontsize=10)
-    fig.tight_layout()
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.15), ncol=2, frameon=False)  # off the curves
+    ax.set_title(wrapped(f"{name}: fragility of {len(curves)} variants at PGV/PGA {pgv_pga_s:.3g} s; "
+                         f"cube {os.path.basename(cube.path)}", DOUBLE_COLUMN_IN - 0.5))
+    fig.tight_layout(rect=(0, 0.04, 1, 1))
+    style.add_fit_note(fig)
     cube_files.save_figure(fig, path, "--out", INPUTS, dpi=DPI)
     plt.close(fig)
 
 
-
 def plot_diff(view_a, view_b, name, fa, ca_, fb, cb_, d, stats, la, lb, fits, path, counts):
+    """The two cubes' maps side by side above their difference, on a page's width."""
     load_matplotlib()
-    fig = plt.figure(figsize=(19.5, 6.4), dpi=DPI)
-    outer = fig.add_gridspec(1, 2, width_ratios=[2.1, 1.08], wspace=0.2,
-                             left=0.06, right=0.965, bottom=0.2, top=0.84)
-    left = outer[0].subgridspec(1, 3, width_ratios=[1, 1, 0.045], wspace=0.07)
-    right = outer[1].subgridspec(1, 2, width_ratios=[1, 0.045], wspace=0.06)
-    ax_a, ax_b, cax_p = fig.add_subplot(left[0]), fig.add_subplot(left[1]), fig.add_subplot(left[2])
-    ax_d, cax_d = fig.add_subplot(right[0]), fig.add_subplot(right[1])
+    fig = plt.figure(figsize=(DOUBLE_COLUMN_IN, 8.4), dpi=DPI)
+    outer = fig.add_gridspec(2, 1, height_ratios=[1, 1], hspace=0.42, left=0.12, right=0.9, bottom=0.17, top=0.9)
+    top = outer[0].subgridspec(1, 3, width_ratios=[1, 1, 0.05], wspace=0.08)
+    bottom = outer[1].subgridspec(1, 3, width_ratios=[0.5, 1, 0.05], wspace=0.08)
+    ax_a, ax_b, cax_p = fig.add_subplot(top[0]), fig.add_subplot(top[1]), fig.add_subplot(top[2])
+    ax_d, cax_d = fig.add_subplot(bottom[1]), fig.add_subplot(bottom[2])
     cmap = plt.get_cmap("viridis")
     pn = mcolors.Normalize(0.0, 1.0)
     # the same rows in the three panels: the bins with records in either cube
     rows = MapRows(view_a.edges, np.concatenate([view_a.pgv_pga, view_b.pgv_pga]))
     for ax, v, frag, cnt, lab, fit in ((ax_a, view_a, fa, ca_, la, fits[0]), (ax_b, view_b, fb, cb_, lb, fits[1])):
-        mesh, _, _, _ = draw_surface(ax, v, frag, cnt, cmap, pn, counts, rows)
-        ax.set_title(f"{lab}: P(overturn)  ({os.path.basename(v.path)})", fontsize=10)
+        mesh = draw_surface(ax, v, frag, cnt, cmap, pn, counts, rows)[0]
+        ax.set_title(wrapped(f"{lab}: P(overturn) ({os.path.basename(v.path)})", 2.6))
         if fit is not None:
             draw_contours(ax, rows, fit[0], fit[1], fit[2]["pgv_pga_range_s"])
+        thin_ticks(ax)
     fig.colorbar(mesh, cax=cax_p, ticks=[0, 0.25, 0.5, 0.75, 1], label="P(overturn)")
     dmap = plt.get_cmap("RdBu_r")
     dn = mcolors.Normalize(-1.0, 1.0)
-    mesh_d, _, _, _ = draw_surface(ax_d, view_a, d, None, dmap, dn, "none", rows)
+    mesh_d = draw_surface(ax_d, view_a, d, None, dmap, dn, "none", rows)[0]
+    thin_ticks(ax_d)
     handles = []
     for fit, color, lab in ((fits[0], "black", la), (fits[1], "tab:orange", lb)):
         if fit is not None:
             handles += draw_contours(ax_d, rows, fit[0], fit[1], fit[2]["pgv_pga_range_s"], color=color,
                                      label_prefix=f"{lab} ", levels=(50,))
     ax_d.set_title(f"difference {la} \u2212 {lb} (red: {la} more fragile)\n"
-                   f"mean \u00b1 sd = {stats[1]:+.3f} \u00b1 {stats[2]:.3f} over {stats[0]} cells", fontsize=10)
-    for ax in (ax_b, ax_d):
-        ax.set_ylabel("")
+                   f"mean \u00b1 sd = {stats[1]:+.3f} \u00b1 {stats[2]:.3f} over {stats[0]} cells")
+    ax_b.set_ylabel("")
     ax_b.tick_params(axis="y", labelleft=False)
     fig.colorbar(mesh_d, cax=cax_d, ticks=[-1, -0.5, 0, 0.5, 1], label=f"P({la}) \u2212 P({lb})")
     leg = [mpatches.Patch(facecolor="white", edgecolor="0.5", hatch="///", label="no cell in both cubes")]
     if fits[0] is not None or fits[1] is not None:
         leg += [mlines.Line2D([], [], color="black", lw=2, ls=CONTOUR_STYLE[k]["ls"], label=f"{k} % contour")
                 for k in CONTOUR_LEVELS]
-        leg += [mlines.Line2D([], [], color=h.get_color(), lw=2, label=f"{h.get_label()} (right)") for h in handles]
-    fig.legend(handles=leg, loc="lower center", ncol=len(leg), fontsize=9, frameon=False,
-               title=FIT_LABEL if len(leg) > 1 else None, title_fontsize=9)
-    fig.suptitle(f"{name}: {la} vs {lb}, binned fragility (each cell: mean over the bin's records)", fontsize=12)
+        leg += [mlines.Line2D([], [], color=h.get_color(), lw=2, label=f"{h.get_label()} (bottom)") for h in handles]
+    fig.legend(handles=leg, loc="lower center", bbox_to_anchor=(0.5, 0.035), ncol=3, frameon=False,
+               title=FIT_NAME if len(leg) > 1 else None)
+    if len(leg) > 1:
+        style.add_fit_note(fig)
+    fig.suptitle(f"{name}: {la} vs {lb}, binned fragility (each cell: mean over the bin's records)")
     cube_files.save_figure(fig, path, "--out", INPUTS, dpi=DPI)
     plt.close(fig)
+
+
+def thin_ticks(ax, most=6):
+    """At most `most` PGA tick labels on a narrow map, so they do not run into each other."""
+    ticks = ax.get_xticks()
+    if len(ticks) > most:
+        step = int(math.ceil(len(ticks) / most))
+        ax.set_xticks(ticks[::step])
+        ax.set_xticklabels([f"{v:g}" for v in ticks[::step]])
