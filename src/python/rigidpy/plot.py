@@ -50,6 +50,7 @@ try:
     from .cube import Cube, ObjectData
     from .command_line import OneLineParser, add_old_spelling
     from .errors import InputError
+    from .figure_style import FIGURE_FORMATS
     from .figures import INPUTS, file_stem, plot_diff, plot_map, plot_records, plot_variant_band, safe_name
     from .fit import fit_sigma
     from .map_fit import (CONTOUR_LEVELS, FIT_LABEL, Normalisation, fit_object, map_lognormal,
@@ -60,7 +61,6 @@ except ImportError as e:  # pragma: no cover
                      f"python3-scipy and run with /usr/bin/python3 (this is {sys.executable})\n")
     sys.exit(2)
 
-FIGURE_FORMATS = ("png", "pdf", "svg")
 # The study's reported mismatch (2D model minus Rigid 3D, mean and sd over cells; physics.md 11).
 STUDY_MISMATCH_2D_MINUS_3D = {0.1: (0.03, 0.12), 0.2: (0.02, 0.08), 0.3: (0.02, 0.10), 0.4: (0.03, 0.14)}
 
@@ -445,8 +445,9 @@ def build_parser():
                         help="degree of the polynomial ln sigma(x) (default 0: constant sigma)")
         sp.add_argument("--counts", choices=("auto", "on", "off"), default="auto",
                         help="print the number of records in each map cell (auto: when there are <= 25 scales)")
-        sp.add_argument("--format", choices=FIGURE_FORMATS, default="png",
-                        help="figure file format: png (default; raster at 120 dpi), pdf or svg (vector, for a paper)")
+        sp.add_argument("--figure-format", dest="format", choices=FIGURE_FORMATS,
+                        help="figure file format: png (default; raster at 300 dpi), pdf or svg (vector, for a paper)")
+        add_old_spelling(sp, "--format", "--figure-format", choices=FIGURE_FORMATS)
 
     m = sub.add_parser("maps", help="per object: fragility map PNG with the fit's 1/50/99 %% contours, "
                                     "per-record curves PNG, fit.json")
@@ -488,6 +489,8 @@ def build_parser():
 
 def main(argv=None):
     args = build_parser().parse_args(argv)
+    if hasattr(args, "format") and args.format is None:  # None until parsed: the old spelling may set it
+        args.format = "png"
     INPUTS[:] = [p for key in ("cube", "cube_a", "cube_b") for p in [getattr(args, key, None)] if p]
     INPUTS.extend(getattr(args, "cubes", None) or [])
     try:
