@@ -31,11 +31,28 @@ def _visible(artist):
     return True
 
 
+def _undrawn_tick_labels(fig):
+    """Tick labels matplotlib keeps but does not draw: ticks outside the view, labels switched off."""
+    undrawn = set()
+    for ax in fig.axes:
+        for axis in (ax.xaxis, ax.yaxis):
+            ticks = axis.get_major_ticks() + axis.get_minor_ticks()
+            drawn = set(id(t) for t in axis._update_ticks())  # the ticks matplotlib draws in view
+            for t in ticks:
+                for label in (t.label1, t.label2):
+                    if id(t) not in drawn or not label.get_visible():
+                        undrawn.add(id(label))
+    return undrawn
+
+
 def texts(fig):
-    """Every visible, non-empty text artist of the figure."""
+    """Every text drawn: visible, not empty, in a visible axes (or the figure), tick labels only
+    of ticks in view."""
+    undrawn = _undrawn_tick_labels(fig)
     out = []
     for t in fig.findobj(lambda a: hasattr(a, "get_text") and hasattr(a, "get_fontsize")):
-        if t.get_text().strip() and t.get_visible() and (t.axes is None or t.axes.get_visible()):
+        if (t.get_text().strip() and t.get_visible() and (t.axes is None or t.axes.get_visible())
+                and id(t) not in undrawn):
             out.append(t)
     return out
 
@@ -97,6 +114,9 @@ def problems(fig):
                 if not ln.get_visible() or len(np.atleast_1d(ln.get_xdata())) == 0:
                     continue
                 xy = ln.get_transform().transform(np.column_stack([ln.get_xdata(), ln.get_ydata()]).astype(float))
+                if ln.get_linestyle() not in ("None", "", " ") and len(xy) > 1:  # the segments too, not only vertices
+                    t = np.linspace(0, 1, 24)[:, None, None]
+                    xy = (xy[:-1][None] * (1 - t) + xy[1:][None] * t).reshape(-1, 2)
                 xy = xy[np.all(np.isfinite(xy), axis=1)]
                 clip = ax.bbox  # only what the axes show
                 xy = xy[(xy[:, 0] >= clip.x0) & (xy[:, 0] <= clip.x1) & (xy[:, 1] >= clip.y0) & (xy[:, 1] <= clip.y1)]
