@@ -297,3 +297,27 @@ def test_figures(planted):
         assert r.returncode == 0 and len(heads) == 2 and all(h.startswith(magic) for h in heads), f"maps --format {fmt}: {[f for f in files if f.endswith(fmt)]}"
     r = run(PLOT, "maps", cube, "--out", os.path.join(tmp, "x"), "--format", "gif")
     assert r.returncode == 2 and len(r.stderr.splitlines()) == 1, "--format gif: one line, exit 2"
+
+
+# --------------------------------------------------------------------------------------------
+# 8. one median per fit
+
+
+def test_one_median_per_fit(planted):
+    """`rigid plot maps` and `rigid fragility` read the same vector fit at the same PGV/PGA (the
+    records' median, computed here from the planted records) and report the same median and
+    dispersion: one estimate, not two."""
+    tmp, cube, pgv = planted
+    out = os.path.join(tmp, "median_maps")
+    r = run(PLOT, "maps", cube, "--out", out)
+    assert r.returncode == 0, r.stderr
+    with open(os.path.join(out, "fit.json")) as fh:
+        maps = json.load(fh)["objects"][0]
+    r = run(FRAGILITY, "fragility", cube, "--json", "--no-store", "--bootstrap", "20")
+    point = json.loads(r.stdout)["objects"][0]["vector"]["points"][0]
+    median_s = float(np.median(pgv))
+    assert abs(maps["reference_pgv_pga_s"] / median_s - 1) < 1e-12 and abs(point["pgv_pga_s"] / median_s - 1) < 1e-12, f"both at the records' median PGV/PGA {median_s:.4g} s"
+    assert abs(maps["reference_theta_g"] / point["theta_g"] - 1) < 1e-6 and abs(maps["reference_beta"] / point["beta"] - 1) < 1e-6, f"maps {maps['reference_theta_g']:.6g} g, {maps['reference_beta']:.6g}; fragility {point['theta_g']:.6g} g, {point['beta']:.6g}"
+    printed = re.search(r"median PGA (\S+) g", subprocess.run([sys.executable, PLOT, "maps", cube, "--out", out],
+                                                              capture_output=True, text=True).stdout)
+    assert printed and abs(float(printed.group(1)) / point["theta_g"] - 1) < 1e-3, "the printed median is that one"

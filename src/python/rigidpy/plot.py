@@ -143,15 +143,17 @@ def _json_clean(v):
 
 def fit_summary(obj, info, f, norm_):
     """The fit in words a reader can use: its median PGA and dispersion at the records' median
-    PGV/PGA, and the coefficients with what they multiply."""
-    x_mid = float(np.mean(info["x_range"]))
-    sig = float(fit_sigma(f, np.array([x_mid]))[0])
+    PGV/PGA (fit.reference_pgv_pga_s, where `rigid fragility` reads its vector fit: the same
+    median), and the coefficients with what they multiply."""
+    s, theta, sig = info["reference_pgv_pga_s"], info["reference_theta_g"], info["reference_beta"]
+    same = info["mu_degree"] == 1 and info["sigma_degree"] == 0
     mu = f["mu_coefficients"]
-    theta = float(norm_.pga_g(float(np.polyval(mu[::-1], x_mid))))
     u, x = norm_.describe()
     terms = " + ".join([f"{mu[0]:.4g}"] + [f"({c:.4g}) x" + (f"^{k}" if k > 1 else "") for k, c in enumerate(mu) if k])
     return (f"{obj.label}: {info['n_cells']} cells ({info['n_overturned']} overturned) of {info['n_records']} records; "
-            f"at mid PGV/PGA of the records: median PGA {theta:.3g} g, dispersion sigma {sig:.3g} (of ln PGA)\n"
+            f"at the records' median PGV/PGA {s:.3g} s ({'the fit and point of' if same else 'other degrees than'} "
+            f"rigid fragility's vector fit): median PGA {theta:.4g} g, "
+            f"dispersion sigma {sig:.3g} (of ln PGA)\n"
             f"  fit P = Phi((u - mu(x)) / sigma(x)), u = {u}, x = {x}: mu(x) = {terms}, "
             f"ln sigma = {', '.join(f'{c:.4g}' for c in f['log_sigma_coefficients'])} (fit.json has them all)")
 
