@@ -210,8 +210,22 @@ def test_nrml_and_flags(planted):
     ids = [fn.get("id") for fn in ET.parse(xml).getroot().iter(f"{NS}fragilityFunction")]
     assert (r.returncode == 0 and not any("0.06-0.08" in i for i in ids) and len(ids) == len(functions) - 1
           and "rock_pgv_pga_0.06-0.08s (2 record(s))" in r.stdout), "--nrml-min-records 3 leaves the 2-record bin out of the NRML, and says so"
+    # --nrml-rotd50-ratio R: the same functions with PGA in RotD50 = R x GMRotI50 (theta, IMLs x R, beta kept)
+    plain = os.path.join(tmp, "plain.xml")
+    rotd = os.path.join(tmp, "rotd50.xml")
+    run(FRAGILITY, "fragility", cube, "--nrml", plain, "--no-store", "--bootstrap", "20")
+    r = run(FRAGILITY, "fragility", cube, "--nrml", rotd, "--no-store", "--bootstrap", "20", "--nrml-rotd50-ratio", "1.1")
+    ok = r.returncode == 0
+    for a, b in zip(ET.parse(plain).getroot().iter(f"{NS}fragilityFunction"),
+                    ET.parse(rotd).getroot().iter(f"{NS}fragilityFunction")):
+        ta, ba = lognormal_of(float(a.find(f"{NS}params").get("mean")), float(a.find(f"{NS}params").get("stddev")))
+        tb, bb = lognormal_of(float(b.find(f"{NS}params").get("mean")), float(b.find(f"{NS}params").get("stddev")))
+        ok &= abs(tb / ta - 1.1) < 1e-9 and abs(bb / ba - 1) < 1e-9 and all(
+            abs(float(b.find(f"{NS}imls").get(k)) / float(a.find(f"{NS}imls").get(k)) - 1.1) < 1e-9
+            for k in ("minIML", "maxIML", "noDamageLimit"))
+    assert ok and "RotD50" in ET.parse(rotd).getroot().find(f"{NS}fragilityModel").find(f"{NS}description").text, "--nrml-rotd50-ratio 1.1: theta and the IMLs x 1.1, beta kept, said in the description"
     for bad in (["--nrml-id", ""], ["--nrml-asset-category", "a<b"], ["--nrml-max-probability", "0.3"],
-                ["--nrml-min-records", "-1"]):
+                ["--nrml-min-records", "-1"], ["--nrml-rotd50-ratio", "3"], ["--nrml-at-pgv-pga", "-1"]):
         r = run(FRAGILITY, "fragility", cube, "--no-store", *bad)
         assert r.returncode == 2 and len(r.stderr.splitlines()) == 1 and bad[0] in r.stderr, f"{' '.join(bad) or repr('')}: one line naming the option, exit 2"
 

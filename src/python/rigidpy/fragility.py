@@ -60,6 +60,9 @@ def check_nrml_options(args):
             raise InputError(f"--nrml-at-pgv-pga {args.nrml_at_pgv_pga}: must be a positive number of seconds")
         if not args.nrml:
             raise InputError("--nrml-at-pgv-pga: give --nrml FILE too (the NRML it shapes)")
+    if args.nrml_rotd50_ratio is not None and not 0.5 <= args.nrml_rotd50_ratio <= 2:
+        raise InputError(f"--nrml-rotd50-ratio {args.nrml_rotd50_ratio}: must be RotD50 / GMRotI50 PGA, between 0.5 "
+                         f"and 2 (about 1.0-1.1 for recorded motions)")
     if args.nrml_min_records < 0:
         raise InputError(f"--nrml-min-records {args.nrml_min_records}: must be 0 or more")
     for option, value in (("--nrml-id", args.nrml_id), ("--nrml-asset-category", args.nrml_asset_category),
@@ -137,16 +140,21 @@ def fragility_locked(args, state):
                   f"{args.nrml_min_records} records")
         if not functions:
             raise InputError(f"{args.cube}: no PGV/PGA bin has a finite fit: no NRML written")
+        ratio = args.nrml_rotd50_ratio
+        if ratio is not None:  # a lognormal of GMRotI50 PGA is one of RotD50 = ratio x GMRotI50, beta unchanged
+            functions = [dict(fn, **{k: fn[k] * ratio for k in ("theta_g", "min_iml", "max_iml", "no_damage_limit")})
+                         for fn in functions]
+        measure = "GMRotI50" if ratio is None else f"RotD50 (taken as {ratio:g} x GMRotI50)"
         tree = nrml.fragility_model(args.nrml_id or os.path.splitext(os.path.basename(args.cube))[0],
                                     f"Overturning fragility of precariously balanced rocks from the Rigid cube "
                                     f"{os.path.basename(args.cube)}: " + (
-                                        f"one lognormal function of GMRotI50 PGA (g) per object, its vector fit at the "
+                                        f"one lognormal function of {measure} PGA (g) per object, its vector fit at the "
                                         f"site's GMRotI50 PGV/PGA {args.nrml_at_pgv_pga:g} s"
                                         if args.nrml_at_pgv_pga is not None else
-                                        "one lognormal function of GMRotI50 PGA (g) per object and PGV/PGA bin (a site "
-                                        "uses the bin holding its PGV/PGA)"
+                                        f"one lognormal function of {measure} PGA (g) per object and PGV/PGA bin (a "
+                                        f"site uses the bin holding its PGV/PGA)"
                                         if cube.variants is None else
-                                        "per object one lognormal function of GMRotI50 PGA (g) per variant (id _vK) "
+                                        f"per object one lognormal function of {measure} PGA (g) per variant (id _vK) "
                                         "at the chosen PGV/PGA, and the pooled one (id _pooled: moment-matched "
                                         "lognormal of the equally weighted mixture of the variants)") + nrml_range_text(max_p),
                                     functions, asset_category=args.nrml_asset_category,
@@ -209,6 +217,10 @@ def build_parser():
     f.add_argument("--nrml-at-pgv-pga", type=float, metavar="S",
                    help="the NRML holds one function per object, its vector fit at the site's GMRotI50 PGV/PGA S "
                         "(s), instead of one per PGV/PGA bin")
+    f.add_argument("--nrml-rotd50-ratio", type=float, metavar="R",
+                   help="the NRML's PGA is RotD50, what NGA-West2 models (and so most hazard models) predict, taken "
+                        "as R x the campaign's GMRotI50: theta and the IMLs multiplied by R (docs/hazard.md); "
+                        "default: GMRotI50, as fitted")
     f.add_argument("--vector-csv", metavar="FILE",
                    help="write each object's vector fit as coefficients: ln theta = a + b ln(PGV/PGA / 1 s), "
                         "ln beta = c + d ln(PGV/PGA / 1 s), with the PGV/PGA and PGA ranges of its data")
