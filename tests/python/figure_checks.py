@@ -37,7 +37,8 @@ def _undrawn_tick_labels(fig):
     for ax in fig.axes:
         for axis in (ax.xaxis, ax.yaxis):
             ticks = axis.get_major_ticks() + axis.get_minor_ticks()
-            drawn = set(id(t) for t in axis._update_ticks())  # the ticks matplotlib draws in view
+            # the ticks matplotlib draws in view; none of an axis switched off (a twin's shared x)
+            drawn = set(id(t) for t in axis._update_ticks()) if axis.get_visible() else set()
             for t in ticks:
                 for label in (t.label1, t.label2):
                     if id(t) not in drawn or not label.get_visible():

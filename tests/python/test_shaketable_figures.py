@@ -156,6 +156,24 @@ def test_calibration_figure_draws_each_panel(tmp_path):
         plt.close(fig)
 
 
+def test_calibration_figure_without_cross_validation_has_no_empty_panel(tmp_path):
+    """Fewer than 3 recorded motions: no cross-validation, so no panel for it (not an empty one);
+    the title says why."""
+    import csv
+    import matplotlib.pyplot as plt
+    cal, lik = write_calibration(tmp_path)
+    doc = json.loads(cal.read_text())
+    doc.pop("cross_validated", None)
+    fig = sf.calibration_figure(doc, list(csv.DictReader(open(lik))))
+    try:
+        assert len([ax for ax in fig.axes if ax.get_visible()]) == 2, "likelihood and reliability only"
+        assert "cross-validation by recorded motion: not available" in fig._suptitle.get_text()
+        found = figure_checks.problems(fig)
+        assert found == [], f"paper-ready (figure_checks.py): {found}"
+    finally:
+        plt.close(fig)
+
+
 @pytest.mark.parametrize("fmt", ["png", "pdf", "svg"])
 def test_calibration_figure_command_writes_the_file(tmp_path, fmt):
     cal, lik = write_calibration(tmp_path)

@@ -405,11 +405,14 @@ def calibration_figure(doc, likelihood_rows):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     figure_style.apply(plt)
-    # likelihood and reliability side by side, the motions' scores below on the page's width
-    fig = plt.figure(figsize=(figure_style.DOUBLE_COLUMN_IN, 8.4))
-    grid = fig.add_gridspec(2, 2, height_ratios=[1, 0.9])
+    cv = doc.get("cross_validated", {})
+    by = cv.get("by_motion", []) if isinstance(cv, dict) else []
+    # likelihood and reliability side by side, the motions' held-out scores below on the page's
+    # width; without cross-validation no empty panel, a line under the title says why
+    fig = plt.figure(figsize=(figure_style.DOUBLE_COLUMN_IN, 8.4 if by else 4.6))
+    grid = fig.add_gridspec(2 if by else 1, 2, height_ratios=[1, 0.9] if by else [1])
     a_lik = fig.add_subplot(grid[0, 0])
-    a_motion = fig.add_subplot(grid[1, :])
+    a_motion = fig.add_subplot(grid[1, :]) if by else None
     a_rel = fig.add_subplot(grid[0, 1])
     # (a) likelihood over heading, one line per physics variant of the final stage
     stage, lines = final_stage_likelihood(likelihood_rows)
@@ -423,8 +426,6 @@ def calibration_figure(doc, likelihood_rows):
     a_lik.legend(loc="upper center", bbox_to_anchor=(0.5, -0.2), frameon=False)  # below: it cannot cover a line
     a_lik.grid(alpha=0.3)
     # (b) held-out scores of each recorded motion
-    cv = doc.get("cross_validated", {})
-    by = cv.get("by_motion", []) if isinstance(cv, dict) else []
     if by:
         x = np.arange(len(by))
         a_motion.bar(x, [m["brier"] for m in by], color="C1", alpha=0.7, label="Brier score (0 best)")
@@ -435,11 +436,7 @@ def calibration_figure(doc, likelihood_rows):
         a_motion.legend(loc="lower left", bbox_to_anchor=(1.0, 0.0), frameon=False)  # right of the bars
         a_motion.set_title(f"left-out motion's own tests: Brier {cv['brier']:.3f}, log loss {cv['log_loss']:.3f} "
                            f"overall")
-    else:
-        a_motion.text(0.5, 0.5, "cross-validation not available\n(fewer than 3 recorded motions)",
-                      ha="center", va="center", transform=a_motion.transAxes)
-        a_motion.set_title("cross-validated score by recorded motion")
-    a_motion.grid(alpha=0.3, axis="y")
+        a_motion.grid(alpha=0.3, axis="y")
     # (c) reliability: predicted P against the observed share, 95 % Wilson intervals
     a_rel.plot([0, 1], [0, 1], color="0.5", lw=1, ls="--", label="perfectly reliable")
     for key, color, marker, name in (("in_sample", "C0", "s", "in sample"),
@@ -460,8 +457,11 @@ def calibration_figure(doc, likelihood_rows):
     a_rel.set_title("reliability (numbers: tests per bin)")
     a_rel.legend(loc="upper center", bbox_to_anchor=(0.5, -0.2), frameon=False)
     a_rel.grid(alpha=0.3)
-    fig.suptitle(calibration_title(doc))
-    fig.tight_layout(rect=(0, 0, 1, 0.95))
+    title = calibration_title(doc)
+    if not by:
+        title += "\ncross-validation by recorded motion: not available (fewer than 3 recorded motions)"
+    fig.suptitle(title)
+    fig.tight_layout(rect=(0, 0, 1, 0.95 if by else 0.9))
     return fig
 
 
