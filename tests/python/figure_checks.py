@@ -7,6 +7,7 @@ problems(fig) lists, in words:
 - a figure wider than a journal's page (7.2 in);
 - a visible text, or a line's drawn vertices, inside a legend's box that are not the legend's own;
 - two visible texts whose boxes overlap (tick labels of one axis with each other included);
+- a label inside an axes (an annotation) on a marker of one of its lines;
 - a visible axes with nothing drawn in it (no line, collection, patch or image with data).
 """
 import numpy as np
@@ -125,6 +126,19 @@ def problems(fig):
                           & (xy[:, 1] > box.y0 + SLACK_PX) & (xy[:, 1] < box.y1 - SLACK_PX))
                 if inside.any():
                     found.append(f"line {ln.get_label()[:40]!r} drawn under a legend")
+    for ax in fig.axes:  # a label in the axes (an annotation) on a marker
+        if not ax.get_visible():
+            continue
+        labels = [(t, _bbox(t, renderer)) for t in ax.texts if t.get_visible() and t.get_text().strip()]
+        for ln in ax.lines if labels else []:
+            if ln.get_marker() in (None, "None", "", " ") or not ln.get_visible():
+                continue
+            xy = ln.get_transform().transform(np.column_stack([ln.get_xdata(), ln.get_ydata()]).astype(float))
+            half = 0.5 * ln.get_markersize() * fig.dpi / 72.0
+            for t, b in labels:
+                if any(b.x0 < x + half - SLACK_PX and x - half + SLACK_PX < b.x1 and b.y0 < y + half - SLACK_PX
+                       and y - half + SLACK_PX < b.y1 for x, y in xy if np.isfinite(x) and np.isfinite(y)):
+                    found.append(f"label {t.get_text()[:30]!r} on a marker of {ln.get_label()[:30]!r}")
     for i in range(len(boxes)):
         for j in range(i + 1, len(boxes)):
             (a, ba), (b, bb) = boxes[i], boxes[j]

@@ -525,6 +525,10 @@ def test_figure_checks_find_planted_faults():
     fig, ax = clean()
     fig.set_size_inches(12, 4)
     assert any("wide" in p for p in figure_checks.problems(fig)), "a figure wider than a page is found"
+    fig, ax = clean()
+    ax.plot([0.5], [0.5], "o", ms=6)
+    ax.annotate("on it", (0.5, 0.5), fontsize=8)
+    assert any("on a marker" in p for p in figure_checks.problems(fig)), "a label on a marker is found"
     fig, (ax, empty) = plt.subplots(1, 2, figsize=(7, 3))
     ax.plot([0, 1], [0, 1])
     for a in (ax, empty):
