@@ -20,6 +20,7 @@ outcomes the model itself generated, so the truth is known.
 """
 import csv
 import gzip
+import io
 import json
 import math
 import os
@@ -163,7 +164,7 @@ def test_planted_lab_fit():
         for m in range(25):
             for a in theta * np.exp(rng.uniform(-2.5, 2.5, 8) * beta):
                 p = 0.5 * math.erfc(-math.log(a / theta) / beta / math.sqrt(2))
-                rows.append({"record": "m%d" % m, "pga_g": a, "overturned": int(rng.uniform() < p)})
+                rows.append({"record": "m%d" % m, "measured_pga_g": a, "overturned": int(rng.uniform() < p)})
         cells = sf.lab_cells(rows, {"m%d" % m: m for m in range(25)})
         r = ff.scalar_fragility(cells, np.arange(25), np.random.default_rng(1), 200, 0.9)
         lo, hi = r["theta_interval_g"]
@@ -257,6 +258,12 @@ def test_calibrate_predict_and_fragility(rigid, tmp):
             if variant == "without":
                 assert "accuracy" not in rp.stdout, "predict without outcomes prints no score"
         assert preds[0] is not None and preds[0] == preds[1] == preds[2], "predictions identical with the outcomes kept, removed and shuffled"
+        # the measured values under names of their own: a sine's recorded PGA is its amplitude
+        predicted = list(csv.DictReader(io.StringIO(preds[0]))) if preds[0] else []
+        assert predicted and "pga_g" not in predicted[0] and "pgv_over_pga_s" not in predicted[0], (
+            "the prediction CSV does not reuse the test list's column names: %s" % list(predicted[0]))
+        assert all(abs(float(p["measured_pga_g"]) / float(x["pga_g"]) - 1) < 3e-2 for p, x in zip(predicted, rows)), (
+            "measured_pga_g is each recording's PGA (the sine's amplitude, to the lab processing's 3 %)")
         # the calibrated scene turns the rock instead of the motion: the same physics, other round-off,
         # so a test at the rock's very threshold may go the other way
         got = [int(l.split(",")[-1]) for l in preds[0].strip().splitlines()[1:]] if preds[0] else []
