@@ -106,6 +106,10 @@ def problems(fig):
     for lg in legends(fig):
         box = lg.get_window_extent(renderer)
         own = set(id(t) for t in lg.get_texts()) | {id(lg.get_title())}
+        for ax in fig.axes:  # a legend running into another panel is hidden under it
+            if ax.get_visible() and ax is not lg.axes and ax.get_label() != "<colorbar>" and _overlap(
+                    ax.get_window_extent(renderer), box):
+                found.append(f"legend {[x.get_text() for x in lg.get_texts()][:1]} runs into the axes {ax.get_title()[:30]!r}")
         for t, b in boxes:
             if id(t) not in own and _overlap(b, box):
                 found.append(f"text {t.get_text()[:40]!r} under the legend {[x.get_text() for x in lg.get_texts()][:2]}")

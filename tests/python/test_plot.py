@@ -525,6 +525,13 @@ def test_figure_checks_find_planted_faults():
     fig, ax = clean()
     fig.set_size_inches(12, 4)
     assert any("wide" in p for p in figure_checks.problems(fig)), "a figure wider than a page is found"
+    fig, (left, right) = plt.subplots(1, 2, figsize=(7, 3))
+    left.plot([0, 1], [0, 1], label="a long name that runs on and on")
+    right.plot([0, 1], [0, 1])
+    left.legend(loc="upper left", bbox_to_anchor=(1.0, 1.0), fontsize=8)
+    for a in (left, right):
+        a.tick_params(labelsize=8, labelleft=False)
+    assert any("runs into the axes" in p for p in figure_checks.problems(fig)), "a legend under a neighbouring panel is found"
     fig, ax = clean()
     ax.plot([0.5], [0.5], "o", ms=6)
     ax.annotate("on it", (0.5, 0.5), fontsize=8)

@@ -267,7 +267,8 @@ RECORDS_LISTED = 6  # panels with at most this many records name them
 
 
 def record_label(cube, r):
-    return f"{cube.records[r]} ({cube.pgv_pga[r]:.3g} s)"
+    """A record's name over its PGV/PGA: two short lines fit beside a panel on a page's width."""
+    return f"{cube.records[r]}\n{cube.pgv_pga[r]:.3g} s"
 
 
 def plot_records(cube, obj, fit, norm_, path):
@@ -281,7 +282,7 @@ def plot_records(cube, obj, fit, norm_, path):
     ncol = min(2 if listed else 3, len(shown))
     nrow = int(math.ceil(len(shown) / ncol))
     fig = plt.figure(figsize=(DOUBLE_COLUMN_IN, 2.1 * nrow + 1.5), dpi=DPI)
-    legend_share = 0.8 if listed else 0.0  # of an axes' width, for the names
+    legend_share = 0.75 if listed else 0.0  # of an axes' width, for the names
     grid = fig.add_gridspec(nrow, 2 * ncol, width_ratios=[1, legend_share] * ncol, left=0.09, right=0.86,
                             top=1 - 0.75 / (2.1 * nrow + 1.5), bottom=1.05 / (2.1 * nrow + 1.5), wspace=0.08,
                             hspace=0.55)
