@@ -43,7 +43,8 @@ void register_fragility_commands(CLI::App& app) {
       app, "fragility",
       "Fit each object's fragility from a campaign cube by maximum likelihood on its simulated cells: a "
       "lognormal (theta, beta) per PGV/PGA bin and the vector fit at a chosen PGV/PGA, 90 % intervals "
-      "by bootstrap over records; a table, --json, --csv FILE, --nrml FILE (OpenQuake NRML 0.5), and the "
+      "by bootstrap over records; a table, --json, --csv FILE, --nrml FILE (OpenQuake NRML 0.5; "
+      "--nrml-at-pgv-pga S: the vector fit at a site's PGV/PGA), --vector-csv FILE (its coefficients), and the "
       "fits stored in the cube's /fragility group. `rigid fragility --help` for the options");
   register_fragility_script_command(
       app, "hazard",

@@ -41,9 +41,11 @@ void add_shaketable_predict(CLI::App& parent) {
   cmd->add_option("scene", o.scene, "The scene, e.g. OUT.toml of rigid shaketable calibrate")->required();
   cmd->add_option("--tests", o.tests, "Test list CSV (test_no,record,...,file[,overturned]); file relative to the CSV")
       ->required();
-  add_output_file(*cmd, o.out,
-                  "the predictions CSV: test_no,record,pga_g,pgv_over_pga_s,p_overturn,predicted (the campaign works "
-                  "in OUT.work/)")
+  add_output_file(
+      *cmd, o.out,
+      "the predictions CSV: test_no,record,measured_pga_g,measured_pgv_over_pga_s (GMRotI50 of the table's recording), "
+      "p_overturn,predicted (the campaign works "
+      "in OUT.work/)")
       ->required();
   shaketable::add_recording_options(*cmd, o.lab_format, f->progress);
   cmd->callback([f] {

@@ -35,6 +35,7 @@ struct StudyCommandOptions {
   std::string out = "out/accuracy";
   std::string record;
   bool plot = true;
+  std::string figure_format = "png";
 };
 
 // "%.6g", empty when not finite (not computed)
@@ -182,9 +183,9 @@ void study_accuracy(const StudyCommandOptions& options) {
     std::fprintf(stderr, "rigid study: warning: src/python/accuracy_plot.py not found; no plot\n");
     return;
   }
-  const std::string png = (fs::path(options.out) / "accuracy_pareto.png").string();
+  const std::string figure = (fs::path(options.out) / ("accuracy_pareto." + options.figure_format)).string();
   const std::string md = (fs::path(options.out) / "accuracy_table.md").string();
-  const int status = run_python(script, {csv, "--png", png, "--table", md});
+  const int status = run_python(script, {csv, "--figure", figure, "--table", md});
   if (status != 0) {
     std::fprintf(stderr, "rigid study: warning: %s %s failed (status %d); the CSV is complete\n",
                  python_interpreter().c_str(), script.c_str(), status);
@@ -203,8 +204,8 @@ void register_study_command(CLI::App& app) {
       "record and a quasi-static ramp; a two-block stack; a sliding block; the geode drop) run with every "
       "time-step safety factor, rotation integrator, at-rest tolerance, contact stiffness and accuracy preset, "
       "measured against a converged reference run and the analytic oracles. Writes DIR/accuracy.csv, "
-      "DIR/accuracy_pareto.png and DIR/accuracy_table.md (docs/accuracy.md)");
-  add_output_directory(*acc, o->out, "accuracy.csv, accuracy_pareto.png, accuracy_table.md")->capture_default_str();
+      "DIR/accuracy_pareto.FORMAT and DIR/accuracy_table.md (docs/accuracy.md)");
+  add_output_directory(*acc, o->out, "accuracy.csv, accuracy_pareto.FORMAT, accuracy_table.md")->capture_default_str();
   acc->add_flag("--quick", o->sweep.quick, "A small subset (CI smoke test, well under a minute)");
   acc->add_option("--repeat", o->sweep.repeat, "Runs per timing; the median wall time is reported (1 with --quick)")
       ->capture_default_str();
@@ -216,6 +217,9 @@ void register_study_command(CLI::App& app) {
   acc->add_option("--only", o->sweep.only,
                   "Only these scenes (slender, stocky, stack, sliding, geode) or SCENE/MOTION cases");
   acc->add_flag("!--no-plot", o->plot, "Write the CSV only");
+  acc->add_option("--figure-format", o->figure_format, "The figure accuracy_pareto.FORMAT: png, pdf or svg")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"png", "pdf", "svg"}));
   acc->add_option("--contact", o->sweep.contact,
                   "Contact models on the model axis: rigid (at safety 0.05-0.8), penalty (stiffness 1e8-1e10) or both")
       ->capture_default_str();

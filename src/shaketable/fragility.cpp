@@ -131,7 +131,7 @@ std::optional<campaign::CampaignOptions> FragilityDesign::next(const campaign::C
 fs::path FragilityDesign::write_fit_inputs(const io::Cube& cube) const {
   io::write_output_file((work_ / "lab_tests.csv").string(), [&](std::ostream& out) {
     io::CsvWriter csv(out);
-    csv.row({"test_no", "record", "pga_g", "pgv_over_pga_s", "overturned"});
+    csv.row({"test_no", "record", "measured_pga_g", "measured_pgv_over_pga_s", "overturned"});
     for (std::size_t t = 0; t < tests_.tests.size(); ++t) {
       const io::LabTest& test = tests_.tests[t];
       csv.field(test.test_no).field(test.record).fixed(measured_[t].pga_g, 6).fixed(measured_[t].pgv_pga_s, 6);
@@ -140,7 +140,7 @@ fs::path FragilityDesign::write_fit_inputs(const io::Cube& cube) const {
   });
   io::write_output_file((work_ / "motions.csv").string(), [&](std::ostream& out) {
     io::CsvWriter csv(out);
-    csv.row({"record", "test_no", "pga_g", "pgv_over_pga_s"});
+    csv.row({"record", "test_no", "measured_pga_g", "measured_pgv_over_pga_s"});
     for (std::size_t t : motion_test_) {
       const io::LabTest& test = tests_.tests[t];
       csv.field(test.record).field(test.test_no).fixed(measured_[t].pga_g, 6).fixed(measured_[t].pgv_pga_s, 6);

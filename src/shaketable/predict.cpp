@@ -69,7 +69,7 @@ PredictionSummary Predictor::finish(const io::Cube& cube) const {
   }
   io::write_output_file(o.out, [&](std::ostream& out) {
     io::CsvWriter csv(out);
-    csv.row({"test_no", "record", "pga_g", "pgv_over_pga_s", "p_overturn", "predicted"});
+    csv.row({"test_no", "record", "measured_pga_g", "measured_pgv_over_pga_s", "p_overturn", "predicted"});
     for (int t = 0; t < tests; ++t) {
       const io::LabTest& test = tests_.tests[std::size_t(t)];
       const io::RecordMeta& meta = cube.records[std::size_t(t)];

@@ -277,6 +277,7 @@ def test_several_rocks_prune_and_outputs(tmp, tool, cube):
     assert [b["survival"] for b in both["branches"]] == pytest.approx(s, rel=1e-12), "survivals multiply"
     assert [b["posterior_weight"] for b in both["branches"]] == pytest.approx(0.25 * s / (0.25 * s).sum(), abs=1e-12)
     assert os.path.getsize(plot) > 20000, "the figure is written"
+    paper_ready_figure(both, os.path.join(tmp, "reweight_again.pdf"))
     with open(table, newline="") as f:
         rows = list(csv.DictReader(f))
     assert [float(r["posterior_weight"]) for r in rows] == pytest.approx([b["posterior_weight"] for b in both["branches"]])
@@ -371,3 +372,26 @@ def test_bad_inputs(tmp, tool, cube):
         p = tool("hazard", "reweight", export("age"), "--rock", f"{cube}:rock", "--age", age)
         assert_one_line_error(p, f"--age {age}", "positive")
     shutil.rmtree(os.path.join(tmp, "age"))
+
+
+def paper_ready_figure(document, path):
+    """The figure drawn again from the command's --json document, measured as drawn
+    (figure_checks.py: page width, 8 pt type, nothing under a legend, no overlaps, no empty axes)."""
+    import figure_checks
+    import matplotlib.pyplot as plt
+    from rigidpy import reweight_figure
+
+    def nan_for_none(v):  # the JSON's null is the report's NaN
+        if isinstance(v, dict):
+            return {k: nan_for_none(x) for k, x in v.items()}
+        if isinstance(v, list):
+            return [nan_for_none(x) for x in v]
+        return math.nan if v is None else v
+
+    fig = reweight_figure.draw(path, nan_for_none(document), [])
+    try:
+        found = figure_checks.problems(fig)
+        assert found == [], f"rigid hazard reweight --plot: {found}"
+        assert open(path, "rb").read(4) == b"%PDF", "a .pdf name writes a pdf"
+    finally:
+        plt.close(fig)

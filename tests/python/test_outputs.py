@@ -8,7 +8,9 @@ against independent oracles on synthetic cubes with planted probit outcomes (tes
    to the lognormal's CDF there; no "inf" or "x 0" factors.
 3. The NRML's maxIML where the lognormal CDF reaches 0.99 (closed form theta exp(beta Phi^-1(0.99))
    from the exported mean and stddev), or the campaign's top scale when higher, or (option) the top
-   scale; id, assetCategory and lossCategory from the options.
+   scale; noDamageLimit = minIML, the lower of the lowest scale and the PGA where P = 1e-4 (OpenQuake
+   would zero the curve between a higher limit and minIML); id, assetCategory and lossCategory from
+   the options (test_openquake_nrml.py reads the exports with OpenQuake itself).
 4. Bins fitted on fewer than 3 records flagged in the table and the CSV; left out of the NRML by
    --nrml-min-records.
 5. Bootstrap intervals reaching beyond the campaign's scales flagged.
@@ -181,6 +183,17 @@ def test_nrml_and_flags(planted):
         ok &= abs(got / want - 1) < 1e-9 and stats.norm.cdf(math.log(got / theta) / beta) >= 0.99 - 1e-9
         beyond += got > top * (1 + 1e-9)
     assert ok and functions, f"maxIML of all {len(functions)} functions = max(theta exp(beta Phi^-1(0.99)), top scale)"
+    low = float(tp.SCALES[tp.SCALES > 0].min())
+    for fn in functions:
+        imls, params = fn.find(f"{NS}imls"), fn.find(f"{NS}params")
+        theta, beta = lognormal_of(float(params.get("mean")), float(params.get("stddev")))
+        limit, lower = float(imls.get("noDamageLimit")), float(imls.get("minIML"))
+        p_low = stats.norm.cdf(math.log(lower / theta) / beta)
+        # OpenQuake sets P = 0 at or below noDamageLimit and evaluates max(PGA, minIML) above it
+        assert 0 < limit <= lower <= low and p_low <= 1e-4 * (1 + 1e-9) and (
+            lower == low or abs(p_low / 1e-4 - 1) < 1e-6), (f"{fn.get('id')}: noDamageLimit {limit:g} <= minIML "
+                                                            f"{lower:g}, the lower of the lowest scale {low:g} g and "
+                                                            f"the PGA where P = 1e-4 (P there {p_low:.3g})")
     assert beyond > 0, f"{beyond} function(s) carried beyond the campaign's top scale {top:g} g to P = 0.99"
     r = run(FRAGILITY, "fragility", cube, "--nrml", xml, "--no-store", "--bootstrap", "20", "--nrml-max-probability", "0")
     tops = {float(fn.find(f"{NS}imls").get("maxIML")) for fn in ET.parse(xml).getroot().iter(f"{NS}fragilityFunction")}
@@ -197,8 +210,22 @@ def test_nrml_and_flags(planted):
     ids = [fn.get("id") for fn in ET.parse(xml).getroot().iter(f"{NS}fragilityFunction")]
     assert (r.returncode == 0 and not any("0.06-0.08" in i for i in ids) and len(ids) == len(functions) - 1
           and "rock_pgv_pga_0.06-0.08s (2 record(s))" in r.stdout), "--nrml-min-records 3 leaves the 2-record bin out of the NRML, and says so"
+    # --nrml-rotd50-ratio R: the same functions with PGA in RotD50 = R x GMRotI50 (theta, IMLs x R, beta kept)
+    plain = os.path.join(tmp, "plain.xml")
+    rotd = os.path.join(tmp, "rotd50.xml")
+    run(FRAGILITY, "fragility", cube, "--nrml", plain, "--no-store", "--bootstrap", "20")
+    r = run(FRAGILITY, "fragility", cube, "--nrml", rotd, "--no-store", "--bootstrap", "20", "--nrml-rotd50-ratio", "1.1")
+    ok = r.returncode == 0
+    for a, b in zip(ET.parse(plain).getroot().iter(f"{NS}fragilityFunction"),
+                    ET.parse(rotd).getroot().iter(f"{NS}fragilityFunction")):
+        ta, ba = lognormal_of(float(a.find(f"{NS}params").get("mean")), float(a.find(f"{NS}params").get("stddev")))
+        tb, bb = lognormal_of(float(b.find(f"{NS}params").get("mean")), float(b.find(f"{NS}params").get("stddev")))
+        ok &= abs(tb / ta - 1.1) < 1e-9 and abs(bb / ba - 1) < 1e-9 and all(
+            abs(float(b.find(f"{NS}imls").get(k)) / float(a.find(f"{NS}imls").get(k)) - 1.1) < 1e-9
+            for k in ("minIML", "maxIML", "noDamageLimit"))
+    assert ok and "RotD50" in ET.parse(rotd).getroot().find(f"{NS}fragilityModel").find(f"{NS}description").text, "--nrml-rotd50-ratio 1.1: theta and the IMLs x 1.1, beta kept, said in the description"
     for bad in (["--nrml-id", ""], ["--nrml-asset-category", "a<b"], ["--nrml-max-probability", "0.3"],
-                ["--nrml-min-records", "-1"]):
+                ["--nrml-min-records", "-1"], ["--nrml-rotd50-ratio", "3"], ["--nrml-at-pgv-pga", "-1"]):
         r = run(FRAGILITY, "fragility", cube, "--no-store", *bad)
         assert r.returncode == 2 and len(r.stderr.splitlines()) == 1 and bad[0] in r.stderr, f"{' '.join(bad) or repr('')}: one line naming the option, exit 2"
 
@@ -284,3 +311,27 @@ def test_figures(planted):
         assert r.returncode == 0 and len(heads) == 2 and all(h.startswith(magic) for h in heads), f"maps --format {fmt}: {[f for f in files if f.endswith(fmt)]}"
     r = run(PLOT, "maps", cube, "--out", os.path.join(tmp, "x"), "--format", "gif")
     assert r.returncode == 2 and len(r.stderr.splitlines()) == 1, "--format gif: one line, exit 2"
+
+
+# --------------------------------------------------------------------------------------------
+# 8. one median per fit
+
+
+def test_one_median_per_fit(planted):
+    """`rigid plot maps` and `rigid fragility` read the same vector fit at the same PGV/PGA (the
+    records' median, computed here from the planted records) and report the same median and
+    dispersion: one estimate, not two."""
+    tmp, cube, pgv = planted
+    out = os.path.join(tmp, "median_maps")
+    r = run(PLOT, "maps", cube, "--out", out)
+    assert r.returncode == 0, r.stderr
+    with open(os.path.join(out, "fit.json")) as fh:
+        maps = json.load(fh)["objects"][0]
+    r = run(FRAGILITY, "fragility", cube, "--json", "--no-store", "--bootstrap", "20")
+    point = json.loads(r.stdout)["objects"][0]["vector"]["points"][0]
+    median_s = float(np.median(pgv))
+    assert abs(maps["reference_pgv_pga_s"] / median_s - 1) < 1e-12 and abs(point["pgv_pga_s"] / median_s - 1) < 1e-12, f"both at the records' median PGV/PGA {median_s:.4g} s"
+    assert abs(maps["reference_theta_g"] / point["theta_g"] - 1) < 1e-6 and abs(maps["reference_beta"] / point["beta"] - 1) < 1e-6, f"maps {maps['reference_theta_g']:.6g} g, {maps['reference_beta']:.6g}; fragility {point['theta_g']:.6g} g, {point['beta']:.6g}"
+    printed = re.search(r"median PGA (\S+) g", subprocess.run([sys.executable, PLOT, "maps", cube, "--out", out],
+                                                              capture_output=True, text=True).stdout)
+    assert printed and abs(float(printed.group(1)) / point["theta_g"] - 1) < 1e-3, "the printed median is that one"

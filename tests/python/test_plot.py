@@ -22,6 +22,7 @@ h5py = pytest.importorskip("h5py")
 np = pytest.importorskip("numpy")
 pytest.importorskip("matplotlib")  # the tool needs it
 
+import figure_checks  # noqa: E402  (measurements of a rendered figure)
 from synthetic_cube import (A, ALPHA, EDGES, MU0, MU1, P, R, SCALES, SIGMA, bin_of,  # noqa: E402
                             derived, phi, planted_outcomes, write_cube)
 from rigidpy import checksums as cube_checksums  # noqa: E402
@@ -387,9 +388,11 @@ class TestFigures:
         return f"{edge(EDGES[b])}\u2013{edge(EDGES[b + 1])}"
 
     def test_map_rows_are_the_bins_with_records(self):
+        """Rows from the lowest to the highest bin with records: the bins without records between
+        them keep their rows, hatched (no cell), so the y axis and the contours run on."""
         import matplotlib.collections
-        held = sorted({bin_of(v) for v in self.pgv_pga})
-        assert held == sorted(self.HELD)  # the fixture itself
+        assert sorted({bin_of(v) for v in self.pgv_pga}) == sorted(self.HELD)  # the fixture itself
+        held = list(range(min(self.HELD), max(self.HELD) + 1))
         for suffix, panels in (("rock_map.png", 1), ("rock_diff.png", 3)):
             fig = self.figure(suffix)
             fig.canvas.draw()
@@ -412,6 +415,41 @@ class TestFigures:
         _, frag, _ = derived(planted_outcomes_of(self.cube), self.pgv_pga)
         shown = np.ma.filled(mesh.get_array().astype(float), np.nan).reshape(len(held), len(SCALES))
         np.testing.assert_allclose(shown, frag.T[held], rtol=0, atol=1e-12)
+        empty = [k for k, b in enumerate(held) if b not in self.HELD]
+        assert empty and np.all(np.isnan(shown[empty])), "the rows of bins without records have no cell"
+
+    def test_contours_run_on_through_bins_without_records(self):
+        """The map's 50 % contour is one unbroken curve in the map's rows over the records'
+        PGV/PGA range: its y steps are small (no jump over a missing bin) and none is NaN."""
+        fig = self.figure("rock_map.png")
+        ax = fig.axes[0]
+        line = [ln for ln in ax.lines if ln.get_label().startswith("50 % contour")][0]
+        y = np.asarray(line.get_ydata(), float)
+        assert np.all(np.isfinite(y)) and np.max(np.abs(np.diff(y))) < 0.1, f"50 % contour: largest step {np.nanmax(np.abs(np.diff(y))):.3f} rows"
+        assert y.min() < 1 and y.max() > max(self.HELD) - min(self.HELD), "it spans the rows of every held bin"
+
+    def test_paper_ready(self):
+        """Every figure, measured as drawn (figure_checks.py): at most a page wide (7.2 in), no text
+        under 8 pt, no text under a legend, no two texts overlapping, no empty axes."""
+        for name, fig in sorted(self.figures.items()):
+            found = figure_checks.problems(fig)
+            assert found == [], f"{name}: {found}"
+
+    def test_titles_promise_only_what_is_drawn(self):
+        """A map's title speaks of cell numbers only when numbers are drawn in cells; the fit's
+        provenance note is said once per figure, in no legend entry."""
+        for name, fig in self.figures.items():
+            strings = figure_checks.text_strings(fig)
+            notes = [t for t in strings if "Purvance" in t]
+            assert len(notes) <= 1, f"{name}: the fit's provenance said {len(notes)} times"
+            for lg in figure_checks.legends(fig):
+                assert not any("Purvance" in t.get_text() for t in lg.get_texts()), f"{name}: provenance in a legend"
+        for name, fig in self.figures.items():
+            if not name.endswith("_map.png"):
+                continue
+            title = fig.axes[0].get_title()
+            counts = [t for t in fig.axes[0].texts if t.get_gid() == "cell count"]
+            assert ("numbers" in title) == bool(counts), f"{name}: title {title!r} with {len(counts)} cell numbers"
 
     def test_records_panels_only_for_bins_with_records(self):
         fig = self.figure("rock_records.png")
@@ -455,6 +493,55 @@ class TestFigures:
         ax.legend(loc="upper left")
         assert legend_overlaps(fig) == []
         plt.close(fig)
+
+
+def test_figure_checks_find_planted_faults():
+    """The figure oracle itself (figure_checks.py): each planted fault is found, the clean figure
+    passes."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    def clean():
+        fig, ax = plt.subplots(figsize=(3.5, 2.5))
+        ax.plot([0, 1], [0, 1], label="a line")
+        ax.set_title("title", fontsize=9)
+        ax.tick_params(labelsize=8)
+        ax.xaxis.label.set_fontsize(8)
+        ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=8)
+        return fig, ax
+
+    fig, ax = clean()
+    assert figure_checks.problems(fig) == [], figure_checks.problems(fig)
+    ax.text(0.5, 0.1, "small", fontsize=6)
+    assert any("6.0 pt" in p for p in figure_checks.problems(fig)), "a 6 pt text is found"
+    fig, ax = clean()
+    ax.text(0.2, 0.8, "one label", fontsize=8)
+    ax.text(0.21, 0.8, "another label", fontsize=8)
+    assert any("overlap" in p for p in figure_checks.problems(fig)), "two texts on each other are found"
+    fig, ax = clean()
+    ax.legend(loc="center", fontsize=8)
+    assert any("under a legend" in p for p in figure_checks.problems(fig)), "a line under a legend is found"
+    fig, ax = clean()
+    fig.set_size_inches(12, 4)
+    assert any("wide" in p for p in figure_checks.problems(fig)), "a figure wider than a page is found"
+    fig, (left, right) = plt.subplots(1, 2, figsize=(7, 3))
+    left.plot([0, 1], [0, 1], label="a long name that runs on and on")
+    right.plot([0, 1], [0, 1])
+    left.legend(loc="upper left", bbox_to_anchor=(1.0, 1.0), fontsize=8)
+    for a in (left, right):
+        a.tick_params(labelsize=8, labelleft=False)
+    assert any("runs into the axes" in p for p in figure_checks.problems(fig)), "a legend under a neighbouring panel is found"
+    fig, ax = clean()
+    ax.plot([0.5], [0.5], "o", ms=6)
+    ax.annotate("on it", (0.5, 0.5), fontsize=8)
+    assert any("on a marker" in p for p in figure_checks.problems(fig)), "a label on a marker is found"
+    fig, (ax, empty) = plt.subplots(1, 2, figsize=(7, 3))
+    ax.plot([0, 1], [0, 1])
+    for a in (ax, empty):
+        a.tick_params(labelsize=8)
+    assert any("empty axes" in p for p in figure_checks.problems(fig)), "an empty panel is found"
+    plt.close("all")
 
 
 def draw_shaketable_fragility(rng, path):

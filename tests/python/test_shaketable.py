@@ -20,6 +20,7 @@ outcomes the model itself generated, so the truth is known.
 """
 import csv
 import gzip
+import io
 import json
 import math
 import os
@@ -163,7 +164,7 @@ def test_planted_lab_fit():
         for m in range(25):
             for a in theta * np.exp(rng.uniform(-2.5, 2.5, 8) * beta):
                 p = 0.5 * math.erfc(-math.log(a / theta) / beta / math.sqrt(2))
-                rows.append({"record": "m%d" % m, "pga_g": a, "overturned": int(rng.uniform() < p)})
+                rows.append({"record": "m%d" % m, "measured_pga_g": a, "overturned": int(rng.uniform() < p)})
         cells = sf.lab_cells(rows, {"m%d" % m: m for m in range(25)})
         r = ff.scalar_fragility(cells, np.arange(25), np.random.default_rng(1), 200, 0.9)
         lo, hi = r["theta_interval_g"]
@@ -257,6 +258,19 @@ def test_calibrate_predict_and_fragility(rigid, tmp):
             if variant == "without":
                 assert "accuracy" not in rp.stdout, "predict without outcomes prints no score"
         assert preds[0] is not None and preds[0] == preds[1] == preds[2], "predictions identical with the outcomes kept, removed and shuffled"
+        # the measured values under names of their own: a sine's recorded PGA is its amplitude
+        predicted = list(csv.DictReader(io.StringIO(preds[0]))) if preds[0] else []
+        assert predicted and "pga_g" not in predicted[0] and "pgv_over_pga_s" not in predicted[0], (
+            "the prediction CSV does not reuse the test list's column names: %s" % list(predicted[0]))
+        # a sine a sin(wt) from rest: PGA a, PGV 2a/w (v = a (1 - cos wt) / w), so PGV/PGA 1/(pi f);
+        # the lab's processing of the recording moves them by a few per cent
+        for p, x in zip(predicted, rows):
+            f_hz = float(x["record"][len("sine_"):-len("Hz")])
+            assert abs(float(p["measured_pga_g"]) / float(x["pga_g"]) - 1) < 0.07 and abs(
+                float(p["measured_pgv_over_pga_s"]) * math.pi * f_hz - 1) < 0.07, (
+                "test %s: measured PGA %s g and PGV/PGA %s s are the recording's (a sine of %s g at %g Hz: "
+                "%.3f s)" % (p["test_no"], p["measured_pga_g"], p["measured_pgv_over_pga_s"], x["pga_g"], f_hz,
+                             1 / (math.pi * f_hz)))
         # the calibrated scene turns the rock instead of the motion: the same physics, other round-off,
         # so a test at the rock's very threshold may go the other way
         got = [int(l.split(",")[-1]) for l in preds[0].strip().splitlines()[1:]] if preds[0] else []

@@ -21,6 +21,7 @@ import pytest
 np = pytest.importorskip("numpy")
 pytest.importorskip("matplotlib")
 pytest.importorskip("scipy")
+import figure_checks  # noqa: E402  (measurements of a rendered figure)
 from rigidpy import shaketable as sf  # noqa: E402
 
 SCALES = [0.1, 0.2, 0.3, 0.5, 0.7, 1.0, 1.5, 2.0, 2.5, 3.5]
@@ -59,8 +60,8 @@ def test_inferred_cells_count_as_overturned_in_the_points_not_in_the_fit():
 
 def fragility_inputs():
     motions = np.arange(4)
-    lab = sf.lab_cells([{"record": "m0", "pga_g": 0.3, "overturned": 1}, {"record": "m1", "pga_g": 0.2, "overturned": 0},
-                        {"record": "m3", "pga_g": 1.0, "overturned": 0}], {"m%d" % i: i for i in range(4)})
+    lab = sf.lab_cells([{"record": "m0", "measured_pga_g": 0.3, "overturned": 1}, {"record": "m1", "measured_pga_g": 0.2, "overturned": 0},
+                        {"record": "m3", "measured_pga_g": 1.0, "overturned": 0}], {"m%d" % i: i for i in range(4)})
     _, p, known = sf.model_cells_on_grid(4, np.array(SCALES), model_rows())
     rows = [dict(label="all motions", motions=motions, tests=3, overturned=1, lab={}, model={})]
     return rows, lab, p, known
@@ -72,7 +73,7 @@ def test_fragility_figure_title_legend_and_points():
     physics = "calibrated physics: flat_5mm penalty K=5e+05 D=4 mu=0.90 (sp1.calibration.json, 3 members)"
     fig = sf.fragility_figure(rows, lab, p, known, np.array(SCALES), physics)
     try:
-        assert physics in fig._suptitle.get_text(), "the title carries the physics"
+        assert physics in fig._suptitle.get_text().replace("\n", " "), "the title carries the physics (wrapped to the page)"
         legend = [t.get_text() for lg in fig.legends for t in lg.get_texts()]
         assert "lab test: overturned (P = 1)" in legend and "lab test: stood (P = 0)" in legend, legend
         assert not any("1 overturned, 0 stood" in t for t in legend), "no legend text that reads like counts"
@@ -80,6 +81,8 @@ def test_fragility_figure_title_legend_and_points():
         points = [l for l in ax.get_lines() if l.get_marker() == "o"][0]
         y = np.asarray(points.get_ydata(), float)
         assert np.allclose(y[len(OVERTURNING):], 0.75), "the drawn model points above the stop rule: %s" % y
+        found = figure_checks.problems(fig)
+        assert found == [], f"paper-ready (figure_checks.py): {found}"
     finally:
         plt.close(fig)
 
@@ -147,6 +150,26 @@ def test_calibration_figure_draws_each_panel(tmp_path):
         assert [round(b.get_height(), 3) for b in a_motion.patches] == [0.05, 0.3, 0.01], "Brier by motion"
         legend = [t.get_text() for t in a_rel.get_legend().get_texts()]
         assert any("cross-validated (Brier 0.110, log loss 0.360)" in t for t in legend), legend
+        found = figure_checks.problems(fig)
+        assert found == [], f"paper-ready (figure_checks.py): {found}"
+    finally:
+        plt.close(fig)
+
+
+def test_calibration_figure_without_cross_validation_has_no_empty_panel(tmp_path):
+    """Fewer than 3 recorded motions: no cross-validation, so no panel for it (not an empty one);
+    the title says why."""
+    import csv
+    import matplotlib.pyplot as plt
+    cal, lik = write_calibration(tmp_path)
+    doc = json.loads(cal.read_text())
+    doc.pop("cross_validated", None)
+    fig = sf.calibration_figure(doc, list(csv.DictReader(open(lik))))
+    try:
+        assert len([ax for ax in fig.axes if ax.get_visible()]) == 2, "likelihood and reliability only"
+        assert "cross-validation by recorded motion: not available" in fig._suptitle.get_text()
+        found = figure_checks.problems(fig)
+        assert found == [], f"paper-ready (figure_checks.py): {found}"
     finally:
         plt.close(fig)
 

@@ -1,14 +1,14 @@
 """Pareto plot and markdown table of `rigid study accuracy` (docs/accuracy.md).
 
-    accuracy_plot.py DIR/accuracy.csv --png DIR/accuracy_pareto.png --table DIR/accuracy_table.md
+    accuracy_plot.py DIR/accuracy.csv --figure DIR/accuracy_pareto.png --table DIR/accuracy_table.md
 
-Left panel: each numerical setting of the default contact model (time-step safety factor x
+Top panel: each numerical setting of the default contact model (time-step safety factor x
 rotation integrator, at-rest stop tolerances, the three presets) as one point: total wall time over the study's cases (sum of the
 median wall times) against the median over the cases of its error against the converged
 reference run (relative RMS trajectory error, or the relative change of a quasi-static
 threshold). The converged reference itself (error 0) is drawn on the floor of the axis. The
 Pareto front (no other setting both cheaper and more accurate) is the grey step line.
-Right panel: the contact model, a model axis (it changes the physics): for each model setting,
+Bottom panel: the contact model, a model axis (it changes the physics): for each model setting,
 the penalty springs at K = 1e8 (the study's), 1e9 and 1e10 N/m (safety 0.2) and rigid contact at
 safety 0.05-0.8, the total wall time over the cases with a rigid-block oracle (Housner one-sine
 threshold, g tan alpha, rigid statics of the stack, Newmark sliding) against the median and
@@ -19,7 +19,10 @@ Runs with Debian's /usr/bin/python3 (numpy, matplotlib). Exit status: 0 done, 2 
 import argparse
 import csv
 import math
+import os
 import sys
+
+from . import figure_style
 
 try:
     import matplotlib
@@ -29,7 +32,6 @@ except ImportError as e:  # pragma: no cover
     sys.stderr.write(f"accuracy_plot: error: {e}; run with /usr/bin/python3 (python3-matplotlib)\n")
     sys.exit(2)
 
-LEGEND_BAND = 0.2     # the figure's bottom share that holds the legends
 FLOOR = 1e-7          # where error 0 is drawn on the log axis
 MODEL_AXES = ("stiffness", "rigid")  # settings that change the physics, not the numerics
 ORACLES = ("housner_one_sine_threshold_g", "g_tan_alpha_g", "rigid_statics_toppling_g",
@@ -113,10 +115,13 @@ def pareto_front(points):
     return front
 
 
-def plot(rows, png):
+def plot(rows, path):
+    """The two panels one above the other on a page's width; the format from the file name."""
     agg = aggregate(rows)
-    fig, (ax, bx) = plt.subplots(1, 2, figsize=(12.5, 6.8), gridspec_kw=dict(width_ratios=[1.35, 1]))
-    # left: numerical settings
+    figure_style.apply(plt)
+    fig, (ax, bx) = plt.subplots(2, 1, figsize=(figure_style.DOUBLE_COLUMN_IN, 9.0))
+    labels = {ax: [], bx: []}  # placed once the layout is final, off the markers
+    # top: numerical settings
     style = {("safety", "splitting"): dict(marker="o", color="#444444", label="safety sweep, splitting"),
              ("safety", "rk4"): dict(marker="s", color="#9467bd", label="safety sweep, RK4"),
              ("tolerance", None): dict(marker="^", color="#ff7f0e", label="at-rest / sleep tolerances (safety 0.2)"),
@@ -128,14 +133,12 @@ def plot(rows, png):
         if not pts:
             continue
         ax.plot([p[1] for p in pts], [p[2] for p in pts], ls="-" if axis == "safety" else "none", lw=1,
-                ms=7, mfc="white", mew=1.5, **st)
+                ms=5, mfc="white", mew=1.2, **st)
         if axis == "safety":
-            for s, w, e, _ in pts:
-                ax.annotate(f"{s:g}", (w, e), textcoords="offset points", xytext=(5, 4 if integ == "splitting" else -11),
-                            fontsize=8, color=st["color"])
+            labels[ax] += [(w, e, f"{s:g}", dict(color=st["color"])) for s, w, e, _ in pts]
     for name, a in agg.items():
         if a["axis"] == "converged":
-            ax.plot([a["wall"]], [FLOOR], marker="D", ms=8, color="black", ls="none",
+            ax.plot([a["wall"]], [FLOOR], marker="D", ms=5, color="black", ls="none",
                     label="converged reference (error 0, on the floor)")
     for p in PRESETS:
         a = agg.get(f"preset {p}")
@@ -143,11 +146,10 @@ def plot(rows, png):
             continue
         e = max(a["median"], FLOOR)
         ax.plot([a["wall"]] * 2, [e, max(a["max"], FLOOR)], color=PRESET_COLOURS[p], lw=2, alpha=0.6)
-        ax.plot([a["wall"]], [max(a["max"], FLOOR)], marker="_", ms=14, mew=2, color=PRESET_COLOURS[p])
-        ax.plot([a["wall"]], [e], marker="*", ms=19, color=PRESET_COLOURS[p], mec="black", mew=0.8, ls="none",
+        ax.plot([a["wall"]], [max(a["max"], FLOOR)], marker="_", ms=10, mew=2, color=PRESET_COLOURS[p])
+        ax.plot([a["wall"]], [e], marker="*", ms=12, color=PRESET_COLOURS[p], mec="black", mew=0.8, ls="none",
                 label=f"preset {p} (bar: up to the worst case)")
-        ax.annotate(p, (a["wall"], e), textcoords="offset points", xytext=(8, -14), fontsize=10, weight="bold",
-                    color=PRESET_COLOURS[p])
+        labels[ax].append((a["wall"], e, p, dict(weight="bold", color=PRESET_COLOURS[p])))
     front = pareto_front([(a["wall"], max(a["median"], FLOOR)) for a in agg.values()])
     if len(front) > 1:
         ax.step([w for w, _ in front], [e for _, e in front], where="post", color="grey", lw=3, alpha=0.3,
@@ -157,10 +159,10 @@ def plot(rows, png):
     ax.set_xlabel("wall time, sum over the cases (s, one core)")
     ax.set_ylabel("error vs converged reference (median over cases)")
     ncases = max((a["cases"] for a in agg.values()), default=0)
-    ax.set_title(f"Numerical settings ({ncases} cases; numbers = safety factor)", fontsize=11)
+    ax.set_title(f"Numerical settings ({ncases} cases; numbers = safety factor)")
     ax.grid(True, which="major", alpha=0.3)
 
-    # right: both contact models against the rigid-block oracles, one point per model setting
+    # bottom: both contact models against the rigid-block oracles, one point per model setting
     models = {}
     for r in rows:
         if r["oracle"] not in ORACLES:
@@ -183,27 +185,28 @@ def plot(rows, png):
                      for (mm, k), m in models.items() if mm == model)
         if not pts:
             continue
-        bx.plot([p[0] for p in pts], [p[1] for p in pts], ms=8, lw=1.2, mfc="white", mew=1.5, **st)
+        bx.plot([p[0] for p in pts], [p[1] for p in pts], ms=5, lw=1.2, mfc="white", mew=1.2, **st)
         for w, e, worst, k in pts:
             bx.plot([w, w], [e, worst], color=st["color"], lw=1.5, alpha=0.4)
-            bx.annotate(f"{k:.0e}".replace("+", "").replace("e0", "e") if model == "penalty" else f"{k:g}", (w, e),
-                        textcoords="offset points", xytext=(6, 3), fontsize=8, color=st["color"])
+            text = f"{k:.0e}".replace("+", "").replace("e0", "e") if model == "penalty" else f"{k:g}"
+            labels[bx].append((w, e, text, dict(color=st["color"])))
     bx.set_xscale("log")
     bx.set_yscale("log")
     bx.set_xlabel("wall time, sum over the oracle cases (s; pulse: threshold search + run)")
     bx.set_ylabel("|relative error| vs rigid-block oracles (median; bar: worst)")
-    bx.set_title("Contact model (a model axis, not a preset)", fontsize=11)
+    bx.set_title("Contact model (a model axis, not a preset)")
     bx.grid(True, which="major", alpha=0.3)
-    # each panel's legend below it, in the figure's bottom band: off the points (inside, a corner
-    # free of points is not guaranteed)
-    fig.tight_layout(rect=(0, LEGEND_BAND, 1, 1))
+    # each panel's legend below it: off the points (inside, a corner free of points is not guaranteed)
     for axes in (ax, bx):
-        handles, labels = axes.get_legend_handles_labels()
+        handles, names = axes.get_legend_handles_labels()
         if handles:
-            box = axes.get_position()
-            fig.legend(handles, labels, loc="upper center", bbox_to_anchor=(0.5 * (box.x0 + box.x1), LEGEND_BAND),
-                       ncol=2, fontsize=8, frameon=False)
-    fig.savefig(png, dpi=90)
+            axes.legend(handles, names, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=2, frameon=False)
+    fig.tight_layout(h_pad=1.0)
+    for axes in (ax, bx):
+        figure_style.place_labels(axes, labels[axes])
+    fmt = os.path.splitext(path)[1].lower().lstrip(".") or "png"
+    fig.savefig(path, dpi=figure_style.RASTER_DPI, format=fmt)
+    return fig
 
 
 def fmt(v, spec="{:.2g}"):
@@ -262,7 +265,7 @@ def table(rows, md):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("csv")
-    ap.add_argument("--png")
+    ap.add_argument("--figure", help="the Pareto figure; its format (png, pdf, svg) from the name")
     ap.add_argument("--table")
     a = ap.parse_args()
     try:
@@ -270,9 +273,9 @@ def main():
     except (OSError, ValueError) as e:
         sys.stderr.write(f"accuracy_plot: error: {e}\n")
         return 2
-    if a.png:
-        plot(rows, a.png)
-        print(f"wrote {a.png}")
+    if a.figure:
+        plot(rows, a.figure)
+        print(f"wrote {a.figure}")
     if a.table:
         table(rows, a.table)
         print(f"wrote {a.table}")

@@ -178,6 +178,13 @@ class Cells:
         return idx[self.n[idx].sum(axis=1) > 0]
 
 
+def reference_pgv_pga_s(pgv_pga_s, records):
+    """The PGV/PGA (s) at which a vector fit is read as one lognormal unless told otherwise: the
+    median over the fitted records (each once). `rigid fragility`, `rigid hazard` and `rigid plot
+    maps` all read it here, so one cube gives one median per fit."""
+    return float(np.median(np.asarray(pgv_pga_s, float)[np.unique(np.asarray(records, int))]))
+
+
 def scalar_rows(cells, records, weights=None):
     """Rows (ln PGA_g, k, n) of a scalar fit over `records`, records weighted by `weights`
     (bootstrap counts). PGA is the only regressor, so rows aggregate over records per scale."""

@@ -38,7 +38,8 @@ try:
     from .fit import DEFAULT_BOOTSTRAP
     from .command_line import OneLineParser, check_completeness, exit_status, warn_incomplete
     from .fragility_report import (csv_rows, json_document, nrml_functions, nrml_range_text, pooled_csv_row,
-                                   print_table, print_variant_tables, variant_nrml_functions)
+                                   print_table, print_variant_tables, variant_nrml_functions, vector_coefficients,
+                                   vector_nrml_functions)
     from .fragility_store import store
     from .hazard_command import cmd_hazard
     from .object_fits import ObjectFit, analyse_variants, end_progress, start_progress
@@ -54,6 +55,14 @@ def check_nrml_options(args):
     if args.nrml_max_probability != 0 and not 0.5 <= args.nrml_max_probability < 1:
         raise InputError(f"--nrml-max-probability {args.nrml_max_probability}: must be 0 (the campaign's top scale) "
                          f"or in [0.5, 1)")
+    if args.nrml_at_pgv_pga is not None:
+        if not (args.nrml_at_pgv_pga > 0 and math.isfinite(args.nrml_at_pgv_pga)):
+            raise InputError(f"--nrml-at-pgv-pga {args.nrml_at_pgv_pga}: must be a positive number of seconds")
+        if not args.nrml:
+            raise InputError("--nrml-at-pgv-pga: give --nrml FILE too (the NRML it shapes)")
+    if args.nrml_rotd50_ratio is not None and not 0.5 <= args.nrml_rotd50_ratio <= 2:
+        raise InputError(f"--nrml-rotd50-ratio {args.nrml_rotd50_ratio}: must be RotD50 / GMRotI50 PGA, between 0.5 "
+                         f"and 2 (about 1.0-1.1 for recorded motions)")
     if args.nrml_min_records < 0:
         raise InputError(f"--nrml-min-records {args.nrml_min_records}: must be 0 or more")
     for option, value in (("--nrml-id", args.nrml_id), ("--nrml-asset-category", args.nrml_asset_category),
@@ -64,12 +73,13 @@ def check_nrml_options(args):
 
 def cmd_fragility(args):
     check_nrml_options(args)
-    outputs = [(o, p) for o, p in (("--csv", args.csv), ("--nrml", args.nrml)) if p]
+    outputs = [(o, p) for o, p in (("--csv", args.csv), ("--nrml", args.nrml), ("--vector-csv", args.vector_csv)) if p]
     for option, path in outputs:
         cube_files.refuse_output_over_inputs(path, option, [args.cube])
-    if len(outputs) == 2 and (cube_files.same_file(args.csv, args.nrml) or
-                              os.path.abspath(args.csv) == os.path.abspath(args.nrml)):
-        raise InputError(f"--csv and --nrml: the same file {args.nrml}")
+    for i, (option_a, a) in enumerate(outputs):
+        for option_b, b in outputs[i + 1:]:
+            if cube_files.same_file(a, b) or os.path.abspath(a) == os.path.abspath(b):
+                raise InputError(f"{option_a} and {option_b}: the same file {b}")
     if not os.path.isfile(args.cube):
         raise InputError(f"{args.cube}: no such file")
     state = cube_files.campaign_state(args.cube)  # before our own lock, which would look like a campaign's
@@ -80,6 +90,9 @@ def cmd_fragility(args):
 
 def fragility_locked(args, state):
     cube = Cube(args.cube)
+    if args.nrml_at_pgv_pga is not None and cube.variants is not None:
+        raise InputError(f"{args.cube}: a cube with variants exports its functions at --pgv-pga S already; "
+                         f"give --pgv-pga {args.nrml_at_pgv_pga:g} instead of --nrml-at-pgv-pga")
     check_completeness(cube, state, args)
     objs = cube.select(args.object, args.variant)
     analyses = []
@@ -111,7 +124,11 @@ def fragility_locked(args, state):
     if args.nrml:
         skipped, left_out = [], []
         max_p = None if args.nrml_max_probability == 0 else args.nrml_max_probability
-        if cube.variants is None:
+        if args.nrml_at_pgv_pga is not None:
+            functions, notes = vector_nrml_functions(fits, args.nrml_at_pgv_pga, max_p)
+            for note in notes if not args.json else []:
+                print(f"note: {note}")
+        elif cube.variants is None:
             functions, left_out = nrml_functions(fits, max_p, args.nrml_min_records)
         else:
             functions, skipped = variant_nrml_functions(fits, analyses, max_p)
@@ -123,24 +140,49 @@ def fragility_locked(args, state):
                   f"{args.nrml_min_records} records")
         if not functions:
             raise InputError(f"{args.cube}: no PGV/PGA bin has a finite fit: no NRML written")
+        ratio = args.nrml_rotd50_ratio
+        if ratio is not None:  # a lognormal of GMRotI50 PGA is one of RotD50 = ratio x GMRotI50, beta unchanged
+            functions = [dict(fn, **{k: fn[k] * ratio for k in ("theta_g", "min_iml", "max_iml", "no_damage_limit")})
+                         for fn in functions]
+        measure = "GMRotI50" if ratio is None else f"RotD50 (taken as {ratio:g} x GMRotI50)"
         tree = nrml.fragility_model(args.nrml_id or os.path.splitext(os.path.basename(args.cube))[0],
                                     f"Overturning fragility of precariously balanced rocks from the Rigid cube "
                                     f"{os.path.basename(args.cube)}: " + (
-                                        "one lognormal function of GMRotI50 PGA (g) per object and PGV/PGA bin"
+                                        f"one lognormal function of {measure} PGA (g) per object, its vector fit at the "
+                                        f"site's GMRotI50 PGV/PGA {args.nrml_at_pgv_pga:g} s"
+                                        if args.nrml_at_pgv_pga is not None else
+                                        f"one lognormal function of {measure} PGA (g) per object and PGV/PGA bin (a "
+                                        f"site uses the bin holding its PGV/PGA)"
                                         if cube.variants is None else
-                                        "per object one lognormal function of GMRotI50 PGA (g) per variant (id _vK) "
+                                        f"per object one lognormal function of {measure} PGA (g) per variant (id _vK) "
                                         "at the chosen PGV/PGA, and the pooled one (id _pooled: moment-matched "
                                         "lognormal of the equally weighted mixture of the variants)") + nrml_range_text(max_p),
                                     functions, asset_category=args.nrml_asset_category,
                                     loss_category=args.nrml_loss_category)
         cube_files.write_output(args.nrml, "--nrml", [args.cube], lambda tmp: nrml.write(tmp, tree))
+    if args.vector_csv:
+        write_vector_csv(args, fits)
     if not args.no_store:
         store(args.cube, cube, fits, args, analyses)
     if not args.json:
-        wrote = [p for p in (args.csv, args.nrml) if p] + ([] if args.no_store else [f"{args.cube} (/fragility)"])
+        wrote = [p for p in (args.csv, args.nrml, args.vector_csv) if p] + ([] if args.no_store else [f"{args.cube} (/fragility)"])
         if wrote:
             print(f"\nwrote {', '.join(wrote)}")
     return 0
+
+
+def write_vector_csv(args, fits):
+    """Each object's vector fit as coefficients a hazard code evaluates at a site's PGV/PGA."""
+    rows = [r for r in (vector_coefficients(f) for f in fits) if r is not None]
+    if not rows:
+        raise InputError(f"{args.cube}: no object has a vector fit with a finite estimate: no --vector-csv written")
+
+    def write(tmp):
+        with open(tmp, "w", newline="") as fh:
+            w = csv.DictWriter(fh, fieldnames=list(rows[0].keys()))
+            w.writeheader()
+            w.writerows({k: (repr(float(v)) if isinstance(v, float) else v) for k, v in r.items()} for r in rows)
+    cube_files.write_output(args.vector_csv, "--vector-csv", [args.cube], write)
 
 
 # --------------------------------------------------------------------------------------------
@@ -172,6 +214,16 @@ def build_parser():
     f.add_argument("--object", action="append", help="only this object (repeatable; every variant of it); default: all")
     f.add_argument("--csv", help="write one row per object and bin (and the vector fit) to this CSV")
     f.add_argument("--nrml", help="write an OpenQuake NRML 0.5 fragility model (one function per object and bin)")
+    f.add_argument("--nrml-at-pgv-pga", type=float, metavar="S",
+                   help="the NRML holds one function per object, its vector fit at the site's GMRotI50 PGV/PGA S "
+                        "(s), instead of one per PGV/PGA bin")
+    f.add_argument("--nrml-rotd50-ratio", type=float, metavar="R",
+                   help="the NRML's PGA is RotD50, what NGA-West2 models (and so most hazard models) predict, taken "
+                        "as R x the campaign's GMRotI50: theta and the IMLs multiplied by R (docs/hazard.md); "
+                        "default: GMRotI50, as fitted")
+    f.add_argument("--vector-csv", metavar="FILE",
+                   help="write each object's vector fit as coefficients: ln theta = a + b ln(PGV/PGA / 1 s), "
+                        "ln beta = c + d ln(PGV/PGA / 1 s), with the PGV/PGA and PGA ranges of its data")
     f.add_argument("--nrml-id", help="id of the NRML fragilityModel (default: the cube's file name without .h5)")
     f.add_argument("--nrml-asset-category", default="buildings",
                    help="assetCategory of the NRML fragilityModel (default buildings, what the engine's exposure "

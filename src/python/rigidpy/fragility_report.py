@@ -266,9 +266,32 @@ def _csv_row(name, kind, lo, hi, at, r):
             "note": r.get("reason", r.get("interval_note", ""))}
 
 
+# Below the PGA where the lognormal gives this P, a function is taken as no damage.
+NO_DAMAGE_PROBABILITY = 1e-4
+
+
 def no_damage_limit(theta_g, beta):
-    """The PGA below which the lognormal gives P < 1e-4: no damage there."""
-    return theta_g * math.exp(beta * ff.norm_ppf(1e-4))
+    """The PGA (g) below which the lognormal gives P < NO_DAMAGE_PROBABILITY."""
+    return theta_g * math.exp(beta * ff.norm_ppf(NO_DAMAGE_PROBABILITY))
+
+
+def lower_imls(theta_g, beta, lowest_scale_g):
+    """(minIML, noDamageLimit) of a function, one value for both: OpenQuake evaluates a continuous
+    function at max(PGA, minIML) and sets P = 0 at or below noDamageLimit, so a limit above minIML
+    would zero the fitted curve between them, and one below it would hold P at P(minIML) down to it.
+    Both are the lower of the campaign's lowest scale and the PGA where P = 1e-4: below that the
+    function is 0 (P < 1e-4 there), above it the lognormal (extrapolated below the lowest scale,
+    as maxIML extrapolates above the top one)."""
+    low = min(lowest_scale_g, no_damage_limit(theta_g, beta))
+    return low, low
+
+
+def nrml_function(function_id, theta_g, beta, scale_range_g, max_probability):
+    """One NRML function of the lognormal (theta_g, beta) fitted over the scales scale_range_g."""
+    lo, hi = scale_range_g
+    min_iml, limit = lower_imls(theta_g, beta, lo)
+    return {"id": function_id, "theta_g": theta_g, "beta": beta, "min_iml": min_iml,
+            "max_iml": max_iml(theta_g, beta, hi, max_probability), "no_damage_limit": limit}
 
 
 def max_iml(theta_g, beta, top_scale_g, probability):
@@ -294,18 +317,13 @@ def variant_nrml_functions(fits, analyses, max_probability=0.99):
         if d["source"] not in ("vector fit", SCALAR_SOURCE):
             skipped.append(f.obj.label)
             continue
-        lo, hi = f.scale_range_g
-        functions.append({"id": f"{f.obj.name}_v{f.obj.variant}_pgv_pga_{f.pgv_pga_s:.4g}s", "theta_g": d["theta_g"],
-                          "beta": d["beta"], "min_iml": lo, "max_iml": max_iml(d["theta_g"], d["beta"], hi, max_probability),
-                          "no_damage_limit": no_damage_limit(d["theta_g"], d["beta"])})
+        functions.append(nrml_function(f"{f.obj.name}_v{f.obj.variant}_pgv_pga_{f.pgv_pga_s:.4g}s", d["theta_g"],
+                                       d["beta"], f.scale_range_g, max_probability))
     for a in analyses:
         if a.pooled is None:
             continue
-        lo, hi = a.fits[0].scale_range_g
-        t, b = a.pooled["lognormal_theta_g"], a.pooled["lognormal_beta"]
-        functions.append({"id": f"{a.name}_pooled_pgv_pga_{a.pgv_pga_s:.4g}s", "theta_g": t, "beta": b,
-                          "min_iml": lo, "max_iml": max_iml(t, b, hi, max_probability),
-                          "no_damage_limit": no_damage_limit(t, b)})
+        functions.append(nrml_function(f"{a.name}_pooled_pgv_pga_{a.pgv_pga_s:.4g}s", a.pooled["lognormal_theta_g"],
+                                       a.pooled["lognormal_beta"], a.fits[0].scale_range_g, max_probability))
     return functions, skipped
 
 
@@ -314,7 +332,6 @@ def nrml_functions(fits, max_probability=0.99, min_records=0):
     records left out (returned as (functions, left out labels))."""
     functions, left_out = [], []
     for f in fits:
-        lo, hi = f.scale_range_g
         for r in f.bins:
             if "theta_g" not in r:
                 continue
@@ -322,10 +339,50 @@ def nrml_functions(fits, max_probability=0.99, min_records=0):
             if r["n_records"] < min_records:
                 left_out.append(f"{label} ({r['n_records']} record(s))")
                 continue
-            functions.append({"id": label, "theta_g": r["theta_g"], "beta": r["beta"], "min_iml": lo,
-                              "max_iml": max_iml(r["theta_g"], r["beta"], hi, max_probability),
-                              "no_damage_limit": no_damage_limit(r["theta_g"], r["beta"])})
+            functions.append(nrml_function(label, r["theta_g"], r["beta"], f.scale_range_g, max_probability))
     return functions, left_out
+
+
+def vector_nrml_functions(fits, pgv_pga_s, max_probability=0.99):
+    """One function per object: its vector fit read as a lognormal at the site's PGV/PGA (s), the
+    function a site uses instead of choosing a bin. Returns (functions, notes): objects without a
+    vector fit are named in the notes, as are PGV/PGAs outside an object's records (extrapolated)."""
+    functions, notes = [], []
+    for f in fits:
+        if "fit" not in f.vector:
+            notes.append(f"{f.obj.label}: no vector fit ({f.vector.get('reason', 'no fit')}): no function")
+            continue
+        theta, beta = ff.lognormal_at(f.vector["fit"], f.norm.u_shift, math.log(pgv_pga_s) + f.norm.x_shift)
+        functions.append(nrml_function(f"{f.obj.name}_vector_pgv_pga_{pgv_pga_s:.4g}s", theta, beta, f.scale_range_g,
+                                       max_probability))
+        lo, hi = f.vector["pgv_pga_range_s"]
+        if not lo <= pgv_pga_s <= hi:
+            notes.append(f"{f.obj.label}: PGV/PGA {pgv_pga_s:g} s is outside its records' {lo:.3g}-{hi:.3g} s: the "
+                         f"vector fit is extrapolated there")
+    return functions, notes
+
+
+def vector_coefficients(f):
+    """The vector fit of one object in physical units, for a hazard code that evaluates it at each
+    site: ln theta(s) = a + b ln(s / 1 s) (theta in g, s the site's GMRotI50 PGV/PGA), ln beta(s) =
+    c + d ln(s / 1 s) (d 0 with the default constant sigma). From mu(x) = sum m_k x^k in x = ln s +
+    x_shift and u = ln PGA + u_shift: a = m0 + m1 x_shift - u_shift, b = m1 (mu linear, the
+    default); None when the fit has no finite estimate or mu/sigma are of higher degree."""
+    v = f.vector
+    if "fit" not in v:
+        return None
+    mu, log_sigma = list(v["fit"]["mu_coefficients"]), list(v["fit"]["log_sigma_coefficients"])
+    if len(mu) > 2 or len(log_sigma) > 2:
+        return None
+    mu += [0.0] * (2 - len(mu))
+    log_sigma += [0.0] * (2 - len(log_sigma))
+    xs, us = f.norm.x_shift, f.norm.u_shift
+    lo, hi = v["pgv_pga_range_s"]
+    return {"object": f.obj.label, "ln_theta_intercept": mu[0] + mu[1] * xs - us, "ln_theta_slope": mu[1],
+            "ln_beta_intercept": log_sigma[0] + log_sigma[1] * xs, "ln_beta_slope": log_sigma[1],
+            "pgv_pga_min_s": lo, "pgv_pga_max_s": hi, "pga_min_g": f.scale_range_g[0],
+            "pga_max_g": f.scale_range_g[1], "n_records": v["n_records"], "n_cells": v["n_cells"],
+            "n_overturned": v["n_overturned"]}
 
 
 def nrml_range_text(max_probability):

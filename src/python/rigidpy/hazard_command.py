@@ -9,6 +9,7 @@ import sys
 import numpy as np
 from numpy.polynomial.hermite_e import hermegauss
 
+from . import figure_style
 from . import files as cube_files
 from . import fit as ff
 from . import hazard as hc
@@ -224,7 +225,7 @@ def cmd_hazard(args):
     return 0
 
 
-PLOT_FORMATS = ("png", "pdf", "svg", "eps", "ps", "jpg", "jpeg", "tif", "tiff", "webp")
+PLOT_FORMATS = figure_style.FIGURE_FORMATS
 
 
 def check_plot_path(args):
@@ -418,6 +419,7 @@ def plot_hazard(path, curve, mixture, v, points, r, variant_mixtures=()):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    figure_style.apply(plt)
 
     lo = min(curve.pga_g[0], min(t for _, t, _ in mixture) * 0.2)
     hi = max(curve.pga_g[curve.top - 1], max(t for _, t, _ in mixture) * 5)
@@ -427,7 +429,7 @@ def plot_hazard(path, curve, mixture, v, points, r, variant_mixtures=()):
     # the integrand per unit ln PGA: dlambda / dln a = P(a) |dH / dln a|
     dh = -np.gradient(h, np.log(a))
     dens = p * np.maximum(dh, 0)
-    fig, (top, bottom) = plt.subplots(2, 1, figsize=(7.5, 8.3), sharex=True, gridspec_kw={"height_ratios": [3, 2]})
+    fig, (top, bottom) = plt.subplots(2, 1, figsize=(figure_style.DOUBLE_COLUMN_IN, 7.6), sharex=True, gridspec_kw={"height_ratios": [3, 2]})
     top.loglog(curve.pga_g[: curve.top], curve.rate[: curve.top], "o", color="tab:blue", ms=4, label="hazard curve (points)")
     top.loglog(a, h, "-", color="tab:blue", lw=1.2, label="H(PGA): annual rate of exceedance")
     top.set_ylabel("annual rate of exceedance")
@@ -451,15 +453,16 @@ def plot_hazard(path, curve, mixture, v, points, r, variant_mixtures=()):
     lines = top.get_legend_handles_labels()
     lines2 = right.get_legend_handles_labels()
     # below the panels, off the curves (inside, every corner holds the hazard curve or the fragility)
-    fig.legend(lines[0] + lines2[0], lines[1] + lines2[1], loc="lower center", ncol=2, fontsize=8, frameon=False)
+    fig.legend(lines[0] + lines2[0], lines[1] + lines2[1], loc="lower center", ncol=2, frameon=False)
     top.set_title(f"{r['object']}: toppling rate {r['annual_toppling_rate']:.2e}/yr, "
-                  f"P(survive {r['age_years']:g} yr) = {fmt_probability(r['survival_probability'], 3)}", fontsize=10)
+                  f"P(survive {r['age_years']:g} yr) = {fmt_probability(r['survival_probability'], 3)}")
     bottom.semilogx(a, dens, color="black")
     bottom.fill_between(a, 0, dens, color="gray", alpha=0.3)
     bottom.set_xlabel("PGA (g, GMRotI50)")
     bottom.set_ylabel("d lambda / d ln PGA (per year)")
     bottom.grid(True, which="both", alpha=0.3)
-    fig.tight_layout(rect=(0, 0.09, 1, 1))
+    fig.tight_layout(rect=(0, 0.09, 1, 1), h_pad=2.0)  # the panels' y labels apart
     fmt = os.path.splitext(path)[1].lower().lstrip(".")
-    cube_files.write_output(path, "--plot", [], lambda tmp: fig.savefig(tmp, dpi=120, format=fmt))
+    cube_files.write_output(path, "--plot", [], lambda tmp: fig.savefig(tmp, dpi=figure_style.RASTER_DPI, format=fmt))
     plt.close(fig)
+    return fig

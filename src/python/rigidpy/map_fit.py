@@ -10,7 +10,7 @@ from .errors import InputError
 from .fit import SCALAR_SOURCE, THRESHOLD_SOURCE, fit_mu, fit_probit, fit_sigma, norm_ppf
 from .outcomes import simulated_counts
 
-FIT_LABEL = "this project's probit fit (not Purvance et al. 2008)"
+FIT_LABEL = "this project's probit fit in the variables of Purvance et al. (2008), not their coefficients"
 CONTOUR_LEVELS = (1, 50, 99)
 
 
@@ -118,6 +118,11 @@ def fit_object(cube, obj, norm, mu_degree, sigma_degree):
                           "(sigma -> 0); contours not drawn")
         return info, None
     info["x_range"] = [float(x.min()), float(x.max())]
+    # the lognormal the fit gives at the records' median PGV/PGA, where `rigid fragility` reads its
+    # vector fit (the same fit at the default degrees: one median per fit, not two)
+    info["reference_pgv_pga_s"] = fragility_fit.reference_pgv_pga_s(cube.pgv_pga, rr)
+    info["reference_theta_g"] = float(contour_pga(fit, norm, np.array([info["reference_pgv_pga_s"]]), 50)[0])
+    info["reference_beta"] = float(fit_sigma(fit, norm.x_of([info["reference_pgv_pga_s"]]))[0])
     info["pgv_pga_range_s"] = [float(cube.pgv_pga[rr].min()), float(cube.pgv_pga[rr].max())]
     # the contour PGA at each bin's median record PGV/PGA, for tables
     bins = cube.bin_of_records()

@@ -61,7 +61,7 @@ class ObjectFit:
         index = int(obj.attrs.get("index", 0))
         records = self.cells.records_with_cells()
         self.pgv_pga_s = (args.pgv_pga if args.pgv_pga is not None
-                          else float(np.median(cube.pgv_pga[records])))
+                          else ff.reference_pgv_pga_s(cube.pgv_pga, records))
         self.points_s = [self.pgv_pga_s] if points_s is None else list(points_s)
         bins = cube.bin_of_records()
         self.edges = cube.edges

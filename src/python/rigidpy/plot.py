@@ -50,6 +50,7 @@ try:
     from .cube import Cube, ObjectData
     from .command_line import OneLineParser, add_old_spelling
     from .errors import InputError
+    from .figure_style import FIGURE_FORMATS
     from .figures import INPUTS, file_stem, plot_diff, plot_map, plot_records, plot_variant_band, safe_name
     from .fit import fit_sigma
     from .map_fit import (CONTOUR_LEVELS, FIT_LABEL, Normalisation, fit_object, map_lognormal,
@@ -60,7 +61,6 @@ except ImportError as e:  # pragma: no cover
                      f"python3-scipy and run with /usr/bin/python3 (this is {sys.executable})\n")
     sys.exit(2)
 
-FIGURE_FORMATS = ("png", "pdf", "svg")
 # The study's reported mismatch (2D model minus Rigid 3D, mean and sd over cells; physics.md 11).
 STUDY_MISMATCH_2D_MINUS_3D = {0.1: (0.03, 0.12), 0.2: (0.02, 0.08), 0.3: (0.02, 0.10), 0.4: (0.03, 0.14)}
 
@@ -143,15 +143,17 @@ def _json_clean(v):
 
 def fit_summary(obj, info, f, norm_):
     """The fit in words a reader can use: its median PGA and dispersion at the records' median
-    PGV/PGA, and the coefficients with what they multiply."""
-    x_mid = float(np.mean(info["x_range"]))
-    sig = float(fit_sigma(f, np.array([x_mid]))[0])
+    PGV/PGA (fit.reference_pgv_pga_s, where `rigid fragility` reads its vector fit: the same
+    median), and the coefficients with what they multiply."""
+    s, theta, sig = info["reference_pgv_pga_s"], info["reference_theta_g"], info["reference_beta"]
+    same = info["mu_degree"] == 1 and info["sigma_degree"] == 0
     mu = f["mu_coefficients"]
-    theta = float(norm_.pga_g(float(np.polyval(mu[::-1], x_mid))))
     u, x = norm_.describe()
     terms = " + ".join([f"{mu[0]:.4g}"] + [f"({c:.4g}) x" + (f"^{k}" if k > 1 else "") for k, c in enumerate(mu) if k])
     return (f"{obj.label}: {info['n_cells']} cells ({info['n_overturned']} overturned) of {info['n_records']} records; "
-            f"at mid PGV/PGA of the records: median PGA {theta:.3g} g, dispersion sigma {sig:.3g} (of ln PGA)\n"
+            f"at the records' median PGV/PGA {s:.3g} s ({'the fit and point of' if same else 'other degrees than'} "
+            f"rigid fragility's vector fit): median PGA {theta:.4g} g, "
+            f"dispersion sigma {sig:.3g} (of ln PGA)\n"
             f"  fit P = Phi((u - mu(x)) / sigma(x)), u = {u}, x = {x}: mu(x) = {terms}, "
             f"ln sigma = {', '.join(f'{c:.4g}' for c in f['log_sigma_coefficients'])} (fit.json has them all)")
 
@@ -445,8 +447,9 @@ def build_parser():
                         help="degree of the polynomial ln sigma(x) (default 0: constant sigma)")
         sp.add_argument("--counts", choices=("auto", "on", "off"), default="auto",
                         help="print the number of records in each map cell (auto: when there are <= 25 scales)")
-        sp.add_argument("--format", choices=FIGURE_FORMATS, default="png",
-                        help="figure file format: png (default; raster at 120 dpi), pdf or svg (vector, for a paper)")
+        sp.add_argument("--figure-format", dest="format", choices=FIGURE_FORMATS,
+                        help="figure file format: png (default; raster at 300 dpi), pdf or svg (vector, for a paper)")
+        add_old_spelling(sp, "--format", "--figure-format", choices=FIGURE_FORMATS)
 
     m = sub.add_parser("maps", help="per object: fragility map PNG with the fit's 1/50/99 %% contours, "
                                     "per-record curves PNG, fit.json")
@@ -488,6 +491,8 @@ def build_parser():
 
 def main(argv=None):
     args = build_parser().parse_args(argv)
+    if hasattr(args, "format") and args.format is None:  # None until parsed: the old spelling may set it
+        args.format = "png"
     INPUTS[:] = [p for key in ("cube", "cube_a", "cube_b") for p in [getattr(args, key, None)] if p]
     INPUTS.extend(getattr(args, "cubes", None) or [])
     try:

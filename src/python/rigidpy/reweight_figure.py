@@ -5,6 +5,7 @@ import os
 
 import numpy as np
 
+from . import figure_style as style
 from . import files as cube_files
 
 
@@ -12,10 +13,12 @@ def draw(path, r, inputs):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    style.apply(plt)
 
     c = r["curves"]
     a = np.array(c["pga_g"])
-    fig, (left, right) = plt.subplots(1, 2, figsize=(12, 5.2), gridspec_kw={"width_ratios": [1.15, 1]})
+    # one panel above the other on a page's width
+    fig, (left, right) = plt.subplots(2, 1, figsize=(style.DOUBLE_COLUMN_IN, 8.6))
     for key, colour, label in (("prior", "tab:blue", "prior"), ("posterior", "tab:red", "posterior")):
         s = {k: np.array(v) for k, v in c[key].items()}
         positive = s["mean"] > 0
@@ -31,12 +34,12 @@ def draw(path, r, inputs):
         if np.isfinite(change):
             left.annotate(f"{p['annual_rate']:g}/yr: {p['prior_mean_pga_g']:.2f} -> {p['posterior_mean_pga_g']:.2f} g "
                           f"({change:+.0f} %)", (a[0], p["annual_rate"]), xytext=(4, 3), textcoords="offset points",
-                          fontsize=8, color="0.3")
+                          color="0.3")
     left.set_xlabel("PGA (g)")
     left.set_ylabel("annual rate of exceedance")
-    left.set_title("hazard before and after the rocks' survival", fontsize=10)
+    left.set_title("hazard before and after the rocks' survival")
     left.grid(True, which="both", alpha=0.3)
-    left.legend(fontsize=7, loc="lower left", ncol=2)
+    left.legend(loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=4, frameon=False)  # off the curves
 
     branches = r["branches"]
     x = np.arange(len(branches))
@@ -46,7 +49,7 @@ def draw(path, r, inputs):
     right.set_xlabel("branch (rlz_id)")
     step = max(1, len(branches) // 20)
     right.set_xticks(x[::step])
-    right.set_xticklabels([str(b["rlz_id"]) for b in branches][::step], fontsize=7)
+    right.set_xticklabels([str(b["rlz_id"]) for b in branches][::step])
     if r["prune"] is not None:
         right.axhline(r["prune"], color="black", lw=0.8, ls="--", label=f"prune below {r['prune']:g}")
     weights = right.twinx()
@@ -57,13 +60,14 @@ def draw(path, r, inputs):
     weights.set_ylabel("branch weight")
     h1, l1 = right.get_legend_handles_labels()
     h2, l2 = weights.get_legend_handles_labels()
-    right.legend(h1 + h2, l1 + l2, fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.12), ncol=2, frameon=False)
+    right.legend(h1 + h2, l1 + l2, loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=2, frameon=False)
     rocks = "; ".join(f"{rock['rock']}, {rock['exposure_age']}" for rock in r["rocks"])
-    right.set_title(f"each branch: {rocks}", fontsize=9)
-    fig.tight_layout()
+    right.set_title(f"each branch: {rocks}")
+    fig.tight_layout(h_pad=1.5)
     fmt = os.path.splitext(path)[1].lower().lstrip(".")
-    cube_files.write_output(path, "--plot", inputs, lambda tmp: fig.savefig(tmp, dpi=110, format=fmt))
+    cube_files.write_output(path, "--plot", inputs, lambda tmp: fig.savefig(tmp, dpi=style.RASTER_DPI, format=fmt))
     plt.close(fig)
+    return fig
 
 
 def masked(v):

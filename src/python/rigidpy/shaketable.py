@@ -29,6 +29,7 @@ import sys
 
 try:
     import numpy as np
+    from . import figure_style
     from . import files as cube_files
     from . import fit as ff
     from .cube import Cube
@@ -78,7 +79,7 @@ def lab_cells(lab_rows, motion_index):
         m = motion_index[row["record"]]
         n[m, t] = 1
         k[m, t] = float(row["overturned"])
-        pga[t] = float(row["pga_g"])
+        pga[t] = float(row["measured_pga_g"])
     return BinnedCells(k, n, pga)
 
 
@@ -184,8 +185,8 @@ def fragility_command(argv=None):
     args = ap.parse_args(argv)
 
     cube = Cube(args.cube)
-    lab_rows = read_csv(args.lab, ["test_no", "record", "pga_g", "overturned"])
-    motion_rows = read_csv(args.motions, ["record", "pgv_over_pga_s"])
+    lab_rows = read_csv(args.lab, ["test_no", "record", "measured_pga_g", "overturned"])
+    motion_rows = read_csv(args.motions, ["record", "measured_pgv_over_pga_s"])
     if len(motion_rows) != len(cube.records):
         raise InputError(f"{args.motions}: {len(motion_rows)} motions, the cube has {len(cube.records)} records")
     model_rows = read_csv(args.model, ["record_index", "scale_g", "p_overturn", "cells"])
@@ -196,7 +197,7 @@ def fragility_command(argv=None):
     unknown = sorted({row["record"] for row in lab_rows} - set(motion_index))
     if unknown:
         raise InputError(f"{args.lab}: tests of motions the campaign did not run: {', '.join(unknown)}")
-    pgv_pga = np.array([float(row["pgv_over_pga_s"]) for row in motion_rows])
+    pgv_pga = np.array([float(row["measured_pgv_over_pga_s"]) for row in motion_rows])
     edges = bin_edges(args.bins, pgv_pga)
     lab = lab_cells(lab_rows, motion_index)
     model, model_p, simulated = model_cells(cube, model_rows)
@@ -262,19 +263,25 @@ def probit_curve(x, fit, theta=None):
 def draw(rows, lab, model_p, known, scales_g, path, inputs, physics=""):
     import matplotlib.pyplot as plt
     fig = fragility_figure(rows, lab, model_p, known, scales_g, physics)
-    cube_files.save_figure(fig, path, "--out", inputs, dpi=150)
+    cube_files.save_figure(fig, path, "--out", inputs, dpi=figure_style.RASTER_DPI)
     plt.close(fig)
 
 
 def fragility_figure(rows, lab, model_p, known, scales_g, physics=""):
-    """The figure: one panel per PGV/PGA bin and one of all motions; the title names the model's
-    physics (`physics`, one line)."""
+    """The figure: one panel per PGV/PGA bin and one of all motions, three a row on a page's width;
+    the title names the model's physics (`physics`, one line)."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    figure_style.apply(plt)
     n = len(rows)
-    width = 3.6 * max(n, 3)  # the legend and title need about three panels of room
-    fig, axes = plt.subplots(1, n, figsize=(width, 3.6), sharey=True, squeeze=False)
+    width = figure_style.DOUBLE_COLUMN_IN
+    ncol = min(3, n)
+    nrow = -(-n // ncol)
+    fig, grid = plt.subplots(nrow, ncol, figsize=(width, 2.4 * nrow + 1.9), sharey=True, squeeze=False)
+    for ax in grid.ravel()[n:]:
+        ax.set_visible(False)
+    axes = [list(grid.ravel()[:n])]
     # PGA on a log axis: the lognormal's own scale, and the lab's tests span two decades
     low = 0.8 * min(float(np.min(scales_g)), float(np.min(lab.scales_g[lab.scales_g > 0])))
     top = 1.25 * max(float(np.max(scales_g)), float(np.max(lab.scales_g)))
@@ -303,22 +310,24 @@ def fragility_figure(rows, lab, model_p, known, scales_g, physics=""):
             if math.isfinite(lo) and math.isfinite(hi):
                 h = ax.fill_between(x, probit_curve(x, f, hi), probit_curve(x, f, lo), color=color, alpha=0.15, lw=0)
                 handles[name + ": theta's interval"] = h
-        ax.set_title(f"{'PGV/PGA ' if r['label'][0].isdigit() else ''}{r['label']}\n{len(motions)} motions, {r['tests']} tests", fontsize=9)
+        ax.set_title(f"{'PGV/PGA ' if r['label'][0].isdigit() else ''}{r['label']}\n{len(motions)} motions, {r['tests']} tests")
         ax.set_xlabel("PGA (g)")
         ax.set_xscale("log")
         ax.set_xlim(low, top)
         ax.set_ylim(-0.08, 1.08)
         ax.grid(alpha=0.3)
-    axes[0][0].set_ylabel("P(overturn)")
+    for row in grid:
+        row[0].set_ylabel("P(overturn)")
     import textwrap
     title = "Shake-table fragility, lab beside model; model: " + (physics or "physics not stated")
-    fig.suptitle(textwrap.fill(title, width=int(15 * width)), fontsize=9)  # about 15 characters an inch
+    fig.suptitle(textwrap.fill(title, width=int(15 * width)))  # about 15 characters an inch at 9 pt
     # one legend below the panels: it cannot cover data
-    columns = 3
-    fig.legend(list(handles.values()), list(handles.keys()), loc="lower center", ncol=columns, fontsize=8,
-               frameon=False)
-    legend_rows = -(-len(handles) // columns)
-    fig.tight_layout(rect=(0, min(0.5, 0.05 * legend_rows + 0.04), 1, 0.93))
+    columns = 2
+    fig.legend(list(handles.values()), list(handles.keys()), loc="lower center", ncol=columns, frameon=False)
+    legend_in = 0.17 * -(-len(handles) // columns) + 0.1
+    height = fig.get_size_inches()[1]
+    title_in = 0.17 * (textwrap.fill(title, width=int(15 * width)).count("\n") + 1) + 0.1
+    fig.tight_layout(rect=(0, legend_in / height, 1, 1 - title_in / height))
     return fig
 
 
@@ -395,7 +404,16 @@ def calibration_figure(doc, likelihood_rows):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, (a_lik, a_motion, a_rel) = plt.subplots(1, 3, figsize=(15, 4.8))
+    figure_style.apply(plt)
+    cv = doc.get("cross_validated", {})
+    by = cv.get("by_motion", []) if isinstance(cv, dict) else []
+    # likelihood and reliability side by side, the motions' held-out scores below on the page's
+    # width; without cross-validation no empty panel, a line under the title says why
+    fig = plt.figure(figsize=(figure_style.DOUBLE_COLUMN_IN, 8.4 if by else 4.6))
+    grid = fig.add_gridspec(2 if by else 1, 2, height_ratios=[1, 0.9] if by else [1])
+    a_lik = fig.add_subplot(grid[0, 0])
+    a_motion = fig.add_subplot(grid[1, :]) if by else None
+    a_rel = fig.add_subplot(grid[0, 1])
     # (a) likelihood over heading, one line per physics variant of the final stage
     stage, lines = final_stage_likelihood(likelihood_rows)
     best = max(ll.max() for _, ll in lines.values())
@@ -404,28 +422,21 @@ def calibration_figure(doc, likelihood_rows):
     a_lik.axhline(best - 1.92, color="0.4", ls=":", lw=1, label="95 % region: best - 1.92")
     a_lik.set_xlabel("heading of the table's axis in the scan's frame (deg)")
     a_lik.set_ylabel("log-likelihood (best spread and lapse)")
-    a_lik.set_title(f"{stage}: likelihood by variant and heading", fontsize=9)
-    a_lik.legend(fontsize=6, loc="upper center", bbox_to_anchor=(0.5, -0.2))  # below: it cannot cover a line
+    a_lik.set_title(f"{stage}: likelihood by variant and heading")
+    a_lik.legend(loc="upper center", bbox_to_anchor=(0.5, -0.2), frameon=False)  # below: it cannot cover a line
     a_lik.grid(alpha=0.3)
     # (b) held-out scores of each recorded motion
-    cv = doc.get("cross_validated", {})
-    by = cv.get("by_motion", []) if isinstance(cv, dict) else []
     if by:
         x = np.arange(len(by))
         a_motion.bar(x, [m["brier"] for m in by], color="C1", alpha=0.7, label="Brier score (0 best)")
         a_motion.plot(x, [m["accuracy"] for m in by], "ko", ms=4, label="accuracy")
         a_motion.set_xticks(x)
-        a_motion.set_xticklabels([f"{m['record']} ({m['overturned']}/{m['tests']})" for m in by], rotation=75,
-                                 fontsize=6)
+        a_motion.set_xticklabels([f"{m['record']} ({m['overturned']}/{m['tests']})" for m in by], rotation=75)
         a_motion.set_ylim(0, 1.05)
-        a_motion.legend(fontsize=7, loc="upper right")
+        a_motion.legend(loc="lower left", bbox_to_anchor=(1.0, 0.0), frameon=False)  # right of the bars
         a_motion.set_title(f"left-out motion's own tests: Brier {cv['brier']:.3f}, log loss {cv['log_loss']:.3f} "
-                           f"overall", fontsize=9)
-    else:
-        a_motion.text(0.5, 0.5, "cross-validation not available\n(fewer than 3 recorded motions)",
-                      ha="center", va="center", transform=a_motion.transAxes)
-        a_motion.set_title("cross-validated score by recorded motion", fontsize=9)
-    a_motion.grid(alpha=0.3, axis="y")
+                           f"overall")
+        a_motion.grid(alpha=0.3, axis="y")
     # (c) reliability: predicted P against the observed share, 95 % Wilson intervals
     a_rel.plot([0, 1], [0, 1], color="0.5", lw=1, ls="--", label="perfectly reliable")
     for key, color, marker, name in (("in_sample", "C0", "s", "in sample"),
@@ -438,16 +449,19 @@ def calibration_figure(doc, likelihood_rows):
                        label=f"{name} (Brier {part['brier']:.3f}, log loss {part['log_loss']:.3f})")
         if key == "cross_validated":
             for xm, ym, count in zip(mean, freq, n):
-                a_rel.annotate(str(count), (xm, ym), textcoords="offset points", xytext=(4, -8), fontsize=6)
+                a_rel.annotate(str(count), (xm, ym), textcoords="offset points", xytext=(4, -8))
     a_rel.set_xlim(-0.02, 1.02)
     a_rel.set_ylim(-0.02, 1.02)
     a_rel.set_xlabel("predicted P(overturn) (bin mean)")
     a_rel.set_ylabel("observed share overturned")
-    a_rel.set_title("reliability (numbers: tests per bin)", fontsize=9)
-    a_rel.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.2))
+    a_rel.set_title("reliability (numbers: tests per bin)")
+    a_rel.legend(loc="upper center", bbox_to_anchor=(0.5, -0.2), frameon=False)
     a_rel.grid(alpha=0.3)
-    fig.suptitle(calibration_title(doc), fontsize=10)
-    fig.tight_layout(rect=(0, 0, 1, 0.95))
+    title = calibration_title(doc)
+    if not by:
+        title += "\ncross-validation by recorded motion: not available (fewer than 3 recorded motions)"
+    fig.suptitle(title)
+    fig.tight_layout(rect=(0, 0, 1, 0.95 if by else 0.9))
     return fig
 
 
@@ -464,7 +478,7 @@ def calibration_figure_command(argv=None):
         raise InputError(f"{args.likelihood}: no rows")
     import matplotlib.pyplot as plt
     fig = calibration_figure(doc, rows)
-    cube_files.save_figure(fig, args.out, "--out", [args.calibration, args.likelihood], dpi=150)
+    cube_files.save_figure(fig, args.out, "--out", [args.calibration, args.likelihood], dpi=figure_style.RASTER_DPI)
     plt.close(fig)
     print(f"wrote {args.out} (the calibration's figure)")
     return 0
