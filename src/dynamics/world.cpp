@@ -14,9 +14,7 @@ constexpr double kReferenceImpactSpeed = 1.0;  // unit: m/s
 
 // Central-difference critical step of a mass-spring-dashpot of circular frequency omega and
 // damping ratio zeta (physics.md §10): damping shortens it, to 1 / (zeta omega) when heavy.
-double damped_critical_step(double omega, double zeta) {
-  return 2.0 / omega * (std::sqrt(1.0 + zeta * zeta) - zeta);
-}
+double damped_critical_step(double omega, double zeta) { return 2.0 / omega * (std::sqrt(1.0 + zeta * zeta) - zeta); }
 
 }  // namespace
 

@@ -36,8 +36,8 @@ rigid::scenario::Scene tilted(const Block& k, const rigid::contact::ContactLaw& 
   scene.source = k.name;
   scene.bodies.push_back(rigid::library::box_body("base", Vec3(-3 * k.b - 0.1, -k.depth, -0.5),
                                                   Vec3(3 * k.b + 0.1, k.depth, 0), 2600, true));
-  auto block = rigid::library::box_body("block", Vec3(-k.b, -0.5 * k.depth, 0), Vec3(k.b, 0.5 * k.depth, 2 * k.h),
-                                        2600, false);
+  auto block =
+      rigid::library::box_body("block", Vec3(-k.b, -0.5 * k.depth, 0), Vec3(k.b, 0.5 * k.depth, 2 * k.h), 2600, false);
   const Vec3 pivot(k.b, 0, 0);
   const Quat turn(Eigen::AngleAxisd(0.1, Vec3::UnitY()));
   block.position = pivot + turn * (block.position - pivot);
@@ -55,8 +55,8 @@ int main() {
                                      {"0.6x0.8x1.2 m, 1.5 t", 0.3, 0.6, 0.8}};
   const double safety = scenario::find_accuracy_preset(scenario::kDefaultAccuracy)->safety;
   std::printf("automatic step at safety %.2g (the default preset), D = 2 s/m, 1 s of free rocking\n", safety);
-  std::printf("%-26s %8s %11s %-9s %10s %9s %9s %11s\n", "block", "K_N", "step (s)", "set by", "steps/s",
-              "wall (s)", "accepted", "energy gain");
+  std::printf("%-26s %8s %11s %-9s %10s %9s %9s %11s\n", "block", "K_N", "step (s)", "set by", "steps/s", "wall (s)",
+              "accepted", "energy gain");
   for (const Block& block : blocks) {
     for (double k = 1e4; k <= 1.01e10; k *= std::sqrt(10.0)) {
       contact::ContactLaw law;
@@ -87,8 +87,8 @@ int main() {
         wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       }
       std::printf("%-26s %8.1e %11.3e %-9s %10ld %9.3f %9s %11.2e\n", block.name.c_str(), k,
-                  dynamics::time_step(scene.bodies, law, step), critical < rocking ? "critical" : "rocking", steps, wall,
-                  accepted.c_str(), gain);
+                  dynamics::time_step(scene.bodies, law, step), critical < rocking ? "critical" : "rocking", steps,
+                  wall, accepted.c_str(), gain);
     }
   }
   return 0;

@@ -29,8 +29,8 @@ scenario::Scene tilted_block(const contact::ContactLaw& law) {
   scene.law = law;
   scene.source = "tilted block";
   scene.bodies.push_back(library::box_body("base", Vec3(-0.3, -0.1, -0.2), Vec3(0.3, 0.1, 0), 2600, true));
-  dynamics::BodyDef block = library::box_body(
-      "block", Vec3(-kHalfWidth, -0.5 * kDepth, 0), Vec3(kHalfWidth, 0.5 * kDepth, 2 * kHalfHeight), 2600, false);
+  dynamics::BodyDef block = library::box_body("block", Vec3(-kHalfWidth, -0.5 * kDepth, 0),
+                                              Vec3(kHalfWidth, 0.5 * kDepth, 2 * kHalfHeight), 2600, false);
   // turned about its +x bottom edge, which stays on the base (touching, no overlap)
   const Vec3 pivot(kHalfWidth, 0, 0);
   const Quat turn(Eigen::AngleAxisd(kTilt, Vec3::UnitY()));
@@ -80,8 +80,9 @@ TEST(FreeRockingEnergy, RigidContactNeverGainsEnergy) {
   const EnergyRecord r = rock_freely(scene, 2.0);
   const auto& block = scene.bodies[1].shape;
   const double slop_energy = block.mass * kGravity * 1e-5 * block.bounding_radius;
-  std::printf("rigid: dt %.3g s, released %.4g J, worst gain %.3g of it (%.3g of the slop's energy), %.3g left after 2 s\n",
-              r.dt, r.released, r.worst_gain / r.released, r.worst_gain / slop_energy, r.final_left);
+  std::printf(
+      "rigid: dt %.3g s, released %.4g J, worst gain %.3g of it (%.3g of the slop's energy), %.3g left after 2 s\n",
+      r.dt, r.released, r.worst_gain / r.released, r.worst_gain / slop_energy, r.final_left);
   EXPECT_LE(r.worst_gain, 2 * slop_energy);
   EXPECT_LT(r.final_left, 0.5);  // the impacts dissipate (r^2 = 0.83 per impact at this slenderness)
 }

@@ -105,8 +105,8 @@ constexpr double kFriction = 0.5;
 
 struct SlopeRun {
   double theta = 0;
-  double slid = 0;        ///< down-slope displacement over the run (unit: m)
-  double late_speed = 0;  ///< largest down-slope speed over the last second (unit: m/s)
+  double slid = 0;          ///< down-slope displacement over the run (unit: m)
+  double late_speed = 0;    ///< largest down-slope speed over the last second (unit: m/s)
   double acceleration = 0;  ///< mean down-slope acceleration from t = 0.5 s to the end (unit: m/s^2)
 };
 
