@@ -9,8 +9,6 @@
 
 #include "rigid/calibration/outcome_model.hpp"
 #include "rigid/core/types.hpp"
-#include "rigid/dynamics/world.hpp"
-#include "rigid/scenario/run_bounds.hpp"
 #include "rigid/shaketable/design_extension.hpp"
 
 using namespace rigid;
@@ -253,3 +251,4 @@ TEST(DesignExtension, StiffnessLimitsOfARock) {
   // a wide base sinks nowhere near its half-width: the design's floor of 1e5 decides (the penalty
   // step, stable for any K_N, bounds nothing)
   EXPECT_EQ(shaketable::stiffness_limits(bodies, 10.0).low, 1e5);
+}
