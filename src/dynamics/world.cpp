@@ -7,25 +7,46 @@
 
 namespace rigid::dynamics {
 
+namespace {
+
+// Speed of the reference impact that sets the largest expected overlap (physics.md §10)
+constexpr double kReferenceImpactSpeed = 1.0;  // unit: m/s
+
+// Central-difference critical step of a mass-spring-dashpot of circular frequency omega and
+// damping ratio zeta (physics.md §10): damping shortens it, to 1 / (zeta omega) when heavy.
+double damped_critical_step(double omega, double zeta) { return 2.0 / omega * (std::sqrt(1.0 + zeta * zeta) - zeta); }
+
+}  // namespace
+
 double critical_time_step(const std::vector<BodyDef>& bodies, const contact::ContactLaw& law) {
   double dt = std::numeric_limits<double>::infinity();
   for (const auto& body : bodies) {
     if (body.fixed) continue;
     const auto& s = body.shape;
     const double m = s.mass;
-    // Hertz tangent stiffness at the peak indentation of a 1 m/s normal impact (physics.md §10)
-    const double v_ref = 1.0;
-    const double depth = std::pow(5.0 * m * v_ref * v_ref / (4.0 * law.normal_stiffness), 0.4);
-    const double k = std::max(law.shear_stiffness, 1.5 * law.normal_stiffness * std::sqrt(depth));
-    // largest lever arm over moment of inertia, per principal axis
+    // inverse effective mass of the stiffest mode: translation plus the largest lever arm over the
+    // moment of inertia, per principal axis
     double rotational = 0;
     for (int axis = 0; axis < 3; ++axis) {
       double r2 = 0;
       for (const auto& v : s.vertices) r2 = std::max(r2, v.squaredNorm() - v[axis] * v[axis]);
       rotational = std::max(rotational, r2 / s.inertia[axis]);
     }
-    const double omega = std::sqrt(4.0 * k * (1.0 / m + rotational));
-    dt = std::min(dt, 2.0 / omega);
+    const double inverse_mass = 1.0 / m + rotational;
+    // the largest expected overlap: the whole block on one subcontact, either striking it at the
+    // reference speed (Hertz: 0.4 K_N d^2.5 = m v^2 / 2) or resting its weight on it
+    const double v = kReferenceImpactSpeed;
+    const double impact = std::pow(5.0 * m * v * v / (4.0 * law.normal_stiffness), 0.4);
+    const double resting = std::pow(m * kGravity / law.normal_stiffness, 2.0 / 3.0);
+    const double depth = std::max(impact, resting);
+    // four subcontacts at that overlap: the Hertz tangent stiffness dF/dd = 1.5 K_N d^0.5 and the
+    // damper dF/d(dd/dt) = D K_N d^1.5 of F = K_N d^1.5 (1 + D dd/dt); the linear shear spring K_S
+    const double normal_stiffness = 1.5 * law.normal_stiffness * std::sqrt(depth);
+    const double normal_damping = law.damping * law.normal_stiffness * depth * std::sqrt(depth);
+    const double omega_normal = std::sqrt(4.0 * normal_stiffness * inverse_mass);
+    const double zeta = 4.0 * normal_damping * inverse_mass / (2.0 * omega_normal);
+    const double omega_shear = std::sqrt(4.0 * law.shear_stiffness * inverse_mass);
+    dt = std::min({dt, damped_critical_step(omega_normal, std::max(0.0, zeta)), 2.0 / omega_shear});
   }
   return std::isfinite(dt) ? dt : 1e-3;
 }
@@ -42,7 +63,9 @@ double rigid_time_step(const std::vector<BodyDef>& bodies, double safety) {
 double time_step(const std::vector<BodyDef>& bodies, const contact::ContactLaw& law, const StepSettings& settings) {
   if (settings.dt > 0) return settings.dt;
   if (law.method == contact::ContactMethod::rigid) return rigid_time_step(bodies, settings.safety);
-  return settings.safety * critical_time_step(bodies, law);
+  // the stability limit, and never coarser than the rigid model's step: a soft spring's long
+  // period does not make a coarse step resolve the rocking
+  return settings.safety * std::min(critical_time_step(bodies, law), rigid_time_step(bodies, 1.0));
 }
 
 namespace {

@@ -94,8 +94,7 @@ void check_run_bounds(const Scene& scene, const dynamics::StepSettings& step, do
     throw InputError("", 0,
                      "time step " + seconds(dt) + " of " + scene.source + " exceeds the largest the " + model +
                          " contact model allows (" + seconds(largest) +
-                         ", its automatic step at safety 1): lower dt or safety" +
-                         (step.dt > 0 ? "" : ", or raise the contact stiffness"));
+                         ", its automatic step at safety 1): lower dt or safety");
   }
   const double steps = simulated_time / dt;
   if (!(steps <= kMaxStepsPerRun)) {

@@ -17,7 +17,6 @@
 #include "rigid/io/provenance.hpp"
 #include "rigid/io/scene_file.hpp"
 #include "rigid/io/scene_writer.hpp"
-#include "rigid/scenario/accuracy.hpp"
 #include "rigid/scenario/scene.hpp"
 #include "rigid/shaketable/ensemble.hpp"
 #include "rigid/shaketable/settle.hpp"
@@ -202,9 +201,7 @@ PhysicalLimits design_limits(const std::vector<std::string>& base_scenes) {
     const auto rocking = analysis::rocking_parameters(scene);
     if (!rocking)
       throw InputError(path, 0, "has no single free block standing on its pedestal (no rocking parameters)");
-    // the campaigns run at the default accuracy preset: its safety sets their automatic step
-    const double safety = scenario::find_accuracy_preset(scenario::kDefaultAccuracy)->safety;
-    const Range k = stiffness_limits(scene.bodies, rocking->radius * std::sin(rocking->alpha), safety);
+    const Range k = stiffness_limits(scene.bodies, rocking->radius * std::sin(rocking->alpha));
     limits.normal_stiffness.low = std::max(limits.normal_stiffness.low, k.low);
     limits.normal_stiffness.high = std::min(limits.normal_stiffness.high, k.high);
   }

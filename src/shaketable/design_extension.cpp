@@ -6,8 +6,6 @@
 #include <set>
 
 #include "rigid/core/types.hpp"
-#include "rigid/dynamics/world.hpp"
-#include "rigid/scenario/run_bounds.hpp"
 
 namespace rigid::shaketable {
 namespace {
@@ -125,7 +123,7 @@ const char* status_text(EdgeStatus s) {
   return "fixed (one value given)";
 }
 
-Range stiffness_limits(const std::vector<dynamics::BodyDef>& bodies, double base_half_width_m, double safety) {
+Range stiffness_limits(const std::vector<dynamics::BodyDef>& bodies, double base_half_width_m) {
   double weight = 0;
   for (const auto& b : bodies) {
     if (!b.fixed) weight = std::max(weight, b.shape.mass * kGravity);
@@ -133,26 +131,7 @@ Range stiffness_limits(const std::vector<dynamics::BodyDef>& bodies, double base
   // Hertz: the whole weight on one contact sinks it (m g / K_N)^(2/3)
   const double sinkage_low = weight / std::pow(kMaxSinkageFraction * base_half_width_m, 1.5);
   const double high = weight / std::pow(kRigidSinkage_m, 1.5);
-  // the penalty step: the softest K_N whose automatic step the run bounds accept (the step grows
-  // as K_N falls, and the penalty model refuses steps above its largest); bisection in log K_N
-  const auto accepted = [&](double k) {
-    contact::ContactLaw law;
-    law.method = contact::ContactMethod::penalty;
-    law.normal_stiffness = law.shear_stiffness = k;
-    dynamics::StepSettings step;
-    step.safety = safety;
-    return dynamics::time_step(bodies, law, step) <= scenario::largest_time_step(bodies, law);
-  };
-  double lo = 1e2, hi = 1e13;
-  if (accepted(lo)) {
-    hi = lo;
-  } else {
-    for (int i = 0; i < 60; ++i) {
-      const double mid = std::sqrt(lo * hi);
-      (accepted(mid) ? hi : lo) = mid;
-    }
-  }
-  return {std::max({sinkage_low, hi, 1e5}), std::min(high, 1e13)};
+  return {std::max(sinkage_low, 1e5), std::min(high, 1e13)};
 }
 
 ExtensionStage extension_stage(const OutcomeGrid& fitted, const std::vector<int>& observed,

@@ -54,9 +54,7 @@ StudyResult run_study(const StudyOptions& o, std::vector<Case> cases_in, std::ve
       scenario::RunSettings rs = run_settings(s);
       rs.duration = c.duration;
       rs.free_time = c.free_time;
-      row.dt = s.contact == contact::ContactMethod::rigid
-                   ? dynamics::rigid_time_step(scene.bodies, s.safety)
-                   : s.safety * dynamics::critical_time_step(scene.bodies, scene.law);
+      row.dt = dynamics::time_step(scene.bodies, scene.law, rs.step);
       if (c.quasi_static) {
         analysis::TiltTestSettings tts;
         tts.step = rs.step;

@@ -17,10 +17,12 @@
 
 namespace rigid::dynamics {
 
-/// Critical explicit time step of the scene, 2/omega_max, where omega_max^2 bounds the stiffest
-/// contact mode of the lightest free block: four subcontacts of stiffness k acting at the block's
-/// bounding radius r, omega^2 = 4 k (1/m + r^2/I_min), with k the larger of K_S and the Hertz
-/// tangent stiffness 1.5 K_N sqrt(d) at the indentation d of a 1 m/s impact (physics.md §10).
+/// Critical explicit time step of the scene (physics.md §10), the smallest over the free blocks of
+/// the limits of two modes, each four subcontacts acting on the block's effective mass
+/// 1/m_eff = 1/m + r^2/I_min (r the bounding radius): the normal mode, a Hertz spring and damper
+/// at the largest expected overlap d (the whole block striking one subcontact at 1 m/s, or resting
+/// its weight on it), tangent stiffness 1.5 K_N sqrt(d) and damping D K_N d^1.5, whose
+/// central-difference limit is (2/omega)(sqrt(1 + zeta^2) - zeta); and the shear mode of K_S, 2/omega.
 double critical_time_step(const std::vector<BodyDef>& bodies, const contact::ContactLaw& law);
 
 /// Time step of the rigid contact model (physics.md §12), from the geometry alone: `safety` / 50
@@ -30,7 +32,9 @@ double critical_time_step(const std::vector<BodyDef>& bodies, const contact::Con
 double rigid_time_step(const std::vector<BodyDef>& bodies, double safety);
 
 /// The step a World over these bodies takes: settings.dt when set, else the contact model's
-/// automatic step (rigid_time_step, or safety x critical_time_step for penalty contact).
+/// automatic step: rigid_time_step, or for penalty contact safety x the smaller of
+/// critical_time_step and rigid_time_step at safety 1 (a soft spring's long period does not let a
+/// step coarser than the rigid model's resolve the rocking), stable for any stiffness.
 double time_step(const std::vector<BodyDef>& bodies, const contact::ContactLaw& law, const StepSettings& settings);
 
 /// The last step's contacts as a caller deciding about rest, sleep and stillness reads them: every

@@ -17,8 +17,8 @@ inline constexpr double kMaxStartOverlapFraction = 0.1;
 
 /// The largest time step the scene's contact model allows (unit: s): its automatic step at safety
 /// 1. Rigid contact: sqrt(r/g)/50 (dynamics::rigid_time_step), 1/50 of the rocking time scale;
-/// penalty contact: the critical step 2/omega_max (dynamics::critical_time_step), the stability
-/// limit, and never above the rigid bound (a very soft contact does not make coarse steps right).
+/// penalty contact: the damped critical step (dynamics::critical_time_step), the stability limit,
+/// and never above the rigid bound (a very soft contact does not make coarse steps right).
 double largest_time_step(const std::vector<dynamics::BodyDef>& bodies, const contact::ContactLaw& law);
 
 /// Refuses a run of `simulated_time` seconds of the scene whose step (given or automatic) exceeds

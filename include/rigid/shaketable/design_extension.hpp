@@ -53,10 +53,9 @@ inline constexpr double kMaxSinkageFraction = 1.0;
 inline constexpr double kRigidSinkage_m = 1e-6;
 
 /// The stiffness range of a rock (its free block, resting on its base of half-width
-/// `base_half_width_m`): bounded below by the sinkage limit and by the penalty step's stability
-/// (the softest K_N whose automatic step at `safety`, the campaigns' accuracy preset, the run
-/// bounds still accept: scenario::check_run_bounds), above by kRigidSinkage_m.
-Range stiffness_limits(const std::vector<dynamics::BodyDef>& bodies, double base_half_width_m, double safety);
+/// `base_half_width_m`): bounded below by the sinkage limit, above by kRigidSinkage_m. (The penalty
+/// model's automatic step is stable for any stiffness: it sets no bound.)
+Range stiffness_limits(const std::vector<dynamics::BodyDef>& bodies, double base_half_width_m);
 
 /// One parameter's place in the design.
 enum class EdgeStatus { interior, at_edge_budget, at_physical_limit, not_identified, fixed };

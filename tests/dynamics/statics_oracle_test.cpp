@@ -1,0 +1,177 @@
+// Contact forces at rest and at the onset of sliding against hand statics, for both contact
+// models (rigid contact, and penalty springs at the study's K_N = 1e8 on the automatic step),
+// through the World's public API only:
+//  * a stack of three boxes, settled under gravity: each interface carries the weight of the boxes
+//    above it, and its resultant acts on the vertical through their common centroid (no moment);
+//  * the Coulomb wedge: a block on a plane inclined at theta with friction mu sticks when
+//    tan(theta) < mu and slides with acceleration g (sin(theta) - mu cos(theta)) when tan(theta) > mu,
+//    here just either side of the limit (tan(theta) = 0.95 mu and 1.05 mu). The penalty model fails
+//    it (at any step) and its cases are disabled: see their instantiation.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "rigid/dynamics/world.hpp"
+#include "rigid/library/builders.hpp"
+
+namespace rigid {
+namespace {
+
+constexpr double kDensity = 2600;
+
+contact::ContactLaw law_of(contact::ContactMethod method, double friction) {
+  contact::ContactLaw law;
+  law.method = method;
+  law.friction = friction;
+  return law;  // penalty: the study's K_N = K_S = 1e8, D = 2
+}
+
+std::string model_name(const ::testing::TestParamInfo<contact::ContactMethod>& info) {
+  return contact::contact_method_name(info.param);
+}
+
+// ---------------------------------------------------------------------------------------------
+// three boxes stacked on a fixed base
+
+struct Box {
+  Vec3 lo, hi;
+};
+
+// Different sizes and horizontal offsets, each box's centroid over the one below's top face, so
+// the centre of pressure of every interface lies off its contact patch's centre.
+const std::vector<Box> kStack = {
+    {Vec3(-0.30, -0.25, 0.00), Vec3(0.30, 0.25, 0.20)},  // 0.6 x 0.5 x 0.2
+    {Vec3(-0.12, -0.15, 0.20), Vec3(0.28, 0.15, 0.45)},  // 0.4 x 0.3 x 0.25, shifted +x
+    {Vec3(-0.05, -0.13, 0.45), Vec3(0.15, 0.07, 0.75)},  // 0.2 x 0.2 x 0.3, shifted +x and -y
+};
+
+class StackStatics : public ::testing::TestWithParam<contact::ContactMethod> {};
+
+TEST_P(StackStatics, EachInterfaceCarriesTheWeightAboveThroughItsCentroid) {
+  std::vector<dynamics::BodyDef> bodies;
+  bodies.push_back(library::box_body("base", Vec3(-0.5, -0.5, -0.2), Vec3(0.5, 0.5, 0), kDensity, true));
+  for (std::size_t k = 0; k < kStack.size(); ++k) {
+    bodies.push_back(library::box_body("box" + std::to_string(k), kStack[k].lo, kStack[k].hi, kDensity, false));
+  }
+  dynamics::StepSettings settle;
+  settle.local_damping = 0.8;  // Itasca damping: reaches the equilibrium, does not move it
+  dynamics::World world(bodies, law_of(GetParam(), 0.6), settle);
+  const long steps = std::lround(3.0 / world.dt());
+  for (long i = 0; i < steps; ++i) world.step(world.dt(), Vec3::Zero(), Vec3::Zero());
+
+  dynamics::ContactSummary summary;
+  world.summarize_contacts(summary);
+  const double scale = world.bodies()[1].shape.mass * kGravity;
+  for (int below = 0; below < 3; ++below) {
+    // closed form: the weight of the boxes above the interface, applied at their common centroid
+    double weight = 0;
+    Vec3 moment = Vec3::Zero();
+    for (int above = below + 1; above <= 3; ++above) {
+      const double w = world.bodies()[above].shape.mass * kGravity;
+      weight += w;
+      moment += w * world.states()[above].position;
+    }
+    const Vec3 centroid = moment / weight;
+    // the model: the interface's loaded subcontacts (pairs between bodies `below` and below + 1)
+    double normal = 0;
+    Vec3 first_moment = Vec3::Zero();
+    for (const auto& pair : summary.pairs) {
+      if (pair.a != below || pair.b != below + 1) continue;
+      for (std::size_t k = pair.first; k < pair.first + pair.loaded; ++k) {
+        normal += summary.points[k].load * pair.normal.z();
+        first_moment += summary.points[k].load * summary.points[k].position;
+      }
+    }
+    ASSERT_GT(normal, 0) << "interface " << below << " carries nothing";
+    const Vec3 pressure_centre = first_moment / normal;
+    std::printf("%s, interface %d: normal force %.6f of the weight above, centre of pressure off by (%.2e, %.2e) m\n",
+                contact::contact_method_name(GetParam()), below, normal / weight, pressure_centre.x() - centroid.x(),
+                pressure_centre.y() - centroid.y());
+    EXPECT_NEAR(normal, weight, 1e-4 * scale) << "interface " << below;
+    EXPECT_NEAR(pressure_centre.x(), centroid.x(), 1e-4) << "interface " << below;
+    EXPECT_NEAR(pressure_centre.y(), centroid.y(), 1e-4) << "interface " << below;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(BothModels, StackStatics,
+                         ::testing::Values(contact::ContactMethod::rigid, contact::ContactMethod::penalty), model_name);
+
+// ---------------------------------------------------------------------------------------------
+// the Coulomb wedge
+
+constexpr double kFriction = 0.5;
+
+struct SlopeRun {
+  double theta = 0;
+  double slid = 0;          ///< down-slope displacement over the run (unit: m)
+  double late_speed = 0;    ///< largest down-slope speed over the last second (unit: m/s)
+  double acceleration = 0;  ///< mean down-slope acceleration from t = 0.5 s to the end (unit: m/s^2)
+};
+
+// A 0.2 m cube on a 3 m long plane inclined at theta about y (downhill towards +x), released at
+// rest, touching the plane, for `duration` seconds.
+SlopeRun slide(contact::ContactMethod method, double tan_theta, double duration) {
+  SlopeRun r;
+  r.theta = std::atan(tan_theta);
+  const Quat tilt(Eigen::AngleAxisd(r.theta, Vec3::UnitY()));
+  const Vec3 down = tilt * Vec3::UnitX();  // down the slope: +x turned by theta about y
+  dynamics::BodyDef plane = library::box_body("plane", Vec3(-1.5, -0.5, -0.2), Vec3(1.5, 0.5, 0), kDensity, true);
+  dynamics::BodyDef cube = library::box_body("cube", Vec3(-1.2, -0.1, 0), Vec3(-1.0, 0.1, 0.2), kDensity, false);
+  for (auto* body : {&plane, &cube}) {
+    body->position = tilt * body->position;
+    body->orientation = tilt * body->orientation;
+  }
+  dynamics::World world({plane, cube}, law_of(method, kFriction), {});
+  const double dt = world.dt();
+  const Vec3 start = world.states()[1].position;
+  const long steps = std::lround(duration / dt);
+  double v_half = 0, t_half = 0;
+  for (long i = 1; i <= steps; ++i) {
+    world.step(dt, Vec3::Zero(), Vec3::Zero());
+    const double t = world.time();
+    const double v = world.states()[1].velocity.dot(down);
+    if (t_half == 0 && t >= 0.5) {
+      v_half = v;
+      t_half = t;
+    }
+    if (t >= duration - 1.0) r.late_speed = std::max(r.late_speed, std::abs(v));
+  }
+  r.slid = (world.states()[1].position - start).dot(down);
+  r.acceleration = (world.states()[1].velocity.dot(down) - v_half) / (world.time() - t_half);
+  return r;
+}
+
+class CoulombWedge : public ::testing::TestWithParam<contact::ContactMethod> {};
+
+// tan(theta) = 0.95 mu: friction holds; over 3 s the cube creeps at most the settling of its
+// springs (penalty) and ends still.
+TEST_P(CoulombWedge, SticksJustBelowTheFrictionAngle) {
+  const SlopeRun r = slide(GetParam(), 0.95 * kFriction, 3.0);
+  std::printf("%s, tan(theta) = 0.95 mu: slid %.3g m, speed in the last second at most %.3g m/s\n",
+              contact::contact_method_name(GetParam()), r.slid, r.late_speed);
+  EXPECT_LT(std::abs(r.slid), 1e-4);
+  EXPECT_LT(r.late_speed, 1e-4);
+}
+
+// tan(theta) = 1.05 mu: it slides at g (sin(theta) - mu cos(theta)) = 0.22 m/s^2, within 1 %.
+TEST_P(CoulombWedge, SlidesJustAboveTheFrictionAngleAtTheCoulombAcceleration) {
+  const SlopeRun r = slide(GetParam(), 1.05 * kFriction, 2.0);
+  const double expected = kGravity * (std::sin(r.theta) - kFriction * std::cos(r.theta));
+  std::printf("%s, tan(theta) = 1.05 mu: acceleration %.5f m/s^2, closed form %.5f\n",
+              contact::contact_method_name(GetParam()), r.acceleration, expected);
+  EXPECT_NEAR(r.acceleration, expected, 0.01 * expected);
+}
+
+INSTANTIATE_TEST_SUITE_P(Rigid, CoulombWedge, ::testing::Values(contact::ContactMethod::rigid), model_name);
+// The penalty model fails this oracle, whatever the step (the same at safety 0.2 and 0.02): at
+// tan(theta) = 0.6 mu the cube creeps 4.5 cm down the slope in 2 s, at 1.05 mu it slides at 0.13
+// instead of 0.22 m/s^2, at 1.5 mu at 2.9 instead of 2.0. Disabled (run with
+// --gtest_also_run_disabled_tests) until the penalty friction on an inclined contact is fixed.
+INSTANTIATE_TEST_SUITE_P(DISABLED_Penalty, CoulombWedge, ::testing::Values(contact::ContactMethod::penalty),
+                         model_name);
+
+}  // namespace
+}  // namespace rigid
