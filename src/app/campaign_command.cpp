@@ -10,6 +10,7 @@
 #include "rigid/campaign/driver.hpp"
 #include "rigid/job/job.hpp"
 #include "rigid/job/run_overrides.hpp"
+#include "solver_options.hpp"
 
 namespace rigid::app {
 
@@ -31,8 +32,8 @@ struct CampaignCommand {
   // the run settings given as flags, empty when not given (parsed by job::set_text_setting)
   std::string model, contact, accuracy, effects;
   double solver_tolerance = 0, solver_max_sweeps = 0;  // 0: not given
-  std::string progress = "auto";  // auto | bar | log | none
-  double log_interval = 10;       // seconds between plain progress lines (unit: s)
+  std::string progress = "auto";                       // auto | bar | log | none
+  double log_interval = 10;                            // seconds between plain progress lines (unit: s)
 };
 
 void register_campaign_command(CLI::App& app) {

@@ -7,8 +7,6 @@
 #include <optional>
 #include <string>
 
-#include "rigid/job/run_overrides.hpp"
-
 namespace rigid::app {
 namespace {
 
@@ -57,25 +55,6 @@ CLI::Validator number_admitted_by(std::function<std::string(double)> problem) {
         return why.empty() ? why : "'" + text + "' " + why;
       },
       "");
-}
-
-void add_solver_options(CLI::App& cmd, double& tolerance, double& max_sweeps) {
-  // the rule is job::solver_problem's, the settings' one parser; here only its wording per flag
-  const auto admitted = [](job::Setting setting) {
-    return [setting](double v) {
-      job::RunOverrides given;
-      (setting == job::Setting::solver_tolerance ? given.solver_tolerance : given.solver_max_sweeps) = v;
-      return job::solver_problem(given).empty();
-    };
-  };
-  cmd.add_option("--solver-tolerance", tolerance,
-                 "Rigid contact solve: converged when a sweep changes no velocity by more than this fraction of "
-                 "g dt, the velocity gravity adds in one step (default: the preset's, 1e-7; reference 1e-10)")
-      ->check(number_where(admitted(job::Setting::solver_tolerance), "a number in (0, 1)"));
-  cmd.add_option("--solver-max-sweeps", max_sweeps,
-                 "Rigid contact solve: sweeps before a step's solve stops unconverged (counted per cell; "
-                 "default: the preset's, 200; reference 100000)")
-      ->check(number_where(admitted(job::Setting::solver_max_sweeps), "a whole number from 1 to 1e9"));
 }
 
 CLI::Validator angle_deg() {

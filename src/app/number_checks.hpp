@@ -21,10 +21,6 @@ CLI::Validator non_negative_number();
 /// A number that `problem` admits: the setting's own rule (for example
 /// job::checkpoint_interval_problem), which returns "" or what is wrong.
 CLI::Validator number_admitted_by(std::function<std::string(double)> problem);
-/// The contact-solve flags of `rigid run` and `rigid campaign`, --solver-tolerance and
-/// --solver-max-sweeps, into `tolerance` and `max_sweeps` (left 0 when not given; the values
-/// job::solver_problem refuses are usage errors).
-void add_solver_options(CLI::App& cmd, double& tolerance, double& max_sweeps);
 /// A finite angle of at most kMaxAngleDeg in magnitude (unit: deg).
 CLI::Validator angle_deg();
 

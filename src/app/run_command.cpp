@@ -22,6 +22,7 @@
 #include "rigid/scenario/rocking2d.hpp"
 #include "rigid/scenario/scene.hpp"
 #include "scene_input.hpp"
+#include "solver_options.hpp"
 
 namespace rigid::app {
 namespace {

@@ -124,7 +124,9 @@ struct PatchBlock {
   NormalMatrix stick;
   NormalVector stick_c;
 
-  double size(const Eigen::Vector3d& f) const { return std::hypot(f.x(), f.y(), frictions == 3 ? f.z() / radius : 0.0); }
+  double size(const Eigen::Vector3d& f) const {
+    return std::hypot(f.x(), f.y(), frictions == 3 ? f.z() / radius : 0.0);
+  }
   Eigen::Vector3d stopping(const NormalVector& xn) const {
     Eigen::Vector3d q = Eigen::Vector3d::Zero();
     if (frictions > 0) q.head(frictions) = -(gain * xn + offset);
@@ -147,8 +149,8 @@ void build_block(const SolverBody& a, const SolverBody& b, const BlockRow* jac, 
   BlockVector x(size);
   for (int i = 0; i < size; ++i) {
     for (int j = 0; j < size; ++j) {
-      block.w(i, j) = linear * jac[i].linear.dot(jac[j].linear) + jac[i].angular_a.dot(turn_a[j]) +
-                      jac[i].angular_b.dot(turn_b[j]);
+      block.w(i, j) =
+          linear * jac[i].linear.dot(jac[j].linear) + jac[i].angular_a.dot(turn_a[j]) + jac[i].angular_b.dot(turn_b[j]);
     }
     block.c(i) = jac[i].linear.dot(b.velocity - a.velocity) + jac[i].angular_b.dot(b.angular_velocity) -
                  jac[i].angular_a.dot(a.angular_velocity);
@@ -201,8 +203,10 @@ NormalVector solve_active(const NormalMatrix& m, const NormalVector& rhs, const 
 // Active-set pivoting on the normal rows (Signorini: x >= 0, velocity >= target, one of them
 // tight), alternating with the friction state (sticking, or sliding in a direction found by fixed
 // point). False when it does not settle within its pivots; `xn` and `friction` are the solution.
-bool pivot_block(const PatchBlock& block, double velocity_tolerance, NormalVector& xn, Eigen::Vector3d& friction) {
+bool pivot_block(const PatchBlock& block, double tolerance, NormalVector& xn, Eigen::Vector3d& friction) {
   const int normals = block.normals, frictions = block.frictions;
+  // no finer than rounding allows: a tolerance below it would make the pivots flip on noise
+  const double velocity_tolerance = std::max(tolerance, 1e-12 * block.c.cwiseAbs().maxCoeff());
   bool active[kMaxBlockNormals];
   Eigen::Vector3d q = block.stopping(xn);
   const double start_limit = block.friction * xn.sum();
@@ -380,7 +384,6 @@ bool solve_patch_exactly(SolverBody& a, SolverBody& b, ContactRow* rows, Frictio
   }
   return true;
 }
-
 
 void set_tangents(FrictionPatch& p) {
   // any orthonormal pair completing n: the limit is isotropic, so which one is immaterial

@@ -56,7 +56,6 @@ measure() {  # measure LABEL RIGID SCENE PGA [FLAGS...]
   local label=$1 bin=$2 scene=$3 pga=$4
   shift 4
   local json cpu
-  local start_cpu
   json=$( { /usr/bin/time -f "%U %S" -o "$work/time" "$bin" run "$scene" --motion "$pair" "${window[@]}" \
               --target-pga "$pga" --json "$@"; } 2>/dev/null) || { echo "$label: run failed"; return; }
   cpu=$(awk '{print $1 + $2}' "$work/time")

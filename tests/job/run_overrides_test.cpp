@@ -4,9 +4,9 @@
 
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <cmath>
 #include <string>
 #include <tuple>
 
