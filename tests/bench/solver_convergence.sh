@@ -95,7 +95,7 @@ if [ "$full_demo" = 0 ]; then
   /usr/bin/python3 - "$repo/jobs/demo.toml" "$job" <<'PY'
 import re, sys
 text = open(sys.argv[1]).read().replace('"../', '"' + sys.argv[1].rsplit("/jobs/", 1)[0] + "/")
-text = re.sub(r'scales = "[^"]*"', 'scales = "0.3,0.6"', text)
+text = re.sub(r'scales = "[^"]*"', 'scales = [0.3, 0.6]', text)
 text = re.sub(r"rotations = \d+", "rotations = 1", text)
 head, _, records = text.partition("[[record]]")
 kept = "[[record]]".join(records.split("[[record]]")[:3])
