@@ -105,11 +105,12 @@ enum class PatchProblem { velocity, correction };
 /// Solves one patch exactly with every other impulse held: its closed normal rows (Signorini)
 /// and its friction together, by active-set pivoting on the normal rows alternating with the
 /// friction state (sticking, or sliding with friction mu N along the radial projection of the
-/// impulse that would stop the patch: the Gauss-Seidel friction row's fixed point). Applies the
-/// impulse changes to a and b. Returns false, changing nothing, for a patch of more than 12
-/// closed rows, a singular friction block, or pivoting that does not settle; the caller then
-/// falls back to a Gauss-Seidel visit. `velocity_tolerance` (unit: m/s): how far a row may stay
-/// below its target.
+/// impulse that would stop the patch: the Gauss-Seidel friction row's fixed point). A patch of
+/// more than 12 closed rows keeps the corners of their convex hull on the plane. Applies the
+/// impulse changes to a and b. Returns false for more than 12 corners, a singular friction block
+/// or pivoting that does not settle (changing nothing), or a point between the corners left
+/// sinking (the corners' impulses kept); the caller then falls back to a Gauss-Seidel visit.
+/// `velocity_tolerance` (unit: m/s): how far a row may stay below its target.
 bool solve_patch_exactly(SolverBody& a, SolverBody& b, ContactRow* rows, FrictionPatch& patch, PatchProblem problem,
                          double velocity_tolerance);
 
