@@ -10,6 +10,7 @@
 #include "rigid/campaign/driver.hpp"
 #include "rigid/job/job.hpp"
 #include "rigid/job/run_overrides.hpp"
+#include "solver_options.hpp"
 
 namespace rigid::app {
 
@@ -30,8 +31,9 @@ struct CampaignCommand {
   campaign::CampaignOptions options;
   // the run settings given as flags, empty when not given (parsed by job::set_text_setting)
   std::string model, contact, accuracy, effects;
-  std::string progress = "auto";  // auto | bar | log | none
-  double log_interval = 10;       // seconds between plain progress lines (unit: s)
+  double solver_tolerance = 0, solver_max_sweeps = 0;  // 0: not given
+  std::string progress = "auto";                       // auto | bar | log | none
+  double log_interval = 10;                            // seconds between plain progress lines (unit: s)
 };
 
 void register_campaign_command(CLI::App& app) {
@@ -60,7 +62,8 @@ void register_campaign_command(CLI::App& app) {
                   "the job's [run] contact (recorded in the cube)");
   cmd->add_option("--accuracy", command->accuracy,
                   "Accuracy preset fast, balanced or reference: overrides the job's [run] accuracy; the job's explicit "
-                  "safety, integrator and dt_s still apply (recorded in the cube; docs/accuracy.md)");
+                  "safety, integrator, dt_s and solver settings still apply (recorded in the cube; docs/accuracy.md)");
+  add_solver_options(*cmd, command->solver_tolerance, command->solver_max_sweeps);
   cmd->add_option("--effects", command->effects,
                   "auto (simulate only the effects the scenes and motions call for) or all (every effect, the "
                   "reference): overrides the job's [run] effects (recorded in the cube)");
@@ -93,6 +96,11 @@ void register_campaign_command(CLI::App& app) {
                                                 std::tuple{job::Setting::effects, "--effects", &command->effects},
                                                 std::tuple{job::Setting::accuracy, "--accuracy", &command->accuracy}}) {
         if (!text->empty()) job::set_text_setting(flags, setting, *text, {"", 0, flag});
+      }
+      for (const auto& [setting, flag, value] :
+           {std::tuple{job::Setting::solver_tolerance, "--solver-tolerance", command->solver_tolerance},
+            std::tuple{job::Setting::solver_max_sweeps, "--solver-max-sweeps", command->solver_max_sweeps}}) {
+        if (value != 0) job::set_number_setting(flags, setting, value, flag);
       }
       return flags;
     };

@@ -200,10 +200,12 @@ void print_unconverged(const io::Cube& cube, int solver_max_sweeps) {
     }
   }
   if (cells == 0) return;
-  // one line: the count is a diagnostic of the rigid contact solver (docs/cube.md), not an error
+  // one line: the count is a diagnostic of the rigid contact solver (docs/cube.md), not an error;
+  // what such a step costs the answer, and where that is measured, goes with it
   std::printf(
-      "\ncontact solver: %ld steps in %ld of %ld cells stopped at its %d-sweep cap "
-      "(per cell: unconverged_steps, docs/cube.md)\n",
+      "\ncontact solver: %ld steps in %ld of %ld cells stopped at its %d-sweep cap; such a step keeps the last "
+      "sweep's impulses, a small force error in that step (per cell: unconverged_steps; what it does to the "
+      "outcomes: docs/accuracy.md, \"Convergence of the contact solve\"; --solver-max-sweeps raises the cap)\n",
       steps, cells, simulated, solver_max_sweeps);
 }
 

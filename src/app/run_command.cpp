@@ -22,6 +22,7 @@
 #include "rigid/scenario/rocking2d.hpp"
 #include "rigid/scenario/scene.hpp"
 #include "scene_input.hpp"
+#include "solver_options.hpp"
 
 namespace rigid::app {
 namespace {
@@ -34,7 +35,9 @@ struct RunOptions {
   double free_time = 5.0;
   double dt = 0;
   double safety = 0;
-  std::string integrator;  // empty: the preset's
+  double solver_tolerance = 0;   // 0: the preset's
+  double solver_max_sweeps = 0;  // 0: the preset's
+  std::string integrator;        // empty: the preset's
   std::string accuracy = scenario::kDefaultAccuracy;
   std::string model = "dem3d";
   std::string contact;  // empty: the scene's
@@ -99,6 +102,10 @@ job::RunOverrides run_overrides(const RunOptions& o) {
   if (o.dt != 0) overrides.dt = o.dt;
   if (o.safety != 0) overrides.safety = o.safety;
   if (!o.integrator.empty()) text(job::Setting::integrator, "--integrator", o.integrator);
+  if (o.solver_tolerance != 0)
+    job::set_number_setting(overrides, job::Setting::solver_tolerance, o.solver_tolerance, "--solver-tolerance");
+  if (o.solver_max_sweeps != 0)
+    job::set_number_setting(overrides, job::Setting::solver_max_sweeps, o.solver_max_sweeps, "--solver-max-sweeps");
   overrides.duration = o.duration;
   overrides.free_time = o.free_time;
   text(job::Setting::effects, "--effects", o.effects);
@@ -176,6 +183,8 @@ void run(const RunOptions& o) {
     j["finite"] = r.finite;
     j["unconverged_steps"] = r.unconverged_steps;
     j["max_solver_sweeps"] = r.max_solver_sweeps;
+    j["solver_solves"] = r.solver_solves;
+    j["solver_sweeps"] = r.solver_sweeps;
     if (!block2d) j["effects"] = effects_json(r.effects);
     std::printf("%s\n", io::json_line(j).c_str());
   } else {
@@ -215,9 +224,11 @@ void register_run_command(CLI::App& app) {
   cmd->add_option("--integrator", o->integrator,
                   "Rotation integrator: splitting (symplectic) or rk4 (default: the preset's)");
   cmd->add_option("--accuracy", o->accuracy,
-                  "Accuracy preset: fast, balanced or reference (time-step safety, integrator, at-rest stop; "
-                  "docs/accuracy.md); --dt, --safety and --integrator override its values")
+                  "Accuracy preset: fast, balanced or reference (time-step safety, integrator, at-rest stop, "
+                  "contact solve; docs/accuracy.md); --dt, --safety, --integrator, --solver-tolerance and "
+                  "--solver-max-sweeps override its values")
       ->capture_default_str();
+  add_solver_options(*cmd, o->solver_tolerance, o->solver_max_sweeps);
   cmd->add_option("--contact", o->contact,
                   "Contact model: rigid (non-penetrating, Moreau-Jean) or penalty (the study's springs); "
                   "default: the scene's [physics] contact");

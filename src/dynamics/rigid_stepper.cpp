@@ -322,19 +322,23 @@ bool RigidStepper::solve_impulses(WorldCore& world, double dt, double smallest_r
   if (world.settings.local_damping > 0) free_bodies_ = solver_bodies_;
   // warm start: last step's impulses of the same subcontacts
   warm_start(solver_bodies_, rows_, patches_);
-  // converged when a sweep changes velocities by less than 1e-7 of what gravity adds in a step,
-  // and angular velocities by that over the smallest block's radius (1e-6 let a block resting
-  // under a slow ramp creep 1e-6 rad before its uplift acceleration)
+  // converged when a sweep changes velocities by less than a fraction (1e-7 by default) of what
+  // gravity adds in a step, and angular velocities by that over the smallest block's radius (1e-6
+  // let a block resting under a slow ramp creep 1e-6 rad before its uplift acceleration)
   SolverSettings solver;
-  solver.velocity_tolerance = 1e-7 * world.settings.gravity * dt;
+  solver.velocity_tolerance = world.settings.solver_tolerance * world.settings.gravity * dt;
   solver.angular_tolerance = solver.velocity_tolerance / smallest_radius;
   solver.max_iterations = world.settings.solver_max_sweeps;
   const SolverResult result = solve_velocities(solver_bodies_, rows_, patches_, solver, solver_scratch_);
   if (!result.converged) ++world.stats.unconverged_steps;
   world.stats.max_solver_sweeps = std::max(world.stats.max_solver_sweeps, result.iterations);
+  if (!patches_.empty()) {
+    ++world.stats.solver_solves;
+    world.stats.solver_sweeps += result.iterations;
+  }
   const bool correct =
       std::any_of(rows_.begin(), rows_.end(), [](const ContactRow& r) { return r.correction_velocity > 0; });
-  if (correct) solve_correction(solver_bodies_, pseudo_bodies_, rows_, solver, solver_scratch_);
+  if (correct) solve_correction(solver_bodies_, pseudo_bodies_, rows_, patches_, solver, solver_scratch_);
   return correct;
 }
 

@@ -447,9 +447,10 @@ RunTable read_run(const toml::table& root, const std::string& path) {
   RunTable out;
   const auto* run = root["run"].as_table();
   if (!run) return out;
-  reject_unknown(
-      *run, {"model", "duration_s", "free_time_s", "dt_s", "safety", "integrator", "accuracy", "effects", "contact"},
-      path, "[run]");
+  reject_unknown(*run,
+                 {"model", "duration_s", "free_time_s", "dt_s", "safety", "integrator", "accuracy", "effects",
+                  "contact", "solver_tolerance", "solver_max_sweeps"},
+                 path, "[run]");
   out.line = line_of(*run);
   const auto text = [&](const char* key) -> std::optional<RunText> {
     const toml::node* n = run->get(key);
@@ -472,6 +473,11 @@ RunTable read_run(const toml::table& root, const std::string& path) {
   out.effects = text("effects");
   const toml::node* step_key = run->contains("dt_s") ? run->get("dt_s") : run->get("safety");
   out.step_line = line_of(step_key ? *step_key : *run);
+  out.solver_tolerance = number("solver_tolerance");
+  out.solver_max_sweeps = number("solver_max_sweeps");
+  const toml::node* solver_key =
+      run->contains("solver_tolerance") ? run->get("solver_tolerance") : run->get("solver_max_sweeps");
+  out.solver_line = line_of(solver_key ? *solver_key : *run);
   return out;
 }
 

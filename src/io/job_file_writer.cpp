@@ -133,6 +133,8 @@ toml::table run_table(const RunTable& run) {
   number("free_time_s", run.free_time_s);
   number("dt_s", run.dt_s);
   number("safety", run.safety);
+  number("solver_tolerance", run.solver_tolerance);
+  if (run.solver_max_sweeps) t.insert("solver_max_sweeps", static_cast<std::int64_t>(*run.solver_max_sweeps));
   return t;
 }
 

@@ -35,6 +35,8 @@ std::string physics_json(const scenario::Scene& scene, const scenario::RunSettin
   j["rest_angular_speed_rad_s"] = run.rest_angular_speed;
   j["rest_time_s"] = run.rest_time;
   j["effects"] = run.select_effects ? "auto" : "all";
+  j["solver_tolerance"] = run.step.solver_tolerance;
+  j["solver_max_sweeps"] = run.step.solver_max_sweeps;
   return json_line(j);
 }
 

@@ -38,6 +38,9 @@ RunOverrides overrides_of(const io::RunTable& run, const std::string& path) {
   o.dt = run.dt_s;
   o.safety = run.safety;
   if (const std::string problem = numbers_problem(o); !problem.empty()) throw InputError(path, run.line, problem);
+  o.solver_tolerance = run.solver_tolerance;
+  o.solver_max_sweeps = run.solver_max_sweeps;
+  if (const std::string problem = solver_problem(o); !problem.empty()) throw InputError(path, run.solver_line, problem);
   text(Setting::integrator, run.integrator);
   text(Setting::accuracy, run.accuracy);
   text(Setting::effects, run.effects);

@@ -1,5 +1,8 @@
 #include "rigid/job/run_overrides.hpp"
 
+#include <cmath>
+#include <cstdio>
+
 #include "rigid/core/error.hpp"
 #include "rigid/scenario/accuracy.hpp"
 
@@ -83,6 +86,35 @@ std::string numbers_problem(const RunOverrides& o) {
   return "";
 }
 
+std::string solver_problem(const RunOverrides& o) {
+  if (o.solver_tolerance && !(*o.solver_tolerance > 0 && *o.solver_tolerance < 1)) {
+    return "solver_tolerance must be a number in (0, 1), a fraction of g dt";
+  }
+  if (o.solver_max_sweeps) {
+    const double sweeps = *o.solver_max_sweeps;
+    if (!(sweeps >= 1 && sweeps <= 1e9 && sweeps == std::floor(sweeps))) {
+      return "solver_max_sweeps must be a whole number from 1 to 1e9";
+    }
+  }
+  return "";
+}
+
+void set_number_setting(RunOverrides& o, Setting setting, double value, const std::string& flag) {
+  RunOverrides given;
+  if (setting == Setting::solver_tolerance) given.solver_tolerance = value;
+  if (setting == Setting::solver_max_sweeps) given.solver_max_sweeps = value;
+  std::string problem = solver_problem(given);
+  if (!problem.empty()) {
+    // the flag's own words: "--solver-tolerance must be ..."
+    throw InputError("", 0, flag + problem.substr(problem.find(' ')));
+  }
+  if (setting == Setting::solver_tolerance) o.solver_tolerance = value;
+  if (setting == Setting::solver_max_sweeps) o.solver_max_sweeps = value;
+  char text[64];
+  std::snprintf(text, sizeof text, "%.17g", value);
+  o.flags_given.emplace_back(setting, flag + " " + text);
+}
+
 RunOverrides merged(RunOverrides base, const RunOverrides& over) {
   const auto take = [](auto& to, const auto& from) {
     if (from) to = from;
@@ -96,6 +128,8 @@ RunOverrides merged(RunOverrides base, const RunOverrides& over) {
   take(base.free_time, over.free_time);
   take(base.dt, over.dt);
   take(base.safety, over.safety);
+  take(base.solver_tolerance, over.solver_tolerance);
+  take(base.solver_max_sweeps, over.solver_max_sweeps);
   base.flags_given.insert(base.flags_given.end(), over.flags_given.begin(), over.flags_given.end());
   return base;
 }
@@ -108,6 +142,8 @@ scenario::RunSettings run_settings(const RunOverrides& o) {
   step.dt = o.dt;
   step.safety = o.safety;
   step.rotation = o.integrator;
+  step.solver_tolerance = o.solver_tolerance;
+  if (o.solver_max_sweeps) step.solver_max_sweeps = static_cast<int>(*o.solver_max_sweeps);
   scenario::apply_accuracy(*scenario::find_accuracy_preset(accuracy_name(o)), step, settings);
   if (o.duration) settings.duration = *o.duration;
   if (o.free_time) settings.free_time = *o.free_time;

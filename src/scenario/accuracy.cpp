@@ -11,12 +11,15 @@ const std::vector<AccuracyPreset>& accuracy_presets() {
   // at-rest tolerances also decide when blocks fall asleep (RunSettings::select_effects), so the
   // fast preset keeps balanced's: looser ones cost up to 20 % trajectory error for little time.
   static const std::vector<AccuracyPreset> presets = {
-      {"fast", 0.4, RotationIntegrator::splitting, 1e-3, 1e-3, 0.5,
-       "safety 0.4, splitting, at-rest stop 1 mm/s, 1 mrad/s for 0.5 s"},
-      {"balanced", 0.2, RotationIntegrator::splitting, 1e-3, 1e-3, 0.5,
-       "safety 0.2, splitting, at-rest stop 1 mm/s, 1 mrad/s for 0.5 s (the engine's defaults)"},
-      {"reference", 0.05, RotationIntegrator::splitting, 1e-4, 1e-4, 1.0,
-       "safety 0.05, splitting, tight at-rest stop (0.1 mm/s, 0.1 mrad/s for 1 s)"},
+      {"fast", 0.4, RotationIntegrator::splitting, 1e-3, 1e-3, 0.5, 1e-7, 200,
+       "safety 0.4, splitting, at-rest stop 1 mm/s, 1 mrad/s for 0.5 s, contact solve to 1e-7 g dt in 200 sweeps"},
+      {"balanced", 0.2, RotationIntegrator::splitting, 1e-3, 1e-3, 0.5, 1e-7, 200,
+       "safety 0.2, splitting, at-rest stop 1 mm/s, 1 mrad/s for 0.5 s, contact solve to 1e-7 g dt in 200 sweeps "
+       "(the engine's defaults)"},
+      // the oracle: a contact solve to 1e-10 g dt with no practical cap on its sweeps
+      {"reference", 0.05, RotationIntegrator::splitting, 1e-4, 1e-4, 1.0, 1e-10, 100000,
+       "safety 0.05, splitting, tight at-rest stop (0.1 mm/s, 0.1 mrad/s for 1 s), contact solve to 1e-10 g dt in "
+       "up to 100,000 sweeps"},
   };
   return presets;
 }
@@ -45,6 +48,8 @@ void apply_accuracy(const AccuracyPreset& preset, const AccuracyOverrides& overr
   settings.rest_speed = preset.rest_speed;
   settings.rest_angular_speed = preset.rest_angular_speed;
   settings.rest_time = preset.rest_time;
+  settings.step.solver_tolerance = overrides.solver_tolerance.value_or(preset.solver_tolerance);
+  settings.step.solver_max_sweeps = overrides.solver_max_sweeps.value_or(preset.solver_max_sweeps);
   if (overrides.dt) settings.step.dt = *overrides.dt;
   if (overrides.safety) settings.step.safety = *overrides.safety;
   if (overrides.rotation) settings.step.rotation = *overrides.rotation;

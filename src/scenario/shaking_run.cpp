@@ -269,6 +269,8 @@ void ShakingRun::count_steps() {
   out_.steps = stats.steps;
   out_.unconverged_steps = stats.unconverged_steps;
   out_.max_solver_sweeps = stats.max_solver_sweeps;
+  out_.solver_solves = stats.solver_solves;
+  out_.solver_sweeps = stats.solver_sweeps;
 }
 
 void ShakingRun::finish() {

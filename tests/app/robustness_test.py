@@ -289,6 +289,10 @@ def cases(d, sphere_facets):
         ("--checkpoint-interval nan", camp("ok.job.toml", "--checkpoint-interval", "nan"), e, ["--checkpoint-interval"]),
         ("--grace -1", camp("ok.job.toml", "--grace", "-1"), e, ["--grace"]),
         ("--grace nan", camp("ok.job.toml", "--grace", "nan"), e, ["--grace"]),
+        ("--solver-tolerance nan", demo + ["--solver-tolerance", "nan"], e, ["--solver-tolerance"]),
+        ("--solver-tolerance 0", demo + ["--solver-tolerance", "0"], e, ["--solver-tolerance"]),
+        ("--solver-max-sweeps 2.5", demo + ["--solver-max-sweeps", "2.5"], e, ["--solver-max-sweeps"]),
+        ("--solver-max-sweeps 0", camp("ok.job.toml", "--solver-max-sweeps", "0"), e, ["--solver-max-sweeps"]),
         # the rest
         ("inward mesh", ["run", "inward.model", "--duration", "0.05"], "warning", ["inward.stl", "inward"]),
         ("--rotation 1e308", demo + ["--rotation", "1e308"], e, ["--rotation"]),

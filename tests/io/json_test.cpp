@@ -103,7 +103,9 @@ TEST(PhysicsJson, KeysInOrderAndValuesReadBackExactly) {
                                             "rest_speed_m_s",
                                             "rest_angular_speed_rad_s",
                                             "rest_time_s",
-                                            "effects"}));
+                                            "effects",
+                                            "solver_tolerance",
+                                            "solver_max_sweeps"}));
   EXPECT_EQ(j["friction"].get<double>(), 0.7);
   EXPECT_EQ(j["dt_s"].get<double>(), run.step.dt);
   EXPECT_EQ(j["step_s"].get<double>(), dynamics::time_step(scene.bodies, scene.law, run.step));
@@ -113,6 +115,8 @@ TEST(PhysicsJson, KeysInOrderAndValuesReadBackExactly) {
   EXPECT_EQ(j["stop_after"].get<int>(), stop_after);
   EXPECT_EQ(j["accuracy"], accuracy);
   EXPECT_EQ(j["effects"], "auto");
+  EXPECT_EQ(j["solver_tolerance"].get<double>(), run.step.solver_tolerance);
+  EXPECT_EQ(j["solver_max_sweeps"].get<int>(), run.step.solver_max_sweeps);
   EXPECT_EQ(j["contact"], contact::contact_method_name(law.method));
 }
 

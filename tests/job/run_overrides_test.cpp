@@ -4,9 +4,11 @@
 
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <tuple>
 
 #include "rigid/core/error.hpp"
 #include "rigid/job/load.hpp"
@@ -83,6 +85,29 @@ TEST_F(RunSettingsInJob, Numbers) {
   expect_error("safety = 0.0\n", 10, problem);
 }
 
+TEST_F(RunSettingsInJob, SolverSettings) {
+  // each bad value at its own key's line
+  const std::string tolerance = "solver_tolerance must be a number in (0, 1), a fraction of g dt";
+  const std::string sweeps = "solver_max_sweeps must be a whole number from 1 to 1e9";
+  expect_error("solver_tolerance = 0.0\n", 11, tolerance);
+  expect_error("solver_tolerance = -1e-7\n", 11, tolerance);
+  expect_error("solver_tolerance = 2.0\n", 11, tolerance);
+  expect_error("free_time_s = 1.0\nsolver_tolerance = nan\n", 12, "solver_tolerance must be a finite number");
+  expect_error("solver_max_sweeps = 0\n", 11, sweeps);
+  expect_error("solver_max_sweeps = 2.5\n", 11, sweeps);
+  expect_error("free_time_s = 1.0\nsolver_max_sweeps = 1e12\n", 12, sweeps);
+  expect_error("solver_max_sweeps = \"many\"\n", 11, "solver_max_sweeps must be a number");
+}
+
+TEST_F(RunSettingsInJob, SolverSettingsOverThePreset) {
+  const Job job = load("accuracy = \"reference\"\nsolver_max_sweeps = 500\n");
+  EXPECT_EQ(job.run.step.solver_max_sweeps, 500);
+  EXPECT_EQ(job.run.step.solver_tolerance, scenario::find_accuracy_preset("reference")->solver_tolerance);
+  const Job fast = load("solver_tolerance = 1e-9\n");
+  EXPECT_EQ(fast.run.step.solver_tolerance, 1e-9);
+  EXPECT_EQ(fast.run.step.solver_max_sweeps, scenario::find_accuracy_preset("fast")->solver_max_sweeps);
+}
+
 TEST_F(RunSettingsInJob, GoodValuesReachTheRunSettings) {
   const Job job = load(
       "model = \"rocking2d\"\ncontact = \"penalty\"\neffects = \"all\"\naccuracy = \"reference\"\n"
@@ -119,6 +144,29 @@ TEST(RunSettingsOnCommandLine, EachSettingNamesItsFlag) {
   expect_flag_error(Setting::integrator, "--integrator", "euler", "--integrator must be splitting or rk4");
 }
 
+TEST(RunSettingsOnCommandLine, SolverFlagsNameThemselves) {
+  for (const auto& [setting, flag, value, message] :
+       {std::tuple{Setting::solver_tolerance, "--solver-tolerance", 0.0,
+                   "--solver-tolerance must be a number in (0, 1), a fraction of g dt"},
+        std::tuple{Setting::solver_tolerance, "--solver-tolerance", std::nan(""),
+                   "--solver-tolerance must be a number in (0, 1), a fraction of g dt"},
+        std::tuple{Setting::solver_max_sweeps, "--solver-max-sweeps", 10.5,
+                   "--solver-max-sweeps must be a whole number from 1 to 1e9"}}) {
+    RunOverrides o;
+    try {
+      set_number_setting(o, setting, value, flag);
+      ADD_FAILURE() << "accepted " << flag << " " << value;
+    } catch (const InputError& e) {
+      EXPECT_EQ(std::string(e.what()), message);
+    }
+  }
+  RunOverrides o;
+  set_number_setting(o, Setting::solver_max_sweeps, 1000, "--solver-max-sweeps");
+  ASSERT_EQ(o.flags_given.size(), 1u);
+  EXPECT_EQ(o.flags_given[0].second, "--solver-max-sweeps 1000");
+  EXPECT_EQ(run_settings(o).step.solver_max_sweeps, 1000);
+}
+
 TEST(RunSettingsOnCommandLine, FlagsGivenAreKeptAsWritten) {
   RunOverrides o;
   set_text_setting(o, Setting::model, std::string("rocking2d"), {"", 0, "--model"});
@@ -148,6 +196,9 @@ TEST(RunSettings, ThePresetThenTheExplicitSettings) {
   EXPECT_EQ(s.step.dt, 2e-5);
   EXPECT_EQ(s.step.safety, reference.safety);
   EXPECT_EQ(s.rest_time, reference.rest_time);
+  // the reference preset is the oracle: a tight contact solve with no practical cap
+  EXPECT_LE(s.step.solver_tolerance, 1e-9);
+  EXPECT_GE(s.step.solver_max_sweeps, 100000);
   // no preset named: the default one
   const scenario::RunSettings d = run_settings(RunOverrides{});
   EXPECT_EQ(d.step.safety, scenario::find_accuracy_preset(scenario::kDefaultAccuracy)->safety);

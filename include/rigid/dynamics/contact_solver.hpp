@@ -4,7 +4,8 @@
 /// Signorini row per contact point (normal impulse >= 0, relative normal velocity at or above a
 /// target, complementary) and one friction row for the whole patch (sliding along the plane and
 /// twisting about its normal, inside the Coulomb limit mu N of the patch's total normal impulse N).
-/// Fixed sweep order and a tolerance with an iteration cap, single-threaded: the same inputs give
+/// Each patch is solved as one block (its normal rows and friction together, exactly); the
+/// patches are swept in a fixed order with a tolerance and an iteration cap, single-threaded: the same inputs give
 /// the same impulses bit for bit. No allocation.
 ///
 /// Why friction per patch, not per point: a rigid block on four corners leaves the split of
@@ -96,8 +97,27 @@ void prepare(const std::vector<SolverBody>& bodies, std::vector<ContactRow>& row
 void warm_start(std::vector<SolverBody>& bodies, const std::vector<ContactRow>& rows,
                 const std::vector<FrictionPatch>& patches);
 
+/// Which impulses a patch solve finds: the velocity step's (normal rows to their targets, with the
+/// patch's friction) or the split-impulse position correction's (normal rows to their
+/// correction velocities, no friction).
+enum class PatchProblem { velocity, correction };
+
+/// Solves one patch exactly with every other impulse held: its closed normal rows (Signorini)
+/// and its friction together, by active-set pivoting on the normal rows alternating with the
+/// friction state (sticking, or sliding with friction mu N along the radial projection of the
+/// impulse that would stop the patch: the Gauss-Seidel friction row's fixed point). A patch of
+/// more than 12 closed rows keeps the corners of their convex hull on the plane. Applies the
+/// impulse changes to a and b. Returns false for more than 12 corners, a singular friction block
+/// or pivoting that does not settle (changing nothing), or a point between the corners left
+/// sinking (the corners' impulses kept); the caller then falls back to a Gauss-Seidel visit.
+/// `velocity_tolerance` (unit: m/s): how far a row may stay below its target.
+bool solve_patch_exactly(SolverBody& a, SolverBody& b, ContactRow* rows, FrictionPatch& patch, PatchProblem problem,
+                         double velocity_tolerance);
+
 /// Solves for the impulses (starting from the current ones, already applied to the bodies by
-/// warm_start) and leaves the bodies at their end-of-step velocities.
+/// warm_start) and leaves the bodies at their end-of-step velocities: block Gauss-Seidel over the
+/// patches, each solved exactly (solve_patch_exactly) or, failing that, by one projected
+/// Gauss-Seidel visit of its rows. A lone patch (a block on a pedestal) is solved in one sweep.
 /// `scratch` holds a copy of the bodies between sweeps (no allocation once it has their size).
 SolverResult solve_velocities(std::vector<SolverBody>& bodies, std::vector<ContactRow>& rows,
                               std::vector<FrictionPatch>& patches, const SolverSettings& settings,
@@ -106,7 +126,8 @@ SolverResult solve_velocities(std::vector<SolverBody>& bodies, std::vector<Conta
 /// Split-impulse position correction: normal-only impulses that bring each penetrating row to its
 /// correction_velocity, applied to `pseudo` velocities (zeroed first) that move positions only,
 /// so no kinetic energy is added.
-void solve_correction(const std::vector<SolverBody>& bodies, std::vector<SolverBody>& pseudo,
-                      std::vector<ContactRow>& rows, const SolverSettings& settings, std::vector<SolverBody>& scratch);
+SolverResult solve_correction(const std::vector<SolverBody>& bodies, std::vector<SolverBody>& pseudo,
+                              std::vector<ContactRow>& rows, const std::vector<FrictionPatch>& patches,
+                              const SolverSettings& settings, std::vector<SolverBody>& scratch);
 
 }  // namespace rigid::dynamics

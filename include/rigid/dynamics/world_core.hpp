@@ -55,6 +55,10 @@ struct StepSettings {
   double local_damping = 0;
   /// Gravitational acceleration (unit: m/s^2), along -z.
   double gravity = kGravity;
+  /// Rigid model: the contact solve has converged when a sweep changes no velocity by more than
+  /// this fraction of g dt, the velocity gravity adds in one step (and no angular velocity by more
+  /// than that over the smallest block's bounding radius) (unit: 1).
+  double solver_tolerance = 1e-7;
   /// Rigid model: sweeps of the contact solve before it gives up (SolverSettings::max_iterations);
   /// a step that reaches it is counted in StepStats::unconverged_steps.
   int solver_max_sweeps = 200;
@@ -100,6 +104,8 @@ struct StepStats {
   /// solver_max_sweeps) without converging; their impulses are the last sweep's.
   long unconverged_steps = 0;
   int max_solver_sweeps = 0;  ///< rigid model: most sweeps one step's contact solve took
+  long solver_solves = 0;     ///< rigid model: steps with a contact to solve
+  long solver_sweeps = 0;     ///< rigid model: sweeps of those steps' contact solves, in all
 };
 
 /// Optional work of the stepper (simulate only the effects a scene calls for, docs/engine.md). The

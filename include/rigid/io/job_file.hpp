@@ -66,8 +66,10 @@ struct RunText {
 struct RunTable {
   std::optional<RunText> model, contact, effects, accuracy, integrator;
   std::optional<double> duration_s, free_time_s, dt_s, safety;
-  long line = 0;       ///< the [run] table's line (0 when the job has none)
-  long step_line = 0;  ///< line of dt_s, else safety, else [run]: where errors about the step point
+  std::optional<double> solver_tolerance, solver_max_sweeps;
+  long line = 0;         ///< the [run] table's line (0 when the job has none)
+  long solver_line = 0;  ///< line of solver_tolerance, else solver_max_sweeps, else [run]
+  long step_line = 0;    ///< line of dt_s, else safety, else [run]: where errors about the step point
 };
 
 /// A job file as written.

@@ -15,7 +15,19 @@
 namespace rigid::job {
 
 /// A setting a user may override.
-enum class Setting { model, contact, effects, accuracy, integrator, duration, free_time, dt, safety };
+enum class Setting {
+  model,
+  contact,
+  effects,
+  accuracy,
+  integrator,
+  duration,
+  free_time,
+  dt,
+  safety,
+  solver_tolerance,
+  solver_max_sweeps
+};
 
 /// Where a setting's value was given, for its error: a command-line flag (flag not empty), else a
 /// job file and line.
@@ -35,6 +47,10 @@ struct RunOverrides {
   std::optional<double> free_time;  ///< unit: s
   std::optional<double> dt;         ///< fixed time step (unit: s); 0 = automatic
   std::optional<double> safety;     ///< safety factor of the automatic step
+  /// The rigid contact solve's tolerance, a fraction of g dt (StepSettings::solver_tolerance)
+  std::optional<double> solver_tolerance;
+  /// Its sweep cap, as given (a whole number >= 1 once solver_problem() has passed it)
+  std::optional<double> solver_max_sweeps;
   /// The settings given by a flag, as written ("--model rocking2d"), in the order given: what a
   /// campaign records in its job text, so a resume under other values is refused.
   std::vector<std::pair<Setting, std::string>> flags_given;
@@ -49,6 +65,15 @@ void set_text_setting(RunOverrides& o, Setting setting, const std::optional<std:
 /// The problem with the numeric settings given (a negative duration, free time or step, a
 /// safety that is not positive), "" when there is none.
 std::string numbers_problem(const RunOverrides& o);
+
+/// The problem with the contact-solve settings given (a tolerance that is not a finite number
+/// in (0, 1), a sweep cap that is not a whole number from 1 to 1e9), "" when there is none.
+std::string solver_problem(const RunOverrides& o);
+
+/// Sets a numeric setting given by a command-line flag (solver_tolerance, solver_max_sweeps),
+/// recording it in flags_given. Throws rigid::InputError naming the flag when solver_problem
+/// refuses it.
+void set_number_setting(RunOverrides& o, Setting setting, double value, const std::string& flag);
 
 /// `over`'s settings on top of `base`'s.
 RunOverrides merged(RunOverrides base, const RunOverrides& over);

@@ -5,7 +5,8 @@
 /// rest_speed, rest_angular_speed, rest_time). It never touches the physics of a scene (density,
 /// stiffness, friction, damping): those belong to the scene file. Explicit settings (`--safety`,
 /// `--integrator`, `--dt`, or the [run] keys safety, integrator, dt_s) take precedence over the
-/// preset's values.
+/// preset's values; so do `--solver-tolerance` and `--solver-max-sweeps` ([run] solver_tolerance,
+/// solver_max_sweeps) over its contact-solve settings.
 #include <optional>
 #include <string>
 #include <string_view>
@@ -25,6 +26,10 @@ struct AccuracyPreset {
   double rest_speed = 1e-3;
   double rest_angular_speed = 1e-3;
   double rest_time = 0.5;
+  /// The rigid contact solve's tolerance (a fraction of g dt) and sweep cap
+  /// (StepSettings::solver_tolerance, solver_max_sweeps).
+  double solver_tolerance = 1e-7;
+  int solver_max_sweeps = 200;
   std::string summary;  ///< one line for --help and the docs
 };
 
@@ -47,6 +52,8 @@ struct AccuracyOverrides {
   std::optional<double> dt;      ///< fixed time step (unit: s)
   std::optional<double> safety;  ///< safety factor of the automatic step (unit: 1)
   std::optional<dynamics::RotationIntegrator> rotation;
+  std::optional<double> solver_tolerance;  ///< fraction of g dt (unit: 1)
+  std::optional<int> solver_max_sweeps;
 };
 
 /// Sets the preset's numerical settings in `settings`, then the overrides. Physics, durations and

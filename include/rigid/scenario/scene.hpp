@@ -121,6 +121,8 @@ struct RunOutcome {
   /// (dynamics::StepStats); 0 for penalty contact and the 2D model, which have no such solve.
   long unconverged_steps = 0;
   int max_solver_sweeps = 0;  ///< most sweeps one step's contact solve took (rigid contact model)
+  long solver_solves = 0;     ///< steps with a contact to solve (rigid contact model)
+  long solver_sweeps = 0;     ///< sweeps of those solves, in all (their mean: solver_sweeps / solver_solves)
   ActiveEffects effects;      ///< filled by run() (not by the 2D model)
 };
 
