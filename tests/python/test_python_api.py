@@ -6,7 +6,7 @@ a. open_cube on a small campaign (jobs/ci_small.toml, run here): every variable 
    column; a calibrated campaign's variants carry the members' weights (0.75, 0.25, by hand).
 b. fragility(): the planted probit model of a synthetic cube (synthetic_cube.py) recovered;
    hazard(): the toppling rate of a power-law hazard curve against its closed form
-   k0 theta^-k exp(k^2 beta^2 / 2) (Cornell et al. 2002, docs/hazard.md) for the fitted lognormal.
+   k0 theta^-k exp(k^2 beta^2 / 2) (Cornell et al. 2002, physics.md §13) for the fitted lognormal.
 c. run() through the extension: outcome, overturn time and maximum tilt equal `rigid run --json`'s
    for the same inputs, bit for bit; the table's acceleration, velocity and displacement follow the
    one-sine pulse in closed form; below the uplift acceleration g tan(alpha) the block does not rock
