@@ -36,4 +36,6 @@ class CMakeBuild(build_ext):
         shutil.copyfile(built, target)
 
 
-setup(ext_modules=[Extension("rigidpy._engine", sources=[])], cmdclass={"build_ext": CMakeBuild})
+# setuptools' own build directory would be build/, CMake's: kept inside it, apart
+setup(ext_modules=[Extension("rigidpy._engine", sources=[])], cmdclass={"build_ext": CMakeBuild},
+      options={"build": {"build_base": os.path.join("build", "setuptools")}})
