@@ -170,6 +170,7 @@ void write_history_outputs(const RunOptions& o, const scenario::History& history
   if (r.failure_time_s) args.insert(args.end(), {"--overturned-at", std::to_string(*r.failure_time_s)});
   if (!o.plot.empty()) args.insert(args.end(), {"--plot", o.plot});
   if (!o.animate.empty()) args.insert(args.end(), {"--animate", o.animate});
+  if (o.json) args.push_back("--quiet");  // standard output stays one JSON object
   const std::string script = find_plot_helper("rigid_run_plot.py");
   const int status = script.empty() ? -1 : run_python(script, args);
   if (temporary) fs::remove(csv);

@@ -272,10 +272,12 @@ def test_plot_and_animate(rigid, tmp_path):
         cmd = [rigid, "run", SCENE, "--motion", RECORD, "--target-pga", "0.6", "--rotation", "30", "--plot", path]
         if i == 0:
             pytest.importorskip("PIL")
-            cmd += ["--animate", str(tmp_path / "run.gif")]
+            cmd += ["--animate", str(tmp_path / "run.gif"), "--json"]
             outputs.append(str(tmp_path / "run.gif"))
         r = run(cmd)
         assert r.returncode == 0, r.stderr
+        if i == 0:
+            assert json.loads(r.stdout)["overturned"]  # --json's standard output stays one JSON object
     for path in outputs:
         with open(path, "rb") as f:
             assert f.read(5).startswith(SIGNATURES[os.path.splitext(path)[1]]), path

@@ -3,7 +3,7 @@ the table `rigid run --history` writes) drawn for `rigid run --plot FILE` and `-
 and for notebooks (rigidpy.plot_history, rigidpy.animate_history).
 
     rigid_run_plot.py HISTORY.csv [--plot FILE.pdf|svg|png] [--animate FILE.gif] [--title TEXT]
-                      [--overturned-at SECONDS]
+                      [--overturned-at SECONDS] [--quiet]
 
 Exit status: 0 done, 2 bad input, 1 internal error."""
 import math
@@ -134,6 +134,7 @@ def main(argv=None):
     p.add_argument("--animate", help="animation: .gif")
     p.add_argument("--title", help="title of the figure")
     p.add_argument("--overturned-at", type=float, help="the overturn time to mark (s)")
+    p.add_argument("--quiet", action="store_true", help="no `wrote FILE` lines (rigid run --json keeps stdout JSON)")
     args = p.parse_args(sys.argv[1:] if argv is None else argv)
     return exit_status("rigid run", lambda: draw_outputs(args), args)
 
@@ -152,7 +153,8 @@ def draw_outputs(args):
         fig = plot_history(ds, title=args.title)
         fmt = args.plot.rsplit(".", 1)[-1].lower()
         write_output(args.plot, "--plot", [args.history], lambda tmp: fig.savefig(tmp, format=fmt))
-        print(f"wrote {args.plot}")
+        if not args.quiet:
+            print(f"wrote {args.plot}")
     if args.animate:
         try:
             import PIL  # noqa: F401  (PillowWriter's)
@@ -162,5 +164,6 @@ def draw_outputs(args):
             animate_history(ds, tmp + ".gif", title=args.title)
             os.replace(tmp + ".gif", tmp)
         write_output(args.animate, "--animate", [args.history], save_gif)
-        print(f"wrote {args.animate}")
+        if not args.quiet:
+            print(f"wrote {args.animate}")
     return 0
