@@ -224,14 +224,16 @@ def test_table_follows_the_pulse_and_the_block_stays_below_uplift(engine):
     inside = t <= period
     a = ds.table_acceleration.sel(axis="x").values
     assert np.allclose(a[inside] / G, amplitude_g * np.sin(w * t[inside]), rtol=0, atol=2e-3 * amplitude_g)
-    v = amplitude_g * G / w * (1 - np.cos(w * np.minimum(t, period)))
-    assert np.allclose(ds.table_velocity.sel(axis="x").values, v, rtol=0, atol=2e-3 * v.max())
-    d = amplitude_g * G / w * (np.minimum(t, period) - np.sin(w * np.minimum(t, period)) / w) + \
-        v[-1] * np.maximum(t - period, 0)
-    assert np.allclose(ds.table_displacement.sel(axis="x").values, d, rtol=0, atol=2e-3 * abs(d).max())
+    # the pedestal moves by the engine's steps: within one step's change of the closed form
+    step = ds.attrs["dt_s"]
+    v = amplitude_g * G / w * (1 - np.cos(w * np.minimum(t, period)))  # back to 0 after one sine
+    assert np.allclose(ds.table_velocity.sel(axis="x").values, v, rtol=0, atol=amplitude_g * G * step)
+    d = amplitude_g * G / w * (np.minimum(t, period) - np.sin(w * np.minimum(t, period)) / w)
+    assert np.allclose(ds.table_displacement.sel(axis="x").values, d, rtol=0, atol=v.max() * step)
+    assert abs(ds.table_displacement.sel(axis="x").values[-1] / (amplitude_g * G * period / w) - 1) < 1e-3
     assert np.all(ds.table_acceleration.sel(axis=["y", "z"]).values == 0)
     assert float(ds.tilt.max()) < 0.05 and not ds.attrs["overturned"]
-    assert np.all(ds.contacts.values > 0)
+    assert np.all(ds.contacts.values[1:] > 0)  # the first frame is before any step (no contacts yet)
 
 
 def test_history_equals_the_cli_table(engine, rigid, tmp_path):

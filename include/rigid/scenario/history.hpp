@@ -20,7 +20,7 @@ struct History {
   std::vector<double> slip_m;                ///< accumulated frictional slip (World::slip)
   std::vector<double> position_m;            ///< centre of mass, world frame
   std::vector<double> orientation;           ///< body-to-world unit quaternion (w, x, y, z)
-  std::vector<int> contacts;                 ///< loaded subcontacts touching the block
+  std::vector<int> contacts;                 ///< loaded subcontacts touching it (0 before the first step)
   std::vector<double> contact_force_n;       ///< total contact force on the block (World::contact_force)
   std::vector<double> table_displacement_m;  ///< first fixed block's centre less its initial one
   std::vector<double> table_velocity_m_s;    ///< first fixed block's velocity

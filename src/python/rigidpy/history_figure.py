@@ -86,7 +86,7 @@ def animate_history(ds, path, title=None, fps=ANIMATION_FPS):
     x_hi = max(pos[:, :, 0].max(), table[:, 0].max() + pos[0, :, 0].max()) + half.max()
     z_hi = max(pos[:, :, 2].max() + half.max(), base_z + 2 * half.max())
     side.set_xlim(x_lo, x_hi)
-    side.set_ylim(base_z - 0.1 * half.max(), z_hi)
+    side.set_ylim(min(base_z, pos[:, :, 2].min() - half.max()) - 0.1 * half.max(), z_hi)  # a fall off the pedestal
     side.set_aspect("equal")
     side.set_xlabel("x (m)")
     side.set_ylabel("z (m)")
