@@ -18,8 +18,9 @@ from .files import write_output
 
 G = 9.80665  # standard gravity (m s-2): the table's acceleration is drawn in g
 FIGURE_FORMATS = ("pdf", "svg", "png")
-MAX_ANIMATION_FRAMES = 300  # a gif of a 20 s run stays a few MB
-ANIMATION_FPS = 25
+MAX_ANIMATION_FRAMES = 120  # a gif of any run stays about a megabyte and takes seconds to draw
+ANIMATION_FPS = 20
+ANIMATION_DPI = 72
 
 
 def _pyplot():
@@ -57,7 +58,7 @@ def plot_history(ds, path=None, title=None):
         ax.grid(alpha=0.3)
     if overturn is not None:
         axes[0].annotate(f"overturned at {overturn:.2f} s", (overturn, 1), xycoords=("data", "axes fraction"),
-                         xytext=(4, -12), textcoords="offset points", fontsize=8)
+                         xytext=(-4, -12), textcoords="offset points", fontsize=8, ha="right")
     for ax in axes:
         if ax.get_legend_handles_labels()[0]:
             ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1), fontsize=8, frameon=False)
@@ -121,7 +122,7 @@ def animate_history(ds, path, title=None, fps=ANIMATION_FPS):
         return [table_line, clock, cursor, *sticks]
 
     animation = FuncAnimation(fig, draw, frames=frames, blit=False)
-    animation.save(path, writer=PillowWriter(fps=fps))
+    animation.save(path, writer=PillowWriter(fps=fps), dpi=ANIMATION_DPI)
     plt.close(fig)
 
 
