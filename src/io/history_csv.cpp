@@ -20,6 +20,7 @@ void write_history_csv(std::ostream& out, const scenario::History& h) {
     header.push_back("tilt_deg:" + b);
     header.push_back("slip_m:" + b);
     header.push_back("contacts:" + b);
+    header.push_back("base_height_m:" + b);
     for (const char* a : kAxes) header.push_back(std::string("position_m:") + a + ":" + b);
     for (const char* q : kQuaternion) header.push_back(std::string("orientation:") + q + ":" + b);
     for (const char* a : kAxes) header.push_back(std::string("contact_force_n:") + a + ":" + b);
@@ -33,7 +34,7 @@ void write_history_csv(std::ostream& out, const scenario::History& h) {
     }
     for (std::size_t b = 0; b < blocks; ++b) {
       const std::size_t k = f * blocks + b;
-      csv.field(h.tilt_rad[k] * 180.0 / kPi).field(h.slip_m[k]).field(h.contacts[k]);
+      csv.field(h.tilt_rad[k] * 180.0 / kPi).field(h.slip_m[k]).field(h.contacts[k]).field(h.base_height_m[b]);
       for (std::size_t a = 0; a < 3; ++a) csv.field(h.position_m[3 * k + a]);
       for (std::size_t q = 0; q < 4; ++q) csv.field(h.orientation[4 * k + q]);
       for (std::size_t a = 0; a < 3; ++a) csv.field(h.contact_force_n[3 * k + a]);

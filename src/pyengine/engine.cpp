@@ -122,6 +122,7 @@ py::dict history_dict(const scenario::History& h) {
   const auto b = py::ssize_t(h.blocks.size());
   py::dict d;
   d["block"] = h.blocks;
+  d["base_height_m"] = h.base_height_m;
   d["time_s"] = array(h.time_s, {n});
   d["tilt_rad"] = array(h.tilt_rad, {n, b});
   d["slip_m"] = array(h.slip_m, {n, b});

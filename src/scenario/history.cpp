@@ -26,6 +26,9 @@ void HistoryRecorder::record(const dynamics::World& world) {
       if (!defs[i].fixed) {
         free_.push_back(int(i));
         history_.blocks.push_back(defs[i].name);
+        double lowest = states[i].position.z();
+        for (const Vec3& v : world.world_vertices(int(i))) lowest = std::min(lowest, v.z());
+        history_.base_height_m.push_back(states[i].position.z() - lowest);
       } else if (table_ < 0) {
         table_ = int(i);
         table_start_ = states[i].position;

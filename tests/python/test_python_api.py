@@ -245,6 +245,9 @@ def test_history_equals_the_cli_table(engine, rigid, tmp_path):
     for var in ("tilt", "slip", "contacts", "position", "orientation", "contact_force", "table_acceleration"):
         assert np.allclose(table[var].values, ds[var].values, rtol=1e-12, atol=1e-12), var
     assert same(table.time.values, ds.time.values)
+    assert np.allclose(table.base_height.values, ds.base_height.values, rtol=1e-12)
+    # block_a03: a 1 m high rectangular block, its centre 0.5 m above its base (its model file's comment)
+    assert abs(float(ds.base_height[0]) - 0.5) < 1e-6
 
 
 @pytest.mark.parametrize("kwargs, words", [

@@ -14,7 +14,10 @@ namespace rigid::scenario {
 /// vectors with their 3 (position, contact force, table) or 4 (orientation w, x, y, z)
 /// components innermost.
 struct History {
-  std::vector<std::string> blocks;           ///< the free blocks' names, scene order
+  std::vector<std::string> blocks;  ///< the free blocks' names, scene order
+  /// per block: its centre of mass above its lowest point at the first frame (unit: m), the
+  /// length a side view draws it with
+  std::vector<double> base_height_m;
   std::vector<double> time_s;                ///< frame times (unit: s)
   std::vector<double> tilt_rad;              ///< scenario::tilt from the block's initial orientation
   std::vector<double> slip_m;                ///< accumulated frictional slip (World::slip)

@@ -71,7 +71,7 @@ def plot_history(ds, path=None, title=None):
 def animate_history(ds, path, title=None, fps=ANIMATION_FPS):
     """The run as an animated gif (matplotlib's PillowWriter, Debian python3-pil): left, the
     blocks seen from the side (x-z), each drawn as its initially vertical axis through its centre
-    of mass, on the table moving with the ground; right, the tilt as it grows. At most
+    of mass, from its base to as far above (`base_height`), on the table moving with the ground; right, the tilt as it grows. At most
     MAX_ANIMATION_FRAMES frames (the history is subsampled evenly)."""
     plt = _pyplot()
     from matplotlib.animation import FuncAnimation, PillowWriter
@@ -80,8 +80,8 @@ def animate_history(ds, path, title=None, fps=ANIMATION_FPS):
     pos = ds["position"].values  # [time, block, axis]
     quat = ds["orientation"].values  # [time, block, (w, x, y, z)]
     table = ds["table_displacement"].values
-    base_z = pos[0, :, 2].min() - max(0.05, 1.0 * (pos[0, :, 2].max() - pos[0, :, 2].min()))
-    half = np.maximum(pos[0, :, 2] - base_z, 0.05)  # each block's half axis: its height above the table
+    half = np.maximum(ds["base_height"].values, 1e-3)  # each block's centre above its base
+    base_z = float((pos[0, :, 2] - half).min())  # the table top, under the lowest block
     fig, (side, tilt) = plt.subplots(1, 2, figsize=(9, 4), constrained_layout=True)
     x_lo = min(pos[:, :, 0].min(), table[:, 0].min() + pos[0, :, 0].min()) - half.max()
     x_hi = max(pos[:, :, 0].max(), table[:, 0].max() + pos[0, :, 0].max()) + half.max()
@@ -103,17 +103,24 @@ def animate_history(ds, path, title=None, fps=ANIMATION_FPS):
     tilt.grid(alpha=0.3)
     fig.suptitle(title or ds.attrs.get("scene", "") or "run")
 
-    def up_axis(q):
+    def matrix(q):
         w, x, y, z = q
-        # third column of the rotation matrix: where the body's initial z axis points now
-        return np.array([2 * (x * z + w * y), 2 * (y * z - w * x), 1 - 2 * (x * x + y * y)])
+        return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+                         [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+                         [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]])
+
+    # the world vertical carried with each block from its first pose (body frames are principal axes)
+    up_in_body = [matrix(quat[0, b]).T @ np.array([0.0, 0.0, 1.0]) for b in range(pos.shape[1])]
+
+    def up_axis(i, b):
+        return matrix(quat[i, b]) @ up_in_body[b]
 
     def draw(i):
         dx = table[i, 0]
         table_line.set_data([pos[0, :, 0].min() - half.max() + dx, pos[0, :, 0].max() + half.max() + dx],
                             [base_z, base_z])
         for b, stick in enumerate(sticks):
-            u = up_axis(quat[i, b])
+            u = up_axis(i, b)
             c = pos[i, b]
             ends = np.array([c - half[b] * u, c, c + half[b] * u])
             stick.set_data(ends[:, 0], ends[:, 2])

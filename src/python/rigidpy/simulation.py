@@ -104,17 +104,21 @@ def run(scene, motion=None, target_pga=None, rotation=0.0, contact=None, *, fact
               "position": h["position_m"], "orientation": h["orientation"], "contact_force": h["contact_force_n"],
               "table_displacement": h["table_displacement_m"], "table_velocity": h["table_velocity_m_s"],
               "table_acceleration": h["table_acceleration_m_s2"]}
-    return history_dataset(h["time_s"], list(h["block"]), arrays, attrs)
+    return history_dataset(h["time_s"], list(h["block"]), arrays, attrs, h["base_height_m"])
 
 
-def history_dataset(time_s, blocks, arrays, attrs):
-    """The Dataset of a time history: `arrays` (variable -> array [time, ...] in VARIABLES' units)."""
+def history_dataset(time_s, blocks, arrays, attrs, base_height_m):
+    """The Dataset of a time history: `arrays` (variable -> array [time, ...] in VARIABLES' units);
+    `base_height_m` per block, its centre of mass above its lowest point at the start."""
     xr = _xarray()
     data = {}
     for name, (dims, long_name, units) in VARIABLES.items():
         data[name] = xr.Variable(("time",) + dims, np.asarray(arrays[name]), {"long_name": long_name, "units": units})
     coords = {"time": ("time", np.asarray(time_s, float), {"long_name": "simulated time", "units": "s"}),
-              "block": ("block", np.array(blocks, dtype=object)), "axis": ("axis", list(AXES)),
+              "block": ("block", np.array(blocks, dtype=object)),
+              "base_height": ("block", np.asarray(base_height_m, float),
+                              {"long_name": "centre of mass above the block's lowest point at the start", "units": "m"}),
+              "axis": ("axis", list(AXES)),
               "quaternion": ("quaternion", list(QUATERNION))}
     return xr.Dataset(data, coords=coords, attrs=dict(attrs))
 
@@ -156,4 +160,5 @@ def history_from_csv(path, attrs=None):
                   "table_acceleration": table("table_acceleration_m_s2")}
     except KeyError as e:
         raise InputError(f"{path}: column {e} is missing")
-    return history_dataset(values[:, 0], blocks, arrays, attrs or {})
+    base = values[0, [column[f"base_height_m:{b}"] for b in blocks]] if len(values) else []
+    return history_dataset(values[:, 0], blocks, arrays, attrs or {}, base)
