@@ -71,8 +71,9 @@ def plot_history(ds, path=None, title=None):
 def animate_history(ds, path, title=None, fps=ANIMATION_FPS):
     """The run as an animated gif (matplotlib's PillowWriter, Debian python3-pil): left, the
     blocks seen from the side (x-z), each drawn as its initially vertical axis through its centre
-    of mass, from its base to as far above (`base_height`), on the table moving with the ground; right, the tilt as it grows. At most
-    MAX_ANIMATION_FRAMES frames (the history is subsampled evenly)."""
+    of mass, from its base to as far above (`base_height`), on the table moving with the ground;
+    right, the tilt as it grows. At most MAX_ANIMATION_FRAMES frames (the history subsampled
+    evenly)."""
     plt = _pyplot()
     from matplotlib.animation import FuncAnimation, PillowWriter
     n = ds.sizes["time"]
