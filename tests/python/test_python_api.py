@@ -272,8 +272,9 @@ SIGNATURES = {".pdf": b"%PDF", ".png": b"\x89PNG", ".svg": b"<?xml", ".gif": b"G
 
 def test_plot_and_animate(rigid, tmp_path):
     pytest.importorskip("matplotlib")
-    outputs = [str(tmp_path / f"run{e}") for e in (".pdf", ".svg", ".png")]
-    for i, path in enumerate(outputs):
+    figures = [str(tmp_path / f"run{e}") for e in (".pdf", ".svg", ".png")]
+    outputs = list(figures)
+    for i, path in enumerate(figures):
         cmd = [rigid, "run", SCENE, "--motion", RECORD, "--target-pga", "0.6", "--rotation", "30", "--plot", path]
         if i == 0:
             pytest.importorskip("PIL")
