@@ -1,7 +1,11 @@
 // `rigid run`: one scene, one ground motion, one answer; `rigid settle`: save an equilibrium.
+#include <unistd.h>
+
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -11,14 +15,18 @@
 #include "motion_input.hpp"
 #include "number_checks.hpp"
 #include "output_options.hpp"
+#include "python_script.hpp"
 #include "rigid/core/error.hpp"
+#include "rigid/io/history_csv.hpp"
 #include "rigid/io/json.hpp"
+#include "rigid/io/output_file.hpp"
 #include "rigid/io/scene_file.hpp"
 #include "rigid/io/trajectory.hpp"
 #include "rigid/job/job.hpp"
 #include "rigid/job/model.hpp"
 #include "rigid/scenario/accuracy.hpp"
 #include "rigid/scenario/case.hpp"
+#include "rigid/scenario/history.hpp"
 #include "rigid/scenario/rocking2d.hpp"
 #include "rigid/scenario/scene.hpp"
 #include "scene_input.hpp"
@@ -44,7 +52,12 @@ struct RunOptions {
   std::string effects = "auto";
   std::string trajectory;
   double trajectory_interval = 0.02;
+  std::string history;  // the time history as CSV (io/history_csv.hpp)
+  std::string plot;     // its figure (pdf, svg, png), drawn by rigidpy
+  std::string animate;  // its animation (gif)
+  double history_interval = 0.01;
   bool json = false;
+  bool wants_history() const { return !history.empty() || !plot.empty() || !animate.empty(); }
 };
 
 const char* end_name(scenario::ActiveEffects::End end) {
@@ -124,6 +137,60 @@ scenario::Model checked_model(const job::Job& job, scenario::Scene scene, motion
   }
 }
 
+// --plot and --animate by extension, before any work: what matplotlib can draw here (an mp4 would
+// need ffmpeg, which the project does not install; PillowWriter writes gif with python3-pil)
+void check_history_outputs(const RunOptions& o, bool block2d) {
+  if (o.wants_history() && !o.trajectory.empty()) {
+    throw InputError("", 0,
+                     "--trajectory and --history/--plot/--animate sample the run each at its own interval: give one");
+  }
+  if (o.wants_history() && block2d) {
+    throw InputError("", 0, "--history, --plot and --animate record the 3D engine's blocks: use --model dem3d");
+  }
+  const auto extension = [](const std::string& path) {
+    std::string e = std::filesystem::path(path).extension().string();
+    for (char& c : e) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return e;
+  };
+  if (!o.plot.empty() && extension(o.plot) != ".pdf" && extension(o.plot) != ".svg" && extension(o.plot) != ".png") {
+    throw InputError("", 0, "--plot " + o.plot + ": the figure's format comes from its extension: .pdf, .svg or .png");
+  }
+  if (!o.animate.empty() && extension(o.animate) != ".gif") {
+    throw InputError("", 0, "--animate " + o.animate + ": only .gif (matplotlib's PillowWriter; an .mp4 needs ffmpeg)");
+  }
+  for (const std::string* path : {&o.history, &o.plot, &o.animate}) {
+    if (!path->empty()) io::refuse_output_over_inputs(*path, {o.scene, o.state});
+  }
+}
+
+// The history as CSV (--history, or a private temporary for the figure), then the figure and the
+// animation, drawn by src/python/rigid_run_plot.py (rigidpy's figure of rigidpy.run's Dataset).
+void write_history_outputs(const RunOptions& o, const scenario::History& history, const scenario::RunOutcome& r) {
+  namespace fs = std::filesystem;
+  const bool temporary = o.history.empty();
+  const std::string csv =
+      temporary ? (fs::temp_directory_path() / ("rigid_run_history_" + std::to_string(::getpid()) + ".csv")).string()
+                : o.history;
+  io::write_output_file(csv, [&](std::ostream& out) { io::write_history_csv(out, history); });
+  if (o.plot.empty() && o.animate.empty()) return;
+  std::vector<std::string> args{csv, "--title", fs::path(o.scene).filename().string()};
+  if (r.failure_time_s) args.insert(args.end(), {"--overturned-at", std::to_string(*r.failure_time_s)});
+  if (!o.plot.empty()) args.insert(args.end(), {"--plot", o.plot});
+  if (!o.animate.empty()) args.insert(args.end(), {"--animate", o.animate});
+  if (o.json) args.push_back("--quiet");  // standard output stays one JSON object
+  const std::string script = find_plot_helper("rigid_run_plot.py");
+  const int status = script.empty() ? -1 : run_python(script, args);
+  if (temporary) fs::remove(csv);
+  if (status == 2) throw InputError("", 0, "--plot/--animate: not drawn (the line above says why)");
+  if (status != 0) {
+    throw std::runtime_error(
+        "--plot/--animate: " +
+        (script.empty() ? std::string("src/python/rigid_run_plot.py not found")
+                        : python_interpreter() + " " + script + " failed (status " + std::to_string(status) + ")") +
+        "; it needs Debian's python3 with python3-matplotlib (and python3-pil for --animate)");
+  }
+}
+
 // One scene, one motion: a job of one cell, its model built and its case made as a campaign's are.
 void run(const RunOptions& o) {
   scenario::Scene scene = load_scene_with_warnings(o.scene);
@@ -146,26 +213,28 @@ void run(const RunOptions& o) {
     }
     scenario::rocking_block_of(scene);  // the scene is checked before any motion is read
   }
+  check_history_outputs(o, block2d);
   motion::GroundMotion m;
   reject_lab_flags_without_file(o.motion.lab);
   if (o.motion.given()) m = load_motion(o.motion);
 
   io::TrajectoryRecorder recorder;
+  scenario::HistoryRecorder history(m);  // refers to m: the model below takes a copy
   if (!o.trajectory.empty() && !block2d) {
     job.run.observer = [&recorder](const dynamics::World& w) { recorder.record(w); };
     job.run.observe_interval = o.trajectory_interval;
+  } else if (o.wants_history()) {
+    job.run.observer = [&history](const dynamics::World& w) { history.record(w); };
+    job.run.observe_interval = o.history_interval;
   }
   // the motion is already windowed, scaled and rotated (load_motion): the one cell takes it as
   // it is (scale "as recorded", rotation 0)
-  const scenario::Model model = checked_model(job, std::move(scene), std::move(m), o);
+  const scenario::Model model = checked_model(job, std::move(scene), m, o);
   const auto start = std::chrono::steady_clock::now();
-  const scenario::CaseOutcome outcome = scenario::simulate_case(model, job::case_of(job, job::Cell{}));
-  if (outcome.error) std::rethrow_exception(outcome.error);
-  const scenario::RunOutcome& r = outcome.run;
-  // before any report: a non-finite state is no outcome ("survived" would be a wrong answer)
-  if (!r.finite) throw std::runtime_error("the simulation produced a non-finite state");
+  const scenario::RunOutcome r = job::simulate_one_cell(job, model);
   if (!o.trajectory.empty() && !block2d) recorder.write(o.trajectory);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (o.wants_history()) write_history_outputs(o, history.history(), r);
 
   if (o.json) {
     io::Json j;
@@ -246,6 +315,18 @@ void register_run_command(CLI::App& app) {
                   "pedestal, pair culling, no vertical work without a vertical component, early end); "
                   "all: every effect, the reference")
       ->capture_default_str();
+  cmd->add_option("--history", o->history,
+                  "Write the time history to this CSV: per frame the table's motion and each free block's tilt, "
+                  "slip, contacts and pose (dem3d only)");
+  cmd->add_option("--plot", o->plot,
+                  "Draw the time history (tilt, slip, table acceleration vs time) to this .pdf, .svg or .png "
+                  "(dem3d only; rigidpy, /usr/bin/python3 with matplotlib)");
+  cmd->add_option("--animate", o->animate,
+                  "Animate the run to this .gif: the blocks from the side and the tilt as it grows (dem3d only; "
+                  "matplotlib with python3-pil)");
+  cmd->add_option("--history-interval", o->history_interval, "Time between history frames (s)")
+      ->capture_default_str()
+      ->check(positive_number());
   cmd->add_flag("--json", o->json, "Print one JSON object");
   cmd->callback([o] { run(*o); });
 

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <exception>
+#include <stdexcept>
 
 #include "rigid/io/provenance.hpp"
 
@@ -34,6 +36,13 @@ Job one_cell_job(const RunOverrides& overrides) {
   job.overrides = overrides;
   apply_overrides(job);
   return job;
+}
+
+scenario::RunOutcome simulate_one_cell(const Job& job, const scenario::Model& model) {
+  const scenario::CaseOutcome outcome = scenario::simulate_case(model, case_of(job, Cell{}));
+  if (outcome.error) std::rethrow_exception(outcome.error);
+  if (!outcome.run.finite) throw std::runtime_error("the simulation produced a non-finite state");
+  return outcome.run;
 }
 
 double cell_rotation_deg(const Job& job, const Cell& c) {

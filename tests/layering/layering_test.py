@@ -16,7 +16,7 @@ third-party rules: the engine core (geometry .. scenario, library, analysis, sta
 calibration) includes only Eigen and the standard library; only io includes HDF5,
 toml++, nettle and assimp; only repair includes CGAL (linked through scan by app and tests/scan
 alone: io and the tests that link it stay free of CGAL's compile); nlohmann-json is io's and above (io/json.hpp); only campaign includes MPI;
-zlib is io's (gzip lab recordings) and campaign's (journal checksums); spdlog is campaign's and app's (campaign/log.hpp); only app includes CLI11; POSIX headers (unistd.h, sys/...)
+zlib is io's (gzip lab recordings) and campaign's (journal checksums); spdlog is campaign's and app's (campaign/log.hpp); only app includes CLI11; only rigidpy's extension (pyengine, over job) includes pybind11; POSIX headers (unistd.h, sys/...)
 only io, scan (its staging folder), campaign and app. The required order (REQUIRED_ABOVE): library
 and analysis above scenario; io above statistics; job above io, scenario and analysis; scan (the
 scan import) above io and repair; campaign above job; the shake-table workflow above campaign,
@@ -43,6 +43,10 @@ def module_graph(root):
         graph[name] = re.findall(r"\brigid_(\w+)", deps)
     app = re.search(r"^target_link_libraries\(rigid\s+PRIVATE([^)]*)\)", text, re.M)
     graph["app"] = re.findall(r"\brigid_(\w+)", app.group(1)) if app else []
+    # rigidpy's extension (src/pyengine, target _engine) links as the command line does
+    engine = re.search(r"^\s*target_link_libraries\(_engine\s+PRIVATE([^)]*)\)", text, re.M)
+    if engine:
+        graph["pyengine"] = re.findall(r"\brigid_(\w+)", engine.group(1))
     return graph
 
 
@@ -65,6 +69,7 @@ THIRD_PARTY = {
     "zlib": {"io", "campaign"},
     "spdlog": {"campaign", "app"},
     "cli11": {"app"},
+    "pybind11": {"pyengine"},
 }
 
 # Where modules must sit, whatever CMake declares (module, modules it must be above): the job
@@ -80,6 +85,7 @@ REQUIRED_ABOVE = {
     "campaign": {"job"},
     "shaketable": {"campaign", "scan", "calibration"},
     "app": {"job", "campaign", "scan", "shaketable"},
+    "pyengine": {"job"},
 }
 
 # Modules a module links through others but may not include (module -> modules): the command line
@@ -87,6 +93,7 @@ REQUIRED_ABOVE = {
 # (bodies, contacts, meshes) leak into what it prints.
 NOT_INCLUDED = {
     "app": {"geometry", "contact", "dynamics"},
+    "pyengine": {"geometry", "contact", "dynamics"},
 }
 
 # Deliberate exceptions: (module, included header) -> reason. Empty today.
@@ -118,6 +125,8 @@ def family(header):
         return "spdlog"
     if header.startswith("CLI/"):
         return "cli11"
+    if header.startswith("pybind11/"):
+        return "pybind11"
     if header in POSIX or header.startswith("sys/"):
         return "posix"
     if re.fullmatch(r"[a-z_]+", header):  # <vector>, <cmath>, <string_view>: the C++ library

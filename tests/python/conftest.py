@@ -34,6 +34,9 @@ def pytest_addoption(parser):
     parser.addoption("--cube", default=None, help="a cube written by a CTest fixture")
     parser.addoption("--shared", default=os.path.join(SOURCE_DIR, "..", "shared"),
                      help="the read-only reference data (default ../shared beside the checkout)")
+    parser.addoption("--engine", default=None,
+                     help="test_python_api.py, test_notebook.py: the folder of the built extension "
+                          "(rigidpy/_engine*.so; CMake's BUILD/python)")
     parser.addoption("--all-recordings", action="store_true",
                      help="test_lab_motion.py: compare every real recording, not every fourth")
 

@@ -113,6 +113,11 @@ std::string grace_problem(double grace_s);
 /// with these overrides applied. `rigid run` simulates such a job.
 Job one_cell_job(const RunOverrides& overrides);
 
+/// The one cell of a one_cell_job simulated on its model (`rigid run` and rigidpy.run): its run,
+/// or the simulation's error rethrown; a non-finite state is std::runtime_error, never an
+/// outcome ("survived" would be a wrong answer).
+scenario::RunOutcome simulate_one_cell(const Job& job, const scenario::Model& model);
+
 /// The rotation of a cell: its fixed angle when the job lists them, else the random one of its
 /// [[object]] (the same for all of the object's variants).
 double cell_rotation_deg(const Job& job, const Cell& cell);

@@ -88,7 +88,9 @@ def cmd_fragility(args):
         return fragility_locked(args, state)
 
 
-def fragility_locked(args, state):
+def fit_cube(args, state):
+    """(cube, fits, analyses): every chosen object's fits, and per object with variants its
+    VariantAnalysis; what `rigid fragility` reports, exports and stores, and rigidpy.fragility returns."""
     cube = Cube(args.cube)
     if args.nrml_at_pgv_pga is not None and cube.variants is not None:
         raise InputError(f"{args.cube}: a cube with variants exports its functions at --pgv-pga S already; "
@@ -104,6 +106,11 @@ def fragility_locked(args, state):
             fits, analyses = analyse_variants(cube, objs, args)
     finally:
         end_progress()
+    return cube, fits, analyses
+
+
+def fragility_locked(args, state):
+    cube, fits, analyses = fit_cube(args, state)
     warn_incomplete(args)
     if args.json:
         json.dump(json_document(cube, fits, args, analyses), sys.stdout, indent=1, allow_nan=False)
@@ -266,6 +273,12 @@ def main(argv=None):
 
 
 def checked_run(args):
+    check_arguments(args)
+    return args.func(args)
+
+
+def check_arguments(args):
+    """The settings `fragility` and `hazard` share (and rigidpy.fragility, rigidpy.hazard), checked."""
     if not 0 <= args.seed < 2 ** 63:
         raise InputError(f"--seed {args.seed}: must be a whole number from 0 to 2^63 - 1")
     if args.bootstrap < 20 or args.bootstrap > 100000:
@@ -276,8 +289,13 @@ def checked_run(args):
         raise InputError(f"--pgv-pga {args.pgv_pga}: must be a positive number of seconds")
     if getattr(args, "pgv_pga_dist", None) and args.pgv_pga is not None:
         raise InputError("--pgv-pga and --pgv-pga-dist: give one")
-    return args.func(args)
 
 
 if __name__ == "__main__":
     sys.exit(main())
+
+
+# rigidpy.fragility(...) is fits_data.fragility (callable_module.py says why)
+from .callable_module import call_through  # noqa: E402
+
+call_through(__name__, "rigidpy.fits_data", "fragility")

@@ -318,3 +318,9 @@ def fragility_probability(a, theta_g, beta):
     if beta == 0:  # a deterministic threshold
         return (np.asarray(a, float) >= theta_g).astype(float)
     return ndtr(np.log(np.asarray(a, float) / theta_g) / beta)
+
+
+# rigidpy.hazard(...) is fits_data.hazard (callable_module.py says why)
+from .callable_module import call_through  # noqa: E402
+
+call_through(__name__, "rigidpy.fits_data", "hazard")

@@ -180,6 +180,14 @@ def pooled_fragility(args, cube, objs):
 
 
 def cmd_hazard(args):
+    result, draw = hazard_result(args)
+    emit_hazard(args, result, draw)
+    return 0
+
+
+def hazard_result(args):
+    """(result, draw): what `rigid hazard` reports (the JSON document's content) and the function
+    that draws its --plot; rigidpy.hazard returns the result."""
     if not (args.age > 0 and math.isfinite(args.age)):
         raise InputError(f"--age {args.age}: must be a positive number of years")
     if not 0 < args.confidence < 1:
@@ -221,8 +229,7 @@ def cmd_hazard(args):
               "ruled_out": surv < 1 - args.confidence,
               "rate_factor_to_rule_out": rate_factor, "pga_factor_to_rule_out": pga_factor,
               "interval_level": args.level, "bootstrap_replicates": args.bootstrap}
-    emit_hazard(args, result, lambda: plot_hazard(args.plot, curve, mixture, v, points, result))
-    return 0
+    return result, lambda: plot_hazard(args.plot, curve, mixture, v, points, result)
 
 
 PLOT_FORMATS = figure_style.FIGURE_FORMATS
@@ -320,10 +327,9 @@ def hazard_pooled(args, cube, curve, objs):
                   "path": calibration.path, "sha256": calibration.sha256, "members": len(calibration.weights),
                   "weights": [float(w) for w in calibration.weights]}}
     no_replicates = {"replicate_theta_g": np.empty((0, len(points))), "replicate_beta": np.empty((0, len(points)))}
-    emit_hazard(args, result, lambda: plot_hazard(args.plot, curve, mixture, no_replicates, points,
-                                                  dict(result, object=f"{objs[0].name} (pooled)"),
-                                                  variant_mixtures=[mix for _, _, mix in per_variant]))
-    return 0
+    return result, lambda: plot_hazard(args.plot, curve, mixture, no_replicates, points,
+                                       dict(result, object=f"{objs[0].name} (pooled)"),
+                                       variant_mixtures=[mix for _, _, mix in per_variant])
 
 
 def print_hazard(r):
