@@ -454,5 +454,41 @@ TEST(ContactSolver, TheWorldCountsTheStepsWhoseSolveHitItsCap) {
   EXPECT_EQ(springs.stats().max_solver_sweeps, 0);
 }
 
+// Two cubes stacked on the ground, one step of gravity on each: the two patches share the lower
+// cube, so the solve visits their points by over-relaxed sweeps. Statics is the oracle: the top
+// face carries one cube's weight, the bottom face two, and nothing moves; friction, though
+// available, has no load to take.
+TEST(ContactSolver, AStackOfTwoCubesCarriesEachCubesWeightOnTheFaceBelowIt) {
+  auto bodies = ground_and_cube(Vec3(0, 0, -kG * kDt));
+  bodies.push_back(bodies[1]);
+  auto rows = four_corners();
+  for (const ContactRow& lower : four_corners()) {
+    ContactRow upper = lower;
+    upper.a = 1;
+    upper.b = 2;
+    upper.ra = lower.ra + Vec3(0, 0, kHalf);
+    rows.push_back(upper);
+  }
+  FrictionPatch top = bottom_face(0.5);
+  top.a = 1;
+  top.b = 2;
+  top.first_row = 4;
+  top.ra = Vec3(0, 0, kHalf);
+  std::vector<FrictionPatch> patches = {bottom_face(0.5), top};
+  const auto result = solve(bodies, rows, patches, tight());
+  ASSERT_TRUE(result.converged);
+  const double weight = kMass * kG * kDt;
+  double bottom = 0, upper = 0;
+  for (int k = 0; k < 4; ++k) bottom += rows[std::size_t(k)].normal_impulse;
+  for (int k = 4; k < 8; ++k) upper += rows[std::size_t(k)].normal_impulse;
+  EXPECT_NEAR(bottom, 2 * weight, 1e-8 * weight);
+  EXPECT_NEAR(upper, weight, 1e-8 * weight);
+  for (int i = 1; i <= 2; ++i) {
+    EXPECT_LT(bodies[std::size_t(i)].velocity.norm(), 1e-10);
+    EXPECT_LT(bodies[std::size_t(i)].angular_velocity.norm(), 1e-10);
+    EXPECT_LT(patches[std::size_t(i - 1)].impulse.norm(), 1e-8 * weight);
+  }
+}
+
 }  // namespace
 }  // namespace rigid
