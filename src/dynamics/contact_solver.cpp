@@ -45,11 +45,10 @@ Eigen::Vector3d patch_velocity(const SolverBody& a, const SolverBody& b, const F
   return {p.tangent1.dot(u), p.tangent2.dot(u), p.normal.dot(b.angular_velocity - a.angular_velocity)};
 }
 
-// Normal row: p_n = max(0, p_n + omega m (target - u_n)), omega the relaxation (1: Gauss-Seidel).
-// Returns the change.
-double solve_normal(SolverBody& a, SolverBody& b, ContactRow& r, double omega) {
+// Normal row: p_n = max(0, p_n + m (target - u_n)). Returns the change.
+double solve_normal(SolverBody& a, SolverBody& b, ContactRow& r) {
   const double un = normal_velocity(a, b, r);
-  const double pn = std::max(0.0, r.normal_impulse + omega * r.normal_mass * (r.target_normal_velocity - un));
+  const double pn = std::max(0.0, r.normal_impulse + r.normal_mass * (r.target_normal_velocity - un));
   const double change = pn - r.normal_impulse;
   if (change != 0) {
     apply_normal(a, b, r, change);
@@ -71,23 +70,16 @@ double largest_motion_change(const std::vector<SolverBody>& bodies, const std::v
   return change;
 }
 
-// Over-relaxation of the point-by-point visits of patches that share a block (a stack). There the
-// sweeps converge linearly and slowly (a three-rock stack: the motion change shrinks about 1.5 %
-// per sweep, exact patch solves or not); relaxing each update by 1.5 cut its capped steps from 46 %
-// to 28 % (physics.md §12). A fixed point is unchanged by it: a row whose update is zero is solved.
-constexpr double kSharedRelaxation = 1.5;
-
-// One Gauss-Seidel visit of a patch: each normal row, then the friction of the patch, each update
-// scaled by omega (1: plain Gauss-Seidel).
-void sweep_patch(SolverBody& a, SolverBody& b, ContactRow* rows, FrictionPatch& p, double omega) {
+// One Gauss-Seidel visit of a patch: each normal row, then the friction of the patch.
+void sweep_patch(SolverBody& a, SolverBody& b, ContactRow* rows, FrictionPatch& p) {
   double total = 0;
   for (int k = 0; k < p.row_count; ++k) {
-    solve_normal(a, b, rows[k], omega);
+    solve_normal(a, b, rows[k]);
     total += rows[k].normal_impulse;
   }
   // Coulomb on the patch: the impulse that stops sliding and twisting, projected radially
   // onto the ellipsoid |(f_1, f_2, tau / radius)| <= mu N
-  Eigen::Vector3d impulse = p.impulse - omega * (p.mass * patch_velocity(a, b, p));
+  Eigen::Vector3d impulse = p.impulse - p.mass * patch_velocity(a, b, p);
   const double limit = p.friction * total;
   const double size = std::hypot(impulse.x(), impulse.y(), p.radius > 0 ? impulse.z() / p.radius : 0.0);
   if (size > limit) impulse *= size > 0 ? limit / size : 0.0;
@@ -475,8 +467,6 @@ SolverResult solve_velocities(std::vector<SolverBody>& bodies, std::vector<Conta
   const double velocity_tolerance = 1e-3 * settings.velocity_tolerance;
   bool all_isolated = true;
   for (std::size_t j = 0; j < patches.size() && all_isolated; ++j) all_isolated = isolated(bodies, patches, j);
-  double omega = kSharedRelaxation;
-  double smallest_change = std::numeric_limits<double>::infinity();
   for (int iteration = 0; iteration < settings.max_iterations; ++iteration) {
     scratch = bodies;
     bool exact = true;
@@ -489,20 +479,16 @@ SolverResult solve_velocities(std::vector<SolverBody>& bodies, std::vector<Conta
       ContactRow* first = rows.data() + p.first_row;
       const bool alone = all_isolated || isolated(bodies, patches, std::size_t(&p - patches.data()));
       if (!alone || !solve_patch_exactly(a, b, first, p, PatchProblem::velocity, velocity_tolerance)) {
-        sweep_patch(a, b, first, p, alone ? 1.0 : omega);
+        sweep_patch(a, b, first, p);
         exact = false;
       }
     }
     result.iterations = iteration + 1;
     // isolated patches solved exactly are the whole problem solved: a second sweep would only repeat it
-    const double change = largest_motion_change(bodies, scratch, settings);
-    if ((exact && all_isolated) || change <= 1.0) {
+    if ((exact && all_isolated) || largest_motion_change(bodies, scratch, settings) <= 1.0) {
       result.converged = true;
       break;
     }
-    // a change twice the smallest yet: the over-relaxation overshoots, plain Gauss-Seidel from here
-    if (change > 2 * smallest_change) omega = 1.0;
-    smallest_change = std::min(smallest_change, change);
   }
   // invariant (debug builds): contacts push, never pull (Signorini: p_n >= 0)
   for ([[maybe_unused]] const auto& r : rows) assert(r.normal_impulse >= 0);
