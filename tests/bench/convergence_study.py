@@ -173,6 +173,8 @@ def main(argv):
     p.add_argument("--np", type=int, default=2, help="MPI ranks per campaign (1: no mpirun)")
     p.add_argument("--default-args", default="", help="extra flags of the default campaigns")
     p.add_argument("--reference-args", default="", help="extra flags of the reference campaigns")
+    p.add_argument("--jobs", default="",
+                   help="comma-separated job names of the set to run (e.g. slender,sliding); default all")
     p.add_argument("--check", action="store_true", help="exit 1 unless the study's targets hold")
     p.add_argument("--resume", action="store_true",
                    help="resume the cubes already in OUT (after an interruption) instead of starting anew")
@@ -195,7 +197,12 @@ def main(argv):
     env_ok = True
     pairs, timings = [], []
     start = time.monotonic()
-    for job in jobs_of(args.set):
+    chosen = [j for j in args.jobs.split(",") if j]
+    jobs = [j for j in jobs_of(args.set) if not chosen or os.path.splitext(os.path.basename(j))[0] in chosen]
+    if chosen and len(jobs) != len(chosen):
+        print(f"convergence_study: error: --jobs {args.jobs}: not all are jobs of the set {args.set}", file=sys.stderr)
+        sys.exit(2)
+    for job in jobs:
         name = os.path.splitext(os.path.basename(job))[0]
         if not has_objects(job):
             print(f"  {os.path.basename(job)}: left out (its optional objects are absent)")

@@ -118,7 +118,8 @@ bool solve_patch_exactly(SolverBody& a, SolverBody& b, ContactRow* rows, Frictio
 /// warm_start) and leaves the bodies at their end-of-step velocities: block Gauss-Seidel over the
 /// patches, each solved exactly (solve_patch_exactly) or, failing that, by one projected
 /// Gauss-Seidel visit of its rows. A lone patch (a block on a pedestal) is solved in one sweep;
-/// patches that share a free block are visited point by point, over-relaxed (physics.md §12).
+/// patches that share a free block are visited point by point (physics.md §12: why, and what was
+/// tried).
 /// `scratch` holds a copy of the bodies between sweeps (no allocation once it has their size).
 SolverResult solve_velocities(std::vector<SolverBody>& bodies, std::vector<ContactRow>& rows,
                               std::vector<FrictionPatch>& patches, const SolverSettings& settings,
