@@ -167,24 +167,26 @@ SlopeRun slide(contact::ContactMethod method, double tan_theta, double duration,
 
 class CoulombWedge : public ::testing::TestWithParam<contact::ContactMethod> {};
 
+// A block on a slope of tan(theta) = ratio x mu, past the friction angle, slides at the closed form
+// g (sin(theta) - mu cos(theta)), within 1 %.
+void expect_coulomb_acceleration(contact::ContactMethod method, double ratio, double duration) {
+  const SlopeRun r = slide(method, ratio * kFriction, duration);
+  const double expected = kGravity * (std::sin(r.theta) - kFriction * std::cos(r.theta));
+  std::printf("%s, tan(theta) = %.2f mu: acceleration %.5f m/s^2, closed form %.5f\n",
+              contact::contact_method_name(method), ratio, r.acceleration, expected);
+  EXPECT_NEAR(r.acceleration, expected, 0.01 * expected);
+}
+
 // tan(theta) = 1.05 mu: it slides at g (sin(theta) - mu cos(theta)) = 0.22 m/s^2, within 1 %.
 TEST_P(CoulombWedge, SlidesJustAboveTheFrictionAngleAtTheCoulombAcceleration) {
-  const SlopeRun r = slide(GetParam(), 1.05 * kFriction, 2.0);
-  const double expected = kGravity * (std::sin(r.theta) - kFriction * std::cos(r.theta));
-  std::printf("%s, tan(theta) = 1.05 mu: acceleration %.5f m/s^2, closed form %.5f\n",
-              contact::contact_method_name(GetParam()), r.acceleration, expected);
-  EXPECT_NEAR(r.acceleration, expected, 0.01 * expected);
+  expect_coulomb_acceleration(GetParam(), 1.05, 2.0);
 }
 
 // tan(theta) = 1.5 mu: 1.96 m/s^2, within 1 %. The penalty block hops on its springs here (normal
 // speed up to 0.2 m/s); its friction still averages mu times the weight's normal component. 1.4 s
 // keep the cube on the plane (it travels 1.9 m of the 2.5 m ahead of it).
 TEST_P(CoulombWedge, SlidesWellAboveTheFrictionAngleAtTheCoulombAcceleration) {
-  const SlopeRun r = slide(GetParam(), 1.5 * kFriction, 1.4);
-  const double expected = kGravity * (std::sin(r.theta) - kFriction * std::cos(r.theta));
-  std::printf("%s, tan(theta) = 1.5 mu: acceleration %.5f m/s^2, closed form %.5f\n",
-              contact::contact_method_name(GetParam()), r.acceleration, expected);
-  EXPECT_NEAR(r.acceleration, expected, 0.01 * expected);
+  expect_coulomb_acceleration(GetParam(), 1.5, 1.4);
 }
 
 INSTANTIATE_TEST_SUITE_P(Rigid, CoulombWedge, ::testing::Values(contact::ContactMethod::rigid), model_name);
